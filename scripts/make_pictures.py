@@ -1,0 +1,88 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
+"""Render the effect gallery shown in README (docs/img/*.png) with the engine alone."""
+
+from __future__ import annotations
+
+import sys
+from pathlib import Path
+
+import numpy as np
+
+ROOT = Path(__file__).resolve().parent.parent
+sys.path.insert(0, str(ROOT))
+
+from sim.engine import Simulation  # noqa: E402
+from sim.png import write_png  # noqa: E402
+from sim.recording import Dip, Recording  # noqa: E402
+from sim.strokes import stroke  # noqa: E402
+
+OUT = ROOT / "docs" / "img"
+
+
+def run(
+    samples,
+    paper="raw_xuan",
+    brush="mixed",
+    ink="sumi_black",
+    dips=None,
+    ppm=6.0,
+    size=(110, 40),
+    seed=0,
+    quality=None,
+):
+    rec = Recording(
+        np.asarray(samples),
+        width_mm=size[0],
+        height_mm=size[1],
+        px_per_mm=ppm,
+        seed=seed,
+        brush={"preset": brush},
+        paper_preset=paper,
+        ink={"preset": ink},
+        quality=quality or {},
+        dips=dips or [],
+    )
+    sim = Simulation(rec).run()
+    return sim
+
+
+def effects():
+    """One strip per effect: the stroke left to right across a 110 x 40 mm sheet."""
+    L = 30.0
+    rows = []
+    # gray levels: the same stroke with a full, a half and a nearly dry brush
+    for wet in (0.95, 0.5, 0.25):
+        s = stroke([[10, 20], [100, 20]], press_mm=9, hair_length_mm=L)
+        rows.append((f"gray_{int(wet * 100):02d}", run(s, dips=[Dip(0, 0.8, (0, 0, 0), wet)])))
+    # colour
+    s = stroke([[10, 20], [100, 20]], press_mm=9, hair_length_mm=L)
+    rows.append(("vermilion", run(s, dips=[Dip(0, 0.8, (0.82, 0.16, 0.09), 0.85)])))
+    # flying white: a fast, pressed stroke with little ink
+    s = stroke([[10, 20], [100, 20]], press_mm=10, speed_mm_s=160, hair_length_mm=L)
+    rows.append(("flying_white", run(s, ink="dry_ink", dips=[Dip(0, 0.5, (0, 0, 0), 0.3)])))
+    # saturation: slow, very wet stroke on raw xuan vs smooth paper
+    s = stroke([[10, 20], [100, 20]], press_mm=9, speed_mm_s=25, hair_length_mm=L)
+    rows.append(("bleed_raw_xuan", run(s, paper="raw_xuan", dips=[Dip(0, 1.0, (0, 0, 0), 1.0)])))
+    rows.append(("bleed_smooth", run(s, paper="smooth", dips=[Dip(0, 1.0, (0, 0, 0), 1.0)])))
+    # splitting: heavy pressure with a soft goat brush vs light pressure
+    s = stroke([[10, 20], [100, 20]], press_mm=16, speed_mm_s=90, hair_length_mm=34)
+    rows.append(("split_heavy", run(s, brush="goat_soft", dips=[Dip(0, 0.9, (0, 0, 0), 0.7)])))
+    s = stroke([[10, 20], [100, 20]], press_mm=5, speed_mm_s=60, hair_length_mm=34)
+    rows.append(("split_light", run(s, brush="goat_soft", dips=[Dip(0, 0.9, (0, 0, 0), 0.7)])))
+    return rows
+
+
+def main():
+    OUT.mkdir(parents=True, exist_ok=True)
+    rows = effects()
+    imgs = []
+    for name, sim in rows:
+        img = sim.image()
+        write_png(OUT / f"effect_{name}.png", img)
+        imgs.append(img)
+        print(f"{name}: primitives {sim.brush.m}, splits {sim.brush.splits}")
+    write_png(OUT / "effects.png", np.concatenate(imgs, axis=0))
+
+
+if __name__ == "__main__":
+    main()

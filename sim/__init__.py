@@ -1,0 +1,25 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
+"""Virtual Hairy Brush engine: the solid-model brush, ink and paper of Xu et al., "A Solid Model
+Based Virtual Hairy Brush" (Eurographics 2002). numpy and geomdl only; never bpy."""
+
+from .brush import HairyBrush, rotation_matrix
+from .engine import Simulation, render
+from .inertia import InertiaPredictor
+from .params import BrushGeometry, InkSpec, PaperSpec, ParameterError, QualityParams
+from .recording import Dip, Recording, RecordingError
+
+__all__ = [
+    "BrushGeometry",
+    "Dip",
+    "HairyBrush",
+    "InertiaPredictor",
+    "InkSpec",
+    "PaperSpec",
+    "ParameterError",
+    "QualityParams",
+    "Recording",
+    "RecordingError",
+    "Simulation",
+    "render",
+    "rotation_matrix",
+]

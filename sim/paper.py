@@ -1,0 +1,155 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
+"""The virtual paper psi (Sec. 6): per-pixel wetness and ink, absorption and drying (Eq. 24),
+saturation spreading to the eight neighbours (Eq. 25) and colour with the stochastic dry-brush
+weight (Eq. 26, 27).
+
+Buffers are float32, stored bottom row first (as Blender stores images). Ink is kept as density
+(0 = the paper's own colour, as Eq. 7 takes colour code 0 for the paper); the visible colour is
+paper_rgb * (1 - density). Wetness is in the brush's units (a fully loaded brush is about 1); the
+paper's capacity is the upper bound of its wetness above which it saturates (Sec. 6, Eq. 25 with
+the bound 1 read as the paper's capacity).
+
+Drying is lazy and exact: every pixel remembers the step it was last brought up to date, and
+when a step touches it again the missed drying is applied at once (drying is linear and clamped
+at zero, so max(max(w - a, 0) - b, 0) = max(w - a - b, 0)). Work per step is bounded by the
+marks' windows, never by the size of the paper.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+DRY_RATE = 1.0  # capacity units per second at dry = 1
+_NEIGHBOURS = [(-1, -1), (-1, 0), (-1, 1), (0, -1), (0, 1), (1, -1), (1, 0), (1, 1)]
+
+
+class Paper:
+    def __init__(
+        self,
+        width_px: int,
+        height_px: int,
+        px_per_mm: float,
+        color=(1.0, 1.0, 1.0),
+        capacity: float = 1.0,
+        dry_per_step: float = 0.0,
+    ):
+        self.W, self.H = int(width_px), int(height_px)
+        self.ppm = float(px_per_mm)
+        self.color = np.asarray(color, dtype=np.float32)
+        self.capacity = float(capacity)
+        self.wet = np.zeros((self.H, self.W), dtype=np.float32)
+        self.ink = np.zeros((self.H, self.W, 3), dtype=np.float32)
+        self.last = np.zeros((self.H, self.W), dtype=np.int32)
+        self.step = 0
+        self.dry_per_step = float(dry_per_step)  # Eq. 24's "- dry", per sample
+        # saturation spreads one pixel ring per pass: passes scale with resolution so that the
+        # halo has the same size in millimetres at any px_per_mm
+        self.sat_passes = max(1, int(round(self.ppm / 4.0)))
+
+    @property
+    def shape(self):
+        return (self.H, self.W)
+
+    def deposit(self, marks, gamma, hair_u, q, dt: float, step: int):
+        """Apply this step's marks (one per touching primitive), Eq. 24-27."""
+        self.step = step
+        marks = [mk for mk in marks if mk.rows.size]
+        if not marks:
+            return
+        margin = self.sat_passes + 1
+        y0 = max(min(mk.iy0 for mk in marks) - margin, 0)
+        x0 = max(min(mk.ix0 for mk in marks) - margin, 0)
+        y1 = min(max(mk.iy0 + mk.shape[0] for mk in marks) + margin, self.H)
+        x1 = min(max(mk.ix0 + mk.shape[1] for mk in marks) + margin, self.W)
+        wet = self.wet[y0:y1, x0:x1]
+        ink = self.ink[y0:y1, x0:x1]
+        last = self.last[y0:y1, x0:x1]
+        drystep = np.float32(self.dry_per_step)
+        # lazy drying through the previous step; this step's "- dry" follows (Eq. 24)
+        missed = np.maximum(step - 1 - last, 0).astype(np.float32)
+        w = np.maximum(wet - drystep * missed, 0.0)
+        dried = np.zeros(w.shape, dtype=bool)
+        ab = np.float32(q.ab)
+        for mk in marks:
+            r = mk.rows + (mk.iy0 - y0)
+            c = mk.cols + (mk.ix0 - x0)
+            lam = w[r, c]
+            first = ~dried[r, c]
+            # Eq. 24: wet' = ab * wet_lambda + (1 - ab) * wet_tau - dry
+            new = ab * lam + (1 - ab) * mk.wet.astype(np.float32)
+            new = np.maximum(new - np.where(first, drystep, 0), 0.0)
+            dried[r, c] = True
+            w[r, c] = new
+            # Eq. 27: Cr = 0 with probability min(ren * ab * gamma, 1), else wet_lambda; the draw
+            # is made per hair bundle across the primitive (its marginal probability is exactly
+            # Eq. 27's), so that dry pixels line up into the streaks of "flying white"
+            p0 = min(q.ren * q.ab * float(gamma[mk.primitive]), 1.0)
+            hb = hair_u.shape[1]
+            b = np.clip(((mk.lateral + 1.0) * 0.5 * hb).astype(np.int64), 0, hb - 1)
+            skip = hair_u[mk.primitive, b] < p0
+            cr = np.where(skip, 0.0, np.minimum(new, 1.0)).astype(np.float32)
+            old = ink[r, c]
+            ink[r, c] = mk.col.astype(np.float32) * cr[:, None] + old * (1 - cr[:, None])  # Eq. 26
+        w = np.where(dried, w, np.maximum(w - drystep, 0.0))
+        for _ in range(self.sat_passes):
+            over = np.nonzero(w > self.capacity)
+            if over[0].size == 0:
+                break
+            # only the neighbourhood of saturated pixels can change
+            sy0, sy1 = max(over[0].min() - 1, 0), over[0].max() + 2
+            sx0, sx1 = max(over[1].min() - 1, 0), over[1].max() + 2
+            self._saturate(w[sy0:sy1, sx0:sx1], ink[sy0:sy1, sx0:sx1], self.capacity)
+        wet[...] = w
+        last[...] = step
+
+    @staticmethod
+    def _saturate(w, ink, cap: float):
+        """Eq. 25: a pixel wetter than the paper's bound gives its excess to its unsaturated
+        neighbours, each in proportion to how unsaturated it is. The ink goes with the water:
+        a neighbour's ink moves toward the giver's by the share of a full load it receives."""
+        excess = np.maximum(w - cap, 0.0)
+        if not np.any(excess > 0):
+            return
+        unsat = np.maximum(cap - w, 0.0)
+        p = np.pad(unsat, 1)
+        H, Wd = w.shape
+        rho = sum(p[1 + dy : 1 + dy + H, 1 + dx : 1 + dx + Wd] for dy, dx in _NEIGHBOURS)
+        give = np.where(rho > 0, excess / np.where(rho > 0, rho, 1.0), 0.0)  # per unit unsat
+        gp = np.pad(give, 1)
+        ip = np.pad(ink, ((1, 1), (1, 1), (0, 0)))
+        inflow = np.zeros_like(w)
+        pigment = np.zeros_like(ink)
+        for dy, dx in _NEIGHBOURS:
+            g = gp[1 + dy : 1 + dy + H, 1 + dx : 1 + dx + Wd] * unsat
+            inflow += g
+            pigment += g[..., None] * ip[1 + dy : 1 + dy + H, 1 + dx : 1 + dx + Wd]
+        gave = rho > 0
+        w -= np.where(gave, excess, 0.0)
+        w += inflow
+        got = inflow > 0
+        mix = pigment / np.where(got, inflow, 1.0)[..., None]
+        share = np.minimum(inflow, 1.0)[..., None]
+        ink += np.where(got[..., None], (mix - ink) * share, 0.0)
+
+    def wetness(self) -> np.ndarray:
+        """Current wetness of every pixel, drying applied up to the current step."""
+        missed = np.maximum(self.step - self.last, 0).astype(np.float32)
+        return np.maximum(self.wet - np.float32(self.dry_per_step) * missed, 0.0)
+
+    def rgb(self) -> np.ndarray:
+        """Visible colour (H, W, 3) float32 in [0, 1], bottom row first."""
+        return self.color * (1.0 - np.clip(self.ink, 0.0, 1.0))
+
+    def snapshot(self) -> dict:
+        return {
+            "wet": self.wet.copy(),
+            "ink": self.ink.copy(),
+            "last": self.last.copy(),
+            "step": self.step,
+        }
+
+    def restore(self, snap: dict):
+        self.wet[...] = snap["wet"]
+        self.ink[...] = snap["ink"]
+        self.last[...] = snap["last"]
+        self.step = snap["step"]

@@ -1,0 +1,287 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
+"""Recordings (Sec. 1.2, 10): a small versioned JSON file of the brush's 6-DOF samples, the dips
+and the settings, from which the artwork is rebuilt exactly.
+
+Loading validates everything and raises ``RecordingError`` naming the offending field; nothing
+malformed reaches the engine.
+"""
+
+from __future__ import annotations
+
+import json
+import math
+from dataclasses import dataclass, field
+from pathlib import Path
+
+import numpy as np
+
+from .params import (
+    MAX_PAPER_PIXELS,
+    MAX_PAPER_SIDE_PX,
+    InkSpec,
+    ParameterError,
+    QualityParams,
+    geometry_from_preset,
+    ink_from_preset,
+    load_preset,
+    paper_from_preset,
+    quality_from_presets,
+)
+
+FORMAT = "hairy-brush-recording"
+VERSION = 1
+DEFAULT_BRUSH = "mixed"
+DEFAULT_PAPER = "raw_xuan"
+DEFAULT_INK = "sumi_black"
+MAX_SAMPLES = 2_000_000
+Z_LIMIT_MM = 1000.0
+ANGLE_LIMIT_DEG = 89.0
+
+
+class RecordingError(ValueError):
+    """A recording is malformed; the message names the field."""
+
+
+@dataclass
+class Dip:
+    before_sample: int
+    depth: float = 1.0
+    color: tuple = (0.0, 0.0, 0.0)
+    wetness: float = 0.9
+
+    def to_dict(self):
+        return {
+            "before_sample": self.before_sample,
+            "depth": self.depth,
+            "color": list(self.color),
+            "wetness": self.wetness,
+        }
+
+
+@dataclass
+class Recording:
+    samples: np.ndarray  # (N, 6): x, y, z mm; d, q, r degrees
+    width_mm: float = 200.0
+    height_mm: float = 200.0
+    px_per_mm: float = 5.0
+    sample_rate_hz: float = 120.0
+    seed: int = 0
+    brush: dict = field(default_factory=lambda: {"preset": DEFAULT_BRUSH})
+    paper_preset: str = DEFAULT_PAPER
+    ink: dict = field(default_factory=lambda: {"preset": DEFAULT_INK})
+    quality: dict = field(default_factory=dict)
+    dips: list = field(default_factory=list)
+    extra: dict = field(default_factory=dict)  # fields we keep but do not interpret
+
+    # ---------------------------------------------------------------- derived settings
+    @property
+    def width_px(self) -> int:
+        return max(1, int(round(self.width_mm * self.px_per_mm)))
+
+    @property
+    def height_px(self) -> int:
+        return max(1, int(round(self.height_mm * self.px_per_mm)))
+
+    def resolve(self):
+        """(QualityParams, BrushGeometry, PaperSpec, InkSpec) from presets plus overrides."""
+        try:
+            bp = load_preset("brush", self.brush.get("preset", DEFAULT_BRUSH))
+            pp = load_preset("paper", self.paper_preset)
+            ip = load_preset("ink", self.ink.get("preset", DEFAULT_INK))
+            values = quality_from_presets(bp, pp)
+            values.update(self.quality)
+            q = QualityParams().with_values(values)
+            geom = geometry_from_preset(bp)
+            if "geometry" in self.brush:
+                from dataclasses import replace
+
+                geom = replace(geom, **self.brush["geometry"])
+            return q, geom, paper_from_preset(pp), ink_from_preset(ip)
+        except (ParameterError, TypeError) as exc:
+            raise RecordingError(str(exc)) from None
+
+    def dips_or_default(self) -> list:
+        if self.dips:
+            return self.dips
+        # "a default dip is a full dip in black ink"
+        return [Dip(0, 1.0, (0.0, 0.0, 0.0), InkSpec().wetness)]
+
+    def to_dict(self) -> dict:
+        d = {
+            "format": FORMAT,
+            "version": VERSION,
+            "paper": {
+                "width_mm": self.width_mm,
+                "height_mm": self.height_mm,
+                "px_per_mm": self.px_per_mm,
+                "preset": self.paper_preset,
+            },
+            "brush": dict(self.brush),
+            "ink": dict(self.ink),
+            "quality": dict(self.quality),
+            "sample_rate_hz": self.sample_rate_hz,
+            "seed": self.seed,
+            "samples": [[round(float(v), 5) for v in s] for s in self.samples],
+            "dips": [dp.to_dict() for dp in self.dips],
+        }
+        d.update(self.extra)
+        return d
+
+    def save(self, path) -> None:
+        Path(path).write_text(json.dumps(self.to_dict(), separators=(",", ":")), encoding="utf-8")
+
+
+# ------------------------------------------------------------------------- validation
+def _num(value, where: str, lo=-math.inf, hi=math.inf, integer=False):
+    if isinstance(value, bool) or not isinstance(value, (int, float)):
+        raise RecordingError(f"{where} must be a number, got {type(value).__name__} {value!r}")
+    if not math.isfinite(value):
+        raise RecordingError(f"{where} must be finite, got {value!r}")
+    if integer and int(value) != value:
+        raise RecordingError(f"{where} must be a whole number, got {value!r}")
+    if not lo <= value <= hi:
+        raise RecordingError(f"{where} must lie in [{lo}, {hi}], got {value!r}")
+    return int(value) if integer else float(value)
+
+
+def _obj(d, key, where, required=True):
+    if key not in d:
+        if required:
+            raise RecordingError(f"missing field '{where}'")
+        return None
+    v = d[key]
+    if not isinstance(v, dict):
+        raise RecordingError(f"'{where}' must be an object")
+    return v
+
+
+def from_dict(d) -> Recording:
+    if not isinstance(d, dict):
+        raise RecordingError("a recording must be a JSON object")
+    if d.get("format") != FORMAT:
+        raise RecordingError(f"field 'format' must be {FORMAT!r}, got {d.get('format')!r}")
+    if "version" not in d:
+        raise RecordingError("missing field 'version'")
+    version = _num(d["version"], "'version'", integer=True)
+    if version != VERSION:
+        raise RecordingError(
+            f"field 'version' {version} is not supported (this engine reads {VERSION})"
+        )
+    paper = _obj(d, "paper", "paper")
+    for k in ("width_mm", "height_mm", "px_per_mm"):
+        if k not in paper:
+            raise RecordingError(f"missing field 'paper.{k}'")
+    width = _num(paper["width_mm"], "'paper.width_mm'", 1.0, 5000.0)
+    height = _num(paper["height_mm"], "'paper.height_mm'", 1.0, 5000.0)
+    ppm = _num(paper["px_per_mm"], "'paper.px_per_mm'", 0.1, 200.0)
+    wpx, hpx = round(width * ppm), round(height * ppm)
+    if wpx > MAX_PAPER_SIDE_PX or hpx > MAX_PAPER_SIDE_PX or wpx * hpx > MAX_PAPER_PIXELS:
+        raise RecordingError(
+            f"paper of {wpx} x {hpx} px is too large: at most {MAX_PAPER_SIDE_PX} px a side "
+            f"(reduce 'paper.px_per_mm' or the paper's size)"
+        )
+    paper_preset = paper.get("preset", DEFAULT_PAPER)
+    if not isinstance(paper_preset, str):
+        raise RecordingError("'paper.preset' must be a preset name")
+    brush = _obj(d, "brush", "brush", required=False) or {"preset": DEFAULT_BRUSH}
+    ink = _obj(d, "ink", "ink", required=False) or {"preset": DEFAULT_INK}
+    for name, sec in (("brush", brush), ("ink", ink)):
+        if "preset" in sec and not isinstance(sec["preset"], str):
+            raise RecordingError(f"'{name}.preset' must be a preset name")
+    quality = _obj(d, "quality", "quality", required=False) or {}
+    known = QualityParams.names()
+    for k, v in quality.items():
+        if k not in known:
+            raise RecordingError(f"unknown quality parameter 'quality.{k}' (known: {list(known)})")
+        _num(v, f"'quality.{k}'", 0.0, 1.0)
+    if "sample_rate_hz" not in d:
+        raise RecordingError("missing field 'sample_rate_hz'")
+    rate = _num(d["sample_rate_hz"], "'sample_rate_hz'", 1.0, 10000.0)
+    seed = _num(d.get("seed", 0), "'seed'", 0, 2**63 - 1, integer=True)
+    if "samples" not in d:
+        raise RecordingError("missing field 'samples'")
+    samples = d["samples"]
+    if not isinstance(samples, list) or not samples:
+        raise RecordingError("'samples' must be a non-empty list of [x, y, z, d, q, r]")
+    if len(samples) > MAX_SAMPLES:
+        raise RecordingError(f"'samples' has {len(samples)} entries; at most {MAX_SAMPLES}")
+    for i, s in enumerate(samples):
+        if not isinstance(s, list) or len(s) != 6:
+            raise RecordingError(f"'samples[{i}]' must be a list of 6 numbers [x, y, z, d, q, r]")
+        for k, v in enumerate(s):
+            if isinstance(v, bool) or not isinstance(v, (int, float)) or not math.isfinite(v):
+                raise RecordingError(f"'samples[{i}][{k}]' must be a finite number, got {v!r}")
+    arr = np.asarray(samples, dtype=float)
+    if np.any(np.abs(arr[:, :2]) > 10 * max(width, height)):
+        i = int(np.argmax(np.any(np.abs(arr[:, :2]) > 10 * max(width, height), axis=1)))
+        raise RecordingError(f"'samples[{i}]': x, y are far outside the paper")
+    if np.any(np.abs(arr[:, 2]) > Z_LIMIT_MM):
+        i = int(np.argmax(np.abs(arr[:, 2]) > Z_LIMIT_MM))
+        raise RecordingError(f"'samples[{i}][2]' (z) must lie within +-{Z_LIMIT_MM} mm")
+    if np.any(np.abs(arr[:, 3:5]) > ANGLE_LIMIT_DEG):
+        i = int(np.argmax(np.any(np.abs(arr[:, 3:5]) > ANGLE_LIMIT_DEG, axis=1)))
+        raise RecordingError(
+            f"'samples[{i}]': deflections d, q must lie within +-{ANGLE_LIMIT_DEG} deg"
+        )
+    dips_raw = d.get("dips", [])
+    if not isinstance(dips_raw, list):
+        raise RecordingError("'dips' must be a list")
+    dips = []
+    for i, dp in enumerate(dips_raw):
+        where = f"dips[{i}]"
+        if not isinstance(dp, dict):
+            raise RecordingError(f"'{where}' must be an object")
+        if "before_sample" not in dp:
+            raise RecordingError(f"missing field '{where}.before_sample'")
+        bs = _num(dp["before_sample"], f"'{where}.before_sample'", 0, len(samples), integer=True)
+        depth = _num(dp.get("depth", 1.0), f"'{where}.depth'", 0.0, 1.0)
+        wet = _num(dp.get("wetness", 0.9), f"'{where}.wetness'", 0.0, 1.0)
+        col = dp.get("color", [0.0, 0.0, 0.0])
+        if not isinstance(col, list) or len(col) != 3:
+            raise RecordingError(f"'{where}.color' must be [r, g, b]")
+        col = tuple(_num(c, f"'{where}.color[{k}]'", 0.0, 1.0) for k, c in enumerate(col))
+        dips.append(Dip(bs, depth, col, wet))
+    dips.sort(key=lambda x: x.before_sample)
+    known_keys = {
+        "format",
+        "version",
+        "paper",
+        "brush",
+        "ink",
+        "quality",
+        "sample_rate_hz",
+        "seed",
+        "samples",
+        "dips",
+    }
+    rec = Recording(
+        arr,
+        width,
+        height,
+        ppm,
+        rate,
+        seed,
+        brush,
+        paper_preset,
+        ink,
+        quality,
+        dips,
+        {k: v for k, v in d.items() if k not in known_keys},
+    )
+    rec.resolve()  # presets exist and values are in range
+    return rec
+
+
+def loads(text: str) -> Recording:
+    try:
+        d = json.loads(text, parse_constant=lambda c: float(c))
+    except json.JSONDecodeError as exc:
+        raise RecordingError(f"not valid JSON: {exc}") from None
+    return from_dict(d)
+
+
+def load(path) -> Recording:
+    p = Path(path)
+    if not p.is_file():
+        raise RecordingError(f"no recording file at {p}")
+    return loads(p.read_text(encoding="utf-8"))

@@ -1,0 +1,248 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
+"""One test per equation, against values computed by hand from the paper's formulas."""
+
+import math
+
+import numpy as np
+import pytest
+
+from sim.brush import REF_RATE, V_REF, HairyBrush
+from sim.inertia import InertiaPredictor
+from sim.mark import Mark, compute_marks
+from sim.paper import Paper
+from sim.params import BrushGeometry, InkSpec, QualityParams
+
+DT = 1.0 / REF_RATE  # per-step equations apply unscaled at the reference rate
+
+
+def test_eq9_inertia_predictor_paper_defaults():
+    p = InertiaPredictor(dt=1.0)
+    out = [p([x, 0, 0, 0, 0, 0])[0] for x in (0.0, 10.0, 20.0, 30.0)]
+    # S1 = .6*10 + .4*(0 + 0); S2 = .6*20 + .4*(6 + 6); S3 = .6*30 + .4*(16.8 + (4*10.8 + 2*6)/6)
+    assert out == pytest.approx([0.0, 6.0, 16.8, 28.4])
+
+
+def test_eq7_eq8_dipping_interpolates_to_the_dry_first_key_point(brush):
+    ink = InkSpec(color=(0.2, 0.4, 0.6), wetness=0.8)
+    brush.dip(ink, depth=0.5)
+    # 9 key points, 3.75 mm apart: sarc >= 15 mm soaked (k = index 4)
+    dens = np.array([0.8, 0.6, 0.4])
+    frac = np.array([0, 0.25, 0.5, 0.75, 1, 1, 1, 1, 1])
+    assert np.allclose(brush.wet[0], 0.8 * frac)
+    assert np.allclose(brush.col[0], frac[:, None] * dens)
+    assert brush.state == "dipping"
+
+
+def test_eq10_eq11_eq12_stress_and_pressure(brush):
+    b = brush
+    b.wet[:] = 0.5
+    r, L = b.r, b.L
+    # undeformed (hdd = 0), round ellipse, tip a point (hsd = 1); S = pi r^2, hei = L
+    stress, gamma = b.update_stress(np.array([math.pi * r * r]), np.array([L]), 100.0, DT)
+    ab_area = b.a[0] * b.b[0] / 4 / r**2
+    expect = (1 - 0.5) * (9 / 4.5) * 1.0 * 1.0 * ab_area
+    assert stress[0] == pytest.approx(expect)
+    assert gamma[0] == pytest.approx(100.0 / V_REF * expect * 0.5 * 0.5)
+
+
+def test_eq11_hdd_measures_displacement_from_the_free_state(brush):
+    b = brush
+    b.wet[:] = 1.0
+    b.cc[0, 1:, 0] += 2.0  # every key point but the first moved 2 mm sideways
+    stress, _ = b.update_stress(np.array([math.pi * b.r**2]), np.array([b.L]), 0.0, DT)
+    # his = hsd + hdd = 1 + 2 / L (hdd made dimensionless by the hair length)
+    base = (1 - 0.5) * 1.0 * 1.0 * (b.a[0] * b.b[0] / 4 / b.r**2)
+    assert stress[0] == pytest.approx(base * (1 + 2.0 / b.L), rel=1e-6)
+
+
+def test_eq13_active_point_inserted_with_interpolated_ink(brush):
+    b = brush
+    b.place([50, 50, 20, 0, 0, 0])
+    new = b._rest_world(b.sarc, b.B, b.R)  # straight down through the paper, unclamped
+    b.wet[0] = np.linspace(0, 0.8, 9)  # wet_5 = 0.5, wet_6 = 0.6 (0-based)
+    b._insert_active_point(new)
+    # crossing between sarc 18.75 (z = 1.25) and 22.5 (z = -2.5): at sarc 20, lam = 1/3
+    j = b.active[0]
+    assert b.n == 9 and b.cc.shape == (1, 9, 3)
+    assert b.sarc[0, j] == pytest.approx(20.0)
+    assert b.cc[0, j, 2] == 0.0
+    assert b.wet[0, j] == pytest.approx((2 / 3) * 0.5 + (1 / 3) * 0.6)
+    assert np.all(np.diff(b.sarc[0]) > 0)
+
+
+def test_eq14_lifting_raises_key_points(brush):
+    b = brush
+    b.place([50, 50, 20, 0, 0, 0])
+    b.gamma[:] = 0.5
+    before = b.cc[0, 1:, 2].copy()
+    b.move([50, 50, 21, 0, 0, 0], np.zeros(6), DT)
+    # every key point rose by at least the lift itself, the held ones by gamma * lift on top
+    assert np.all(b.cc[0, 1:, 2] >= before - 1e-9)
+    assert np.all(b.cc[0, :, 2] >= 0)
+
+
+def test_eq15_wetness_loss_around_the_active_point(brush):
+    b = brush
+    b.wet[:] = 0.5
+    b.active[:] = 4
+    b.touching[:] = True
+    b.gamma[:] = 0.2
+    b.lose_wetness(DT)
+    ab = b.q.ab
+    loss = np.array([ab * 0.2 / 2 ** (abs(j - 4) + (1 if j == 4 else 2)) for j in range(9)])
+    assert np.allclose(b.wet[0], 0.5 - loss)
+
+
+def test_eq16_rotation_along_minor_axis_and_elongation_across(brush):
+    b = brush
+    b.touching[:] = True
+    b.gamma[:] = 0.5
+    area = b.a[0] * b.b[0]
+    b.adjust_ellipse(np.array([0.0, V_REF, 0, 0, 0, 0]), DT)  # along eori = +y
+    rot = b.q.re * 0.5 * 1.0
+    assert b.eori[0, :2] == pytest.approx([-math.sin(rot), math.cos(rot)])
+    assert b.a[0] * b.b[0] == pytest.approx(area)
+    b2 = HairyBrush(BrushGeometry(), QualityParams(), np.random.default_rng(0))
+    b2.touching[:] = True
+    b2.gamma[:] = 0.5
+    a0 = b2.a[0]
+    b2.adjust_ellipse(np.array([V_REF, 0.0, 0, 0, 0, 0]), DT)  # across eori
+    inc = b2.q.ie * 0.5 * 1.0
+    assert b2.a[0] == pytest.approx(a0 + inc * b2.r)
+    assert math.pi * b2.a[0] * b2.b[0] / 4 == pytest.approx(math.pi * a0 * a0 / 4)  # Sec. 5.3
+    assert b2.tiplen[0] == pytest.approx(inc * b2.r)  # Sec. 5.4
+
+
+def test_eq17_relocation_toward_the_middle_of_the_key_points(brush):
+    b = brush
+    b.touching[:] = True
+    loc0 = b.loc[0]
+    b.adjust_ellipse(np.zeros(6), DT)
+    # evenly spaced: (1/n) sum_{j=1}^{n-1} j/(n-1) = 1/2
+    assert b.loc[0] == pytest.approx(0.75 * loc0 + 0.25 * 0.5)
+
+
+def test_eq18_eq19_split_keeps_the_hair(brush):
+    b = brush
+    b.q = QualityParams(tre=0.3)
+    b.touching[:] = True
+    b.stress[:] = 1.0
+    b.tiplen[:] = 3.0
+    a0, area0 = b.a[0], b.hair_area()
+    assert b.split() == 2  # k = floor(1.0 / 0.3) = 3 primitives
+    assert b.m == 3
+    assert np.allclose(b.a, a0 / math.sqrt(3)) and np.allclose(b.tiplen, 1.0)
+    assert b.hair_area() == pytest.approx(area0)
+    assert np.allclose(b.cc[:, 0], b.B)  # the bottom control circle is shared
+    off = np.linalg.norm(b.cc[:, -1] - b.cc[0, -1], axis=1)
+    assert off.max() > 0  # children spread apart, by (str - tre) * r at most at the tip
+    assert np.all(
+        np.linalg.norm(b.cc[:, -1] - b._rest_world(b.sarc, b.B, b.R)[:, -1], axis=1)
+        <= (1.0 - 0.3) * b.r + 1e-9
+    )
+
+
+def test_eq20_ink_flows_between_nearby_primitives(brush):
+    b = brush
+    b.touching[:] = True
+    b.stress[:] = 0.9
+    b.q = QualityParams(tre=0.45)
+    b.split()
+    b.cc[1] = b.cc[0]  # the two clusters lie on each other
+    b.wet[0], b.wet[1] = 0.2, 0.8
+    b.ink_flow()
+    pw = b.q.pw
+    assert np.allclose(b.wet[0], 0.2 * (1 - pw) + 0.8 * pw)
+    assert np.allclose(b.wet[1], 0.8 * (1 - pw) + 0.2 * pw)
+
+
+def test_eq21_to_23_pixel_ink_is_the_texture_function_at_the_pixel(brush):
+    """With V^ on a vertical axis, Eq. 22 + 23 reduce to Eq. 5 at the pixel's offset."""
+    b = brush
+    b.place([50, 50, 25, 0, 0, 0])
+    b.cc = b._rest_world(b.sarc, b.B, b.R)  # straight, crossing psi at (50, 50)
+    b.wet[:] = 0.8
+    b.col[:] = 0.5
+    b.wr[:] = -0.05
+    b.cr[:] = 0.1
+    sec = b.sections()
+    (mk,) = compute_marks(b, sec, b.rows_ink(sec), 10.0, (1000, 1000))
+    px = (mk.cols + mk.ix0 + 0.5) / 10.0
+    py = (mk.rows + mk.iy0 + 0.5) / 10.0
+    dist = np.hypot(px - 50, py - 50)
+    assert mk.rows.size > 100
+    assert np.allclose(mk.wet, 0.8 * (1 - 0.05 * dist), atol=1e-6)
+    assert np.allclose(mk.col[:, 0], 0.5 * (1 + 0.1 * dist), atol=1e-6)
+    # the mark is the round section of the tapering tip: radius from the profile
+    alpha, _ = b.profile_semiaxes(np.array([25 / 30]))
+    assert dist.max() == pytest.approx(alpha[0, 0], abs=0.15)
+
+
+def _one_pixel_mark(wet, col):
+    return Mark(
+        0,
+        1,
+        1,
+        np.array([0]),
+        np.array([0]),
+        np.array([wet]),
+        np.array([col]),
+        np.array([0.0]),
+        (1, 1),
+        np.zeros((0, 2, 2)),
+        1.0,
+        1.0,
+    )
+
+
+def test_eq24_eq26_absorption_and_colour():
+    q = QualityParams(ab=0.5, ren=0.0, dry=0.0)
+    paper = Paper(4, 4, 1.0)
+    hair = np.full((1, 48), 0.5)
+    mk = _one_pixel_mark(0.8, [0.5, 0.5, 0.5])
+    paper.deposit([mk], np.array([1.0]), hair, q, DT, 1)
+    assert paper.wet[1, 1] == pytest.approx(0.4)  # .5 * 0 + .5 * .8
+    assert paper.ink[1, 1, 0] == pytest.approx(0.2)  # .5 * .4 + 0 * .6
+    paper.deposit([mk], np.array([1.0]), hair, q, DT, 2)
+    assert paper.wet[1, 1] == pytest.approx(0.6)
+    assert paper.ink[1, 1, 0] == pytest.approx(0.5 * 0.6 + 0.2 * 0.4)
+
+
+def test_eq27_dry_brush_probability():
+    paper = Paper(4, 4, 1.0)
+    mk = _one_pixel_mark(0.8, [0.5, 0.5, 0.5])
+    q = QualityParams(ab=0.5, ren=1.0, dry=0.0)
+    hair = np.full((1, 48), 0.3)
+    # P{Cr = 0} = min(ren * ab * gamma, 1) = 0.25 < 0.3: inked
+    paper.deposit([mk], np.array([0.5]), hair, q, DT, 1)
+    assert paper.ink[1, 1, 0] > 0
+    paper2 = Paper(4, 4, 1.0)
+    # = 0.5 > 0.3: this hair bundle skips the pixel (flying white)
+    paper2.deposit([mk], np.array([1.0]), hair, q, DT, 1)
+    assert paper2.ink[1, 1, 0] == 0 and paper2.wet[1, 1] > 0
+
+
+def test_eq24_lazy_drying_equals_drying_every_step():
+    q = QualityParams(ab=0.3, ren=0.0)
+    d = 0.02
+    lazy = Paper(4, 4, 1.0, dry_per_step=d)
+    mk = _one_pixel_mark(0.9, [1, 1, 1])
+    hair = np.ones((1, 48))
+    lazy.deposit([mk], np.array([0.0]), hair, q, DT, 1)
+    lazy.deposit([mk], np.array([0.0]), hair, q, DT, 10)
+    w = max(0.7 * 0.9 - d, 0)
+    for _ in range(8):  # steps 2..9 dry it
+        w = max(w - d, 0)
+    assert lazy.wet[1, 1] == pytest.approx(max(0.3 * w + 0.7 * 0.9 - d, 0), abs=1e-6)
+
+
+def test_eq25_saturation_spreads_to_unsaturated_neighbours():
+    w = np.full((3, 3), 0.5, dtype=np.float32)
+    w[1, 1] = 1.5
+    ink = np.zeros((3, 3, 3), dtype=np.float32)
+    ink[1, 1] = 1.0
+    Paper._saturate(w, ink, 1.0)
+    assert w[1, 1] == pytest.approx(1.0)
+    assert w[0, 0] == pytest.approx(0.5 + 0.5 * 0.5 / 4.0)  # unsat 0.5 of rho = 8 * 0.5
+    assert w.sum() == pytest.approx(0.5 * 8 + 1.5)  # water is conserved
+    assert 0 < ink[0, 0, 0] < 1  # the ink goes with it, diluted
