@@ -12,28 +12,17 @@ ROOT = Path(__file__).resolve().parent.parent
 sys.path.insert(0, str(ROOT))
 
 from sim.engine import Simulation  # noqa: E402
-from sim.hanzi import load_char, simple_samples  # noqa: E402
+from sim.hanzi import character_recording  # noqa: E402
 from sim.png import write_png  # noqa: E402
-from sim.recording import Dip, Recording  # noqa: E402
 
 OUT = ROOT / "out"
 
 
-def write_character(char="永", size_mm=160.0, ppm=6.0):
-    data = load_char(ROOT / "data" / "hanzi" / f"{char}.json")
-    samples = simple_samples(data, size_mm, hair_length_mm=34.0, press_mm=14.0)
-    rec = Recording(
-        samples,
-        width_mm=size_mm,
-        height_mm=size_mm,
-        px_per_mm=ppm,
-        brush={"preset": "goat_soft"},
-        paper_preset="raw_xuan",
-        dips=[Dip(0, 0.9, (0.03, 0.03, 0.04), 0.95)],
-    )
+def write_character(char="永"):
+    rec = character_recording(ROOT / "data" / "hanzi" / f"{char}.json")
     t0 = time.perf_counter()
     sim = Simulation(rec).run()
-    print(f"simulated {len(samples)} samples in {time.perf_counter() - t0:.1f} s")
+    print(f"simulated {len(rec.samples)} samples in {time.perf_counter() - t0:.1f} s")
     return rec, sim
 
 
@@ -51,7 +40,8 @@ def save_blend(rgb_bottom_up, path: Path):
     plane = bpy.context.active_object
     plane.name = "Paper"
     mat = bpy.data.materials.new("Paper")
-    mat.use_nodes = True
+    if mat.node_tree is None:  # Blender < 5 creates materials without nodes
+        mat.use_nodes = True
     nodes = mat.node_tree.nodes
     tex = nodes.new("ShaderNodeTexImage")
     tex.image = img

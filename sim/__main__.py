@@ -45,6 +45,13 @@ def cmd_render(args) -> int:
     return 0
 
 
+def cmd_bench(args) -> int:
+    from .bench import main as bench
+
+    bench(quick=args.quick)
+    return 0
+
+
 def main(argv=None) -> int:
     ap = argparse.ArgumentParser(prog="python -m sim", description="Virtual Hairy Brush engine")
     sub = ap.add_subparsers(dest="cmd", required=True)
@@ -55,6 +62,9 @@ def main(argv=None) -> int:
     r.add_argument("--seed", type=int, default=None, help="override the seed")
     r.add_argument("-q", "--quiet", action="store_true")
     r.set_defaults(func=cmd_render)
+    b = sub.add_parser("bench", help="speed benchmark: a table, then one JSON line")
+    b.add_argument("--quick", action="store_true", help="one repetition instead of three")
+    b.set_defaults(func=cmd_bench)
     args = ap.parse_args(argv)
     try:
         return args.func(args)

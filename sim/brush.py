@@ -121,6 +121,7 @@ class HairyBrush:
         self.state = "initial"  # Sec. 3.3: initial -> dipping -> working
         self.travel = np.array([1.0, 0.0])  # last horizontal direction of motion
         self.splits = 0
+        self.max_primitives = MAX_PRIMITIVES
         self._free_state(1)
 
     # ----------------------------------------------------------------- states (Sec. 3.3-3.5)
@@ -542,7 +543,7 @@ class HairyBrush:
         tre = max(self.q.tre, 1e-3)
         k = np.floor(self.stress / tre).astype(int)
         k = np.where(self.touching, k, 1)
-        room = MAX_PRIMITIVES - self.m
+        room = self.max_primitives - self.m
         k = np.clip(k, 1, None)
         if room <= 0 or not np.any(k >= 2):
             return 0

@@ -61,3 +61,19 @@ def simple_samples(
         )
         prev = pts[-1]
     return np.concatenate(parts)
+
+
+def character_recording(path, size_mm: float = 160.0, px_per_mm: float = 6.0):
+    """The demo's recording: one character written by the soft goat-hair brush on raw xuan."""
+    from .recording import Dip, Recording
+
+    samples = simple_samples(load_char(path), size_mm, hair_length_mm=34.0, press_mm=14.0)
+    return Recording(
+        samples,
+        width_mm=size_mm,
+        height_mm=size_mm,
+        px_per_mm=px_per_mm,
+        brush={"preset": "goat_soft"},
+        paper_preset="raw_xuan",
+        dips=[Dip(0, 0.9, (0.03, 0.03, 0.04), 0.95)],
+    )

@@ -246,3 +246,16 @@ def test_eq25_saturation_spreads_to_unsaturated_neighbours():
     assert w[0, 0] == pytest.approx(0.5 + 0.5 * 0.5 / 4.0)  # unsat 0.5 of rho = 8 * 0.5
     assert w.sum() == pytest.approx(0.5 * 8 + 1.5)  # water is conserved
     assert 0 < ink[0, 0, 0] < 1  # the ink goes with it, diluted
+
+
+def test_split_respects_the_primitive_cap(brush):
+    b = brush
+    b.max_primitives = 3
+    b.touching[:] = True
+    b.stress[:] = 10.0
+    b.q = QualityParams(tre=0.1)
+    b.split()
+    assert b.m == 3
+    b.touching[:] = True
+    b.stress[:] = 10.0
+    assert b.split() == 0 and b.m == 3
