@@ -5,7 +5,8 @@ paper plane psi (z = 0), and the ink information of every pixel inside the cut.
 1. The surface is evaluated on its fixed (s, t) grid: every row is c(s) + U(s) Cx(t) + V(s) Cy(t)
    (see ``nurbs``). Marching squares on the grid's z values gives the intersection curve cur_u
    as a set of segments in the paper plane (one contour per closed curve).
-2. The pixels of the curve's bounding box are filled by the even-odd rule from those segments.
+2. Within the curve's bounding box, a pixel is inked when some section of the solid contains it
+   (the solid is the union of its sections, also where a bent axis folds the surface).
 3. Each inside pixel tau is placed on the segment from V^ (on the middle control axis, in the
    section plane through tau) to V (on the surface, in tau's direction): with f = |tau - V^| /
    |V - V^|, V^ takes its ink from the two nearest key points (Eq. 21), V from V^'s texture
@@ -94,25 +95,6 @@ def slice_grid(X) -> np.ndarray:
             r = np.nonzero(ok)[0]
             segs.append(np.stack([E[r, a[ok]], E[r, b[ok]]], axis=1))
     return np.concatenate(segs, axis=0)
-
-
-def fill_segments(seg2, ppm: float, iy0: int, ix0: int, h: int, w: int) -> np.ndarray:
-    """Even-odd fill of the closed curves given as segments (M, 2, 2) in mm: a (h, w) mask of the
-    window whose pixel (r, c) has its centre at ((ix0 + c + .5) / ppm, (iy0 + r + .5) / ppm)."""
-    y = seg2[:, :, 1] * ppm - 0.5 - iy0  # pixel-centre row coordinates
-    x = seg2[:, :, 0] * ppm - 0.5 - ix0
-    ya, yb = y[:, 0], y[:, 1]
-    lo, hi = np.minimum(ya, yb), np.maximum(ya, yb)
-    rows = np.arange(h)[None, :]
-    hit = (rows >= lo[:, None]) & (rows < hi[:, None])  # half-open: each crossing counted once
-    si, ri = np.nonzero(hit)
-    if si.size == 0:
-        return np.zeros((h, w), dtype=bool)
-    t = (ri - ya[si]) / (yb[si] - ya[si])
-    xc = x[si, 0] + t * (x[si, 1] - x[si, 0])
-    col = np.clip(np.ceil(xc), 0, w).astype(np.int64)  # first pixel centre right of the crossing
-    toggles = np.bincount(ri * (w + 1) + col, minlength=h * (w + 1)).reshape(h, w + 1)
-    return (np.cumsum(toggles[:, :w], axis=1) & 1).astype(bool)
 
 
 def compute_marks(brush, sec, ink_rows, ppm: float, paper_shape) -> list[Mark]:

@@ -51,11 +51,6 @@ def stroke(
     return np.concatenate([out, ang], axis=1)
 
 
-def hover(p, n: int, z: float):
-    """n samples resting at p (x, y) at height z: moving between strokes."""
-    return np.array([[p[0], p[1], z, 0.0, 0.0, 0.0]] * n, dtype=float)
-
-
 def travel(a, b, n: int, z: float):
     t = np.linspace(0, 1, n)[:, None]
     xy = np.asarray(a, float) * (1 - t) + np.asarray(b, float) * t
