@@ -1,63 +1,150 @@
 # SPDX-License-Identifier: GPL-3.0-or-later
-"""Headless demo: write the character 永 with the engine, save the paper as out/demo.png, and a
-Blender scene with the paper as an image texture as out/demo.blend (bpy module, no UI)."""
+"""Headless demo, run with the bpy module: install the extension from its built zip into a
+private Blender user folder (out/blender_user) as a user would, set up a scene, write 永 with a
+keyframed brush, bake and simulate, then save the paper (out/demo.png), the recording
+(out/demo_recording.json), the scene (out/demo.blend) and a Cycles render of the calligraphy
+mapped onto a curved hanging scroll (out/demo_render.png)."""
 
 from __future__ import annotations
 
+import math
+import os
 import sys
 import time
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parent.parent
+OUT = ROOT / "out"
 sys.path.insert(0, str(ROOT))
+sys.path.insert(0, str(ROOT / "scripts"))
+OUT.mkdir(exist_ok=True)
+# Blender reads its user folders at import time: keep the user's own Blender untouched.
+os.environ["BLENDER_USER_RESOURCES"] = str(OUT / "blender_user")
 
-from sim.engine import Simulation  # noqa: E402
-from sim.hanzi import character_recording  # noqa: E402
+import bpy  # noqa: E402
+import numpy as np  # noqa: E402
+from build_extension import build  # noqa: E402
+
 from sim.png import write_png  # noqa: E402
 
-OUT = ROOT / "out"
+CHAR = "永"
 
 
-def write_character(char="永"):
-    rec = character_recording(ROOT / "data" / "hanzi" / f"{char}.json")
+def install():
+    zip_path = build(OUT / "dist")
+    res = bpy.ops.extensions.package_install_files(
+        filepath=str(zip_path), repo="user_default", enable_on_install=True, overwrite=True
+    )
+    assert res == {"FINISHED"}, res
+    print(f"installed {zip_path.name}")
+
+
+def write_character():
+    bpy.ops.wm.read_homefile(use_empty=True)
+    scene = bpy.context.scene
+    st = scene.hairy_brush
+    st.brush_preset = "goat_soft"
+    st.paper_preset = "raw_xuan"
+    st.ink_preset = "sumi_black"
+    st.px_per_mm = 6.0
+    st.sync_frames = False  # the demo simulates once, at the end
+    bpy.ops.hairy_brush.setup()
+    bpy.ops.hairy_brush.write_character(
+        filepath=str(ROOT / "data" / "hanzi" / f"{CHAR}.json"), size_mm=160.0, press=0.41
+    )
+    bpy.ops.hairy_brush.bake_samples()  # what an artist does after editing the keyframes
     t0 = time.perf_counter()
-    sim = Simulation(rec).run()
-    print(f"simulated {len(rec.samples)} samples in {time.perf_counter() - t0:.1f} s")
-    return rec, sim
+    bpy.ops.hairy_brush.simulate()
+    print(
+        f"simulated {scene.frame_end - scene.frame_start} frames "
+        f"in {time.perf_counter() - t0:.1f} s"
+    )
+    bpy.ops.hairy_brush.export_recording(filepath=str(OUT / "demo_recording.json"))
+    img = st.paper_image
+    px = np.empty(len(img.pixels), np.float32)
+    img.pixels.foreach_get(px)
+    rgb = px.reshape(img.size[1], img.size[0], 4)[::-1, :, :3]
+    write_png(OUT / "demo.png", rgb)
+    print(f"wrote {OUT / 'demo.png'}")
+    return st
 
 
-def save_blend(rgb_bottom_up, path: Path):
-    import bpy
-    import numpy as np
+def scroll_mesh(width=0.5, height=0.5, bend=0.35, n=48):
+    """A gently curved hanging scroll with UVs over its whole face."""
+    verts, faces, uvs = [], [], []
+    for j in range(n + 1):
+        for i in range(n + 1):
+            u, v = i / n, j / n
+            a = (u - 0.5) * bend * math.pi
+            r = width / (bend * math.pi)
+            verts.append(
+                (r * math.sin(a), r * (1 - math.cos(a)) - 0.05 * math.sin(v * math.pi), v * height)
+            )
+    for j in range(n):
+        for i in range(n):
+            k = j * (n + 1) + i
+            faces.append((k, k + 1, k + n + 2, k + n + 1))
+    me = bpy.data.meshes.new("Scroll")
+    me.from_pydata(verts, [], faces)
+    uv = me.uv_layers.new(name="UVMap")
+    for poly in me.polygons:
+        for li, vi in zip(poly.loop_indices, poly.vertices, strict=True):
+            i, j = vi % (n + 1), vi // (n + 1)
+            uvs.append((i / n, j / n))
+            uv.data[li].uv = uvs[-1]
+    for p in me.polygons:
+        p.use_smooth = True
+    return me
 
-    bpy.ops.wm.read_factory_settings(use_empty=True)
-    h, w, _ = rgb_bottom_up.shape
-    img = bpy.data.images.new("HairyBrush Paper", w, h, alpha=True, float_buffer=False)
-    rgba = np.concatenate([rgb_bottom_up, np.ones((h, w, 1), np.float32)], axis=2)
-    img.pixels.foreach_set(rgba.astype(np.float32).ravel())
-    img.pack()
-    bpy.ops.mesh.primitive_plane_add(size=0.16)
-    plane = bpy.context.active_object
-    plane.name = "Paper"
-    mat = bpy.data.materials.new("Paper")
-    if mat.node_tree is None:  # Blender < 5 creates materials without nodes
-        mat.use_nodes = True
-    nodes = mat.node_tree.nodes
-    tex = nodes.new("ShaderNodeTexImage")
-    tex.image = img
-    bsdf = nodes["Principled BSDF"]
-    mat.node_tree.links.new(tex.outputs["Color"], bsdf.inputs["Base Color"])
-    plane.data.materials.append(mat)
-    bpy.ops.wm.save_as_mainfile(filepath=str(path))
+
+def render(st):
+    scene = bpy.context.scene
+    st.paper_object.hide_render = True
+    st.brush_object.hide_render = True
+    scroll = bpy.data.objects.new("Scroll", scroll_mesh())
+    scene.collection.objects.link(scroll)
+    scroll.location = (0.6, 0.0, 0.0)
+    silk = bpy.data.materials.new("Scroll Silk")
+    bsdf = next(n for n in silk.node_tree.nodes if n.type == "BSDF_PRINCIPLED")
+    bsdf.inputs["Base Color"].default_value = (0.93, 0.88, 0.76, 1.0)
+    bsdf.inputs["Roughness"].default_value = 0.8
+    scroll.data.materials.append(silk)
+    for o in scene.objects:
+        o.select_set(o == scroll)
+    bpy.context.view_layer.objects.active = scroll
+    bpy.ops.hairy_brush.apply_to_mesh()
+    cam = bpy.data.objects.new("Camera", bpy.data.cameras.new("Camera"))
+    scene.collection.objects.link(cam)
+    cam.location = (0.6, -1.05, 0.25)
+    cam.rotation_euler = (math.radians(90), 0.0, 0.0)
+    scene.camera = cam
+    light = bpy.data.objects.new("Light", bpy.data.lights.new("Light", "AREA"))
+    light.data.energy = 60.0
+    light.data.size = 1.0
+    light.location = (0.2, -0.9, 1.2)
+    light.rotation_euler = (math.radians(40), 0.0, math.radians(-20))
+    scene.collection.objects.link(light)
+    world = bpy.data.worlds.new("World")
+    scene.world = world
+    bg = world.node_tree.nodes.get("Background") if world.node_tree else None
+    if bg is not None:
+        bg.inputs["Color"].default_value = (0.25, 0.23, 0.21, 1.0)
+    scene.render.engine = "CYCLES"
+    scene.cycles.samples = 24
+    scene.cycles.device = "CPU"
+    scene.render.resolution_x, scene.render.resolution_y = 720, 720
+    scene.render.resolution_percentage = 100
+    scene.render.filepath = str(OUT / "demo_render.png")
+    t0 = time.perf_counter()
+    bpy.ops.render.render(write_still=True)
+    print(f"rendered {OUT / 'demo_render.png'} with Cycles in {time.perf_counter() - t0:.1f} s")
 
 
 def main():
-    OUT.mkdir(exist_ok=True)
-    rec, sim = write_character()
-    rec.save(OUT / "demo_recording.json")
-    write_png(OUT / "demo.png", sim.image())
-    print(f"wrote {OUT / 'demo.png'} and {OUT / 'demo_recording.json'}")
-    save_blend(sim.paper.rgb(), OUT / "demo.blend")
+    install()
+    st = write_character()
+    render(st)
+    bpy.ops.wm.save_as_mainfile(filepath=str(OUT / "demo.blend"))
     print(f"wrote {OUT / 'demo.blend'}")
 
 

@@ -36,10 +36,12 @@ import numpy as np
 
 from .nurbs import (
     SweepLayout,
+    bezier_form,
     bspline_basis,
     derivative_ctrl,
     interpolate_cubic,
     rotation_minimising_frames,
+    surface_control_net,
 )
 from .params import BrushGeometry, InkSpec, QualityParams
 
@@ -70,6 +72,16 @@ def rotation_matrix(d_deg: float, q_deg: float, r_deg: float) -> np.ndarray:
     ry = np.array([[cy, 0, sy], [0, 1, 0], [-sy, 0, cy]])
     rz = np.array([[cz, -sz, 0], [sz, cz, 0], [0, 0, 1]])
     return rx @ ry @ rz
+
+
+def angles_from_matrix(R) -> tuple[float, float, float]:
+    """(d, q, r) in degrees with rotation_matrix(d, q, r) == R, for |d| < 90 (inverse of the
+    above; Blender's Euler mode 'ZYX' with (x, y, z) = (q, d, r) is the same matrix)."""
+    R = np.asarray(R, dtype=float)
+    d = np.arcsin(np.clip(R[0, 2], -1.0, 1.0))
+    q = np.arctan2(-R[1, 2], R[2, 2])
+    r = np.arctan2(-R[0, 1], R[0, 0])
+    return tuple(float(v) for v in np.degrees([d, q, r]))
 
 
 def _norm(v, axis=-1, keepdims=False):
@@ -257,6 +269,17 @@ class HairyBrush:
             np.einsum("ij,mjk->mik", rows, V),
             rows_T,
         )
+
+    def surface_nets(self, sec: Sections | None = None):
+        """Every primitive's sweep surface SS(s, t) (Sec. 2, 6) as a homogeneous NURBS control
+        net in paper millimetres, refined to Bezier form along s so that a Blender NURBS surface
+        (which has no free knot vector) holds exactly the same geometry. Returns (nets
+        (m, 3 * spans + 1, 9, 4), breakpoints along s); around the axis the net is the 9-point
+        rational circle (CIRCLE_KNOTS, already Bezier form)."""
+        sec = self.sections() if sec is None else sec
+        net = surface_control_net(self.layout, sec.centres, sec.U, sec.V)  # (m, Ms, 9, 4)
+        refined, breaks = bezier_form(np.moveaxis(net, 1, 0), self.layout.knots_s, 3)
+        return np.moveaxis(refined, 0, 1), breaks
 
     def profile_semiaxes(self, u):
         """Semi-axes of the sweep profiles at axis parameters u: the bottom control circle

@@ -204,3 +204,33 @@ def to_geomdl(ctrlw, knots_u, knots_v, deg_u: int = 3, deg_v: int = 2):
     surf.knotvector_u = list(map(float, knots_u))
     surf.knotvector_v = list(map(float, knots_v))
     return surf
+
+
+def insert_knot(ctrlw, knots, degree: int, u: float):
+    """Boehm's single knot insertion along axis 0 of a homogeneous net (n, ..., 4) (Piegl &
+    Tiller Alg. A5.1 with r = 1). Returns (new_ctrlw, new_knots); the surface is unchanged."""
+    knots = np.asarray(knots, dtype=float)
+    k = int(np.searchsorted(knots, u, side="right") - 1)
+    k = min(k, len(knots) - degree - 2)
+    new = np.empty((ctrlw.shape[0] + 1,) + ctrlw.shape[1:])
+    new[: k - degree + 1] = ctrlw[: k - degree + 1]
+    new[k + 1 :] = ctrlw[k:]
+    for i in range(k - degree + 1, k + 1):
+        a = (u - knots[i]) / (knots[i + degree] - knots[i])
+        new[i] = a * ctrlw[i] + (1.0 - a) * ctrlw[i - 1]
+    return new, np.insert(knots, k + 1, u)
+
+
+def bezier_form(ctrlw, knots, degree: int):
+    """Refine axis 0 of a clamped homogeneous net until every interior knot has multiplicity
+    ``degree`` (Bezier form; same surface). Blender's 'Bezier' + 'Endpoint' knot mode spaces
+    such breakpoints uniformly, so this is the exact form a Blender NURBS surface can hold.
+    Returns (ctrlw, breakpoints): span i of Blender's parameter [i, i+1] is the engine's
+    [breakpoints[i], breakpoints[i+1]], mapped affinely."""
+    knots = np.asarray(knots, dtype=float)
+    out = np.asarray(ctrlw, dtype=float)
+    breaks = np.unique(knots)
+    for u in breaks[1:-1]:
+        while np.count_nonzero(np.isclose(knots, u, rtol=0, atol=1e-12)) < degree:
+            out, knots = insert_knot(out, knots, degree, float(u))
+    return out, breaks

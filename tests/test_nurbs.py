@@ -87,3 +87,31 @@ def test_rotation_minimising_frames_do_not_twist_on_planar_axis(brush):
     major = sec.U[0, 1:-1] / np.linalg.norm(sec.U[0, 1:-1], axis=1, keepdims=True)
     y_comp = np.maximum(np.abs(minor[:, 1]), np.abs(major[:, 1]))
     assert np.all(y_comp > 0.999)
+
+
+def test_bezier_form_keeps_the_surface_and_matches_blenders_knot_layout(brush):
+    from sim.nurbs import CIRCLE_KNOTS, evaluate_nurbs_surface
+
+    brush.place([50.0, 50.0, 20.0, 15.0, -10.0, 40.0])
+    sec = brush.sections()
+    net = surface_control_net(brush.layout, sec.centres, sec.U, sec.V)[0]
+    nets, breaks = brush.surface_nets(sec)
+    assert nets.shape[1:] == (3 * (len(breaks) - 1) + 1, 9, 4)
+    knots = np.concatenate([[0.0], np.repeat(breaks, 3), [1.0]])  # every breakpoint x3
+    rng = np.random.default_rng(3)
+    u, v = rng.random(200), rng.random(200)
+    a = evaluate_nurbs_surface(net, brush.layout.knots_s, 3, CIRCLE_KNOTS, 2, u, v)
+    b = evaluate_nurbs_surface(nets[0], knots, 3, CIRCLE_KNOTS, 2, u, v)
+    np.testing.assert_allclose(a, b, atol=1e-10)
+
+
+def test_angles_from_matrix_inverts_rotation_matrix():
+    from sim.brush import angles_from_matrix, rotation_matrix
+
+    rng = np.random.default_rng(0)
+    for _ in range(50):
+        d, q = rng.uniform(-85, 85, 2)
+        r = rng.uniform(-179, 179)
+        np.testing.assert_allclose(
+            angles_from_matrix(rotation_matrix(d, q, r)), (d, q, r), atol=1e-9
+        )

@@ -1,0 +1,318 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
+"""Glue between Blender data and the engine: scene settings -> Recording, object matrices ->
+6-DOF samples, engine images -> image datablocks, engine surfaces -> NURBS surface objects.
+
+Units: Blender works in metres, the engine in millimetres. The engine's paper coordinates put
+(0, 0) at the paper's lower-left corner, x to the right, y up, z above the paper; the paper
+plane's local coordinates are centred, so engine x = 1000 * local x + width / 2.
+"""
+
+from __future__ import annotations
+
+import json
+
+import bpy
+import numpy as np
+
+from .sim.brush import angles_from_matrix
+from .sim.params import MAX_PAPER_PIXELS, MAX_PAPER_SIDE_PX, QualityParams
+from .sim.recording import Dip, Recording, RecordingError, from_dict
+
+RECORDING_TEXT = "HairyBrush Recording"
+PAPER_IMAGE = "HairyBrush Paper"
+PRIMITIVE_COLLECTION = "HairyBrush Primitives"
+PAPER_TAG = "hairy_brush_paper"
+PRIMITIVE_TAG = "hairy_brush_primitive"
+MM = 1000.0
+
+
+class UserError(Exception):
+    """A problem to report to the user with ``self.report({'ERROR'}, str(exc))``."""
+
+
+def settings(scene):
+    return scene.hairy_brush
+
+
+# ------------------------------------------------------------------------------ paper size
+def paper_pixels(st) -> tuple[int, int]:
+    w = max(1, int(round(st.paper_width_mm * st.px_per_mm)))
+    h = max(1, int(round(st.paper_height_mm * st.px_per_mm)))
+    return w, h
+
+
+def check_paper_size(st) -> tuple[int, int]:
+    w, h = paper_pixels(st)
+    if w > MAX_PAPER_SIDE_PX or h > MAX_PAPER_SIDE_PX or w * h > MAX_PAPER_PIXELS:
+        raise UserError(
+            f"Paper of {w} x {h} px is too large (at most {MAX_PAPER_SIDE_PX} px a side, about "
+            f"{w * h * 40 / 2**20:.0f} MB of buffers): lower Resolution or the paper size"
+        )
+    return w, h
+
+
+# ------------------------------------------------------------------------------ transforms
+def engine_to_paper_local(st) -> np.ndarray:
+    """4x4: engine mm (paper corner origin) -> paper object's local metres (centred)."""
+    m = np.eye(4)
+    m[:3, :3] /= MM
+    m[0, 3] = -st.paper_width_mm / (2 * MM)
+    m[1, 3] = -st.paper_height_mm / (2 * MM)
+    return m
+
+
+def engine_to_world(st, paper_obj) -> np.ndarray:
+    return np.array(paper_obj.matrix_world) @ engine_to_paper_local(st)
+
+
+def sample_from_matrices(st, brush_mw, paper_mw) -> np.ndarray:
+    """One 6-DOF sample (x, y, z mm; d, q, r degrees) from the brush empty's and the paper's
+    world matrices: the brush pose relative to the paper (Sec. 4, Fig. 6(a))."""
+    rel = np.linalg.inv(np.asarray(paper_mw, dtype=float)) @ np.asarray(brush_mw, dtype=float)
+    rot = rel[:3, :3]
+    scale = np.linalg.norm(rot, axis=0)
+    rot = rot / np.where(scale > 0, scale, 1.0)
+    x = rel[0, 3] * MM + st.paper_width_mm / 2
+    y = rel[1, 3] * MM + st.paper_height_mm / 2
+    z = rel[2, 3] * MM
+    d, q, r = angles_from_matrix(rot)
+    return np.array([x, y, z, d, q, r])
+
+
+# ------------------------------------------------------------------------------ recordings
+def scene_overrides(st) -> dict:
+    """The scene's settings as recording fields: they decide how a recording is rendered."""
+    w, h = check_paper_size(st)
+    return {
+        "paper": {
+            "width_mm": float(st.paper_width_mm),
+            "height_mm": float(st.paper_height_mm),
+            "px_per_mm": float(st.px_per_mm),
+            "preset": st.paper_preset,
+        },
+        "brush": {"preset": st.brush_preset},
+        "ink": {"preset": st.ink_preset},
+        "quality": st.quality.as_dict(),
+        "seed": int(st.seed),
+    }
+
+
+def read_recording_dict(st) -> dict:
+    text = st.recording
+    if text is None:
+        raise UserError("No recording yet: bake the brush's animation, paint, or import one")
+    try:
+        d = json.loads(text.as_string())
+    except json.JSONDecodeError as exc:
+        raise UserError(f"Recording text '{text.name}' is not valid JSON: {exc}") from None
+    return d
+
+
+def recording_from_scene(scene) -> Recording:
+    """The stored recording, rendered with the scene's current settings (another preset, size
+    or resolution re-renders the same strokes)."""
+    st = settings(scene)
+    d = read_recording_dict(st)
+    if isinstance(d, dict):
+        d.update(scene_overrides(st))
+    try:
+        return from_dict(d)
+    except RecordingError as exc:
+        raise UserError(f"Recording '{st.recording.name}': {exc}") from None
+
+
+def store_recording(st, rec: Recording) -> bpy.types.Text:
+    text = st.recording
+    if text is None:
+        text = bpy.data.texts.new(RECORDING_TEXT)
+        st.recording = text
+    text.from_string(json.dumps(rec.to_dict(), separators=(",", ":")))
+    return text
+
+
+def copy_settings_from_recording(st, rec: Recording):
+    """After an import: show the recording's own settings in the sidebar."""
+    st.paper_width_mm = rec.width_mm
+    st.paper_height_mm = rec.height_mm
+    st.px_per_mm = rec.px_per_mm
+    st.seed = rec.seed
+    st.sample_rate_hz = rec.sample_rate_hz
+    st.brush_preset = rec.brush.get("preset", st.brush_preset)
+    st.paper_preset = rec.paper_preset
+    st.ink_preset = rec.ink.get("preset", st.ink_preset)
+    q, _geom, _paper, _ink = rec.resolve()
+    for name in QualityParams.names():
+        setattr(st.quality, name, getattr(q, name))
+
+
+def current_dip(st, before_sample: int) -> Dip:
+    return Dip(before_sample, float(st.dip_depth), tuple(st.ink_color), float(st.dip_wetness))
+
+
+# ------------------------------------------------------------------------------ time
+def timeline(rec: Recording, scene) -> tuple[float, float]:
+    """(frame_start, frames per sample) of a recording in this scene's timeline."""
+    b = rec.extra.get("blender", {}) if isinstance(rec.extra, dict) else {}
+    fps = scene.render.fps / scene.render.fps_base
+    start = float(b.get("frame_start", scene.frame_start))
+    return start, fps / rec.sample_rate_hz
+
+
+def samples_at_frame(rec: Recording, scene, frame: float) -> int:
+    """How many samples have been written by the end of ``frame`` (sample i lies at frame
+    start + i * frames_per_sample)."""
+    start, per = timeline(rec, scene)
+    if frame < start:
+        return 0
+    return int(min(len(rec.samples), np.floor((frame - start) / per + 1e-9) + 1))
+
+
+def first_sample_from_frame(rec: Recording, scene, frame: float) -> int:
+    """Index of the first sample at or after ``frame``."""
+    start, per = timeline(rec, scene)
+    if frame <= start:
+        return 0
+    return int(min(len(rec.samples), np.ceil((frame - start) / per - 1e-9)))
+
+
+# ------------------------------------------------------------------------------ images
+def ensure_paper_image(st, color=(1.0, 1.0, 1.0)) -> bpy.types.Image:
+    w, h = check_paper_size(st)
+    img = st.paper_image
+    if img is None:
+        img = bpy.data.images.new(PAPER_IMAGE, w, h, alpha=True)
+        img.generated_color = (*color, 1.0)
+        img[PAPER_TAG] = 1
+        st.paper_image = img
+    elif tuple(img.size) != (w, h):
+        img.scale(w, h)
+    return img
+
+
+def write_image(img, rgb_bottom_up: np.ndarray, pack: bool = False):
+    """Engine RGB (H, W, 3), bottom row first (Blender's order) -> image pixels."""
+    h, w, _ = rgb_bottom_up.shape
+    if tuple(img.size) != (w, h):
+        img.scale(w, h)
+    rgba = np.empty((h, w, 4), np.float32)
+    rgba[..., :3] = rgb_bottom_up
+    rgba[..., 3] = 1.0
+    img.pixels.foreach_set(rgba.ravel())
+    img.update()
+    if pack:
+        pack_image(img)
+
+
+def pack_image(img):
+    """Keep the pixels inside the .blend (nothing in side files the user can lose)."""
+    if not img.filepath_raw:
+        img.filepath_raw = f"//{img.name}.png"
+    img.file_format = "PNG"
+    img.pack()
+
+
+def read_image(img) -> np.ndarray:
+    a = np.empty(len(img.pixels), np.float32)
+    img.pixels.foreach_get(a)
+    return a
+
+
+# ------------------------------------------------------------------------------ NURBS objects
+def primitive_points(nets, to_local: np.ndarray) -> np.ndarray:
+    """Engine control nets (m, Nu, Nv, 4) homogeneous, mm -> Blender point coordinates (m,
+    Nv * Nu, 4): Cartesian xyz in the object's local space and the weight; u (along the axis)
+    runs fastest, as in Blender's surface point order."""
+    w = nets[..., 3:4]
+    xyz = nets[..., :3] / w
+    hom = np.concatenate([xyz, np.ones_like(w)], axis=-1) @ to_local.T
+    co = np.concatenate([hom[..., :3], w], axis=-1)  # (m, Nu, Nv, 4)
+    m, nu, nv, _ = co.shape
+    return np.ascontiguousarray(co.transpose(0, 2, 1, 3).reshape(m, nv * nu, 4))
+
+
+def ray_to_paper(engine_to_world_m: np.ndarray, origin, direction):
+    """Where a view ray meets the paper plane, in engine mm (x, y); None if it misses."""
+    inv = np.linalg.inv(engine_to_world_m)
+    o = inv @ np.r_[np.asarray(origin, dtype=float), 1.0]
+    d = inv[:3, :3] @ np.asarray(direction, dtype=float)
+    if abs(d[2]) < 1e-12:
+        return None
+    t = -o[2] / d[2]
+    if t < 0:
+        return None
+    p = o[:3] + t * d
+    return float(p[0]), float(p[1])
+
+
+def matrix_from_sample(st, paper_mw, sample) -> np.ndarray:
+    """World matrix of the brush empty for a 6-DOF sample (inverse of sample_from_matrices)."""
+    from .sim.brush import rotation_matrix
+
+    x, y, z, d, q, r = (float(v) for v in sample)
+    rel = np.eye(4)
+    rel[:3, :3] = rotation_matrix(d, q, r)
+    rel[:3, 3] = (x - st.paper_width_mm / 2) / MM, (y - st.paper_height_mm / 2) / MM, z / MM
+    pm = np.asarray(paper_mw, dtype=float).copy()
+    pm[:3, :3] /= np.linalg.norm(pm[:3, :3], axis=0)  # paper scale does not scale the brush
+    return pm @ rel
+
+
+def hair_length(st) -> float:
+    from .sim.params import geometry_from_preset, load_preset
+
+    return geometry_from_preset(load_preset("brush", st.brush_preset)).hair_length_mm
+
+
+def keyframe_samples(scene, st, samples, rate_hz: float, frame_start: float):
+    """Keyframe the brush empty along 6-DOF samples (one key per sample, linear), so the
+    writing plays, can be edited, and bakes back into the same samples."""
+    from mathutils import Matrix
+
+    obj = st.brush_object
+    obj.rotation_mode = "ZYX"
+    fps = scene.render.fps / scene.render.fps_base
+    frames = frame_start + np.arange(len(samples)) * fps / rate_hz
+    if obj.parent is not None:
+        parent = np.array(obj.parent.matrix_world) @ np.array(obj.matrix_parent_inverse)
+    else:
+        parent = np.eye(4)
+    inv_parent = np.linalg.inv(parent)
+    paper_mw = st.paper_object.matrix_world
+    loc = np.empty((len(samples), 3))
+    rot = np.empty((len(samples), 3))
+    prev = None
+    for i, s in enumerate(samples):
+        basis = Matrix((inv_parent @ matrix_from_sample(st, paper_mw, s)).tolist())
+        t, q, _scale = basis.decompose()
+        e = q.to_euler("ZYX", prev) if prev is not None else q.to_euler("ZYX")
+        loc[i], rot[i], prev = t[:], e[:], e
+    obj.animation_data_clear()
+    for path in ("location", "rotation_euler"):
+        for k in range(3):
+            obj.keyframe_insert(path, index=k, frame=float(frames[0]))
+    fcurves = {(fc.data_path, fc.array_index): fc for fc in _fcurves(obj.animation_data)}
+    for path, values in (("location", loc), ("rotation_euler", rot)):
+        for k in range(3):
+            fc = fcurves[(path, k)]
+            kp = fc.keyframe_points
+            kp.add(len(samples) - len(kp))
+            co = np.stack([frames, values[:, k]], axis=1).astype(np.float32)
+            kp.foreach_set("co", co.ravel())
+            for p in kp:
+                p.interpolation = "LINEAR"
+            fc.update()
+    return float(frames[-1])
+
+
+def _fcurves(ad):
+    action = ad.action
+    if hasattr(action, "fcurves"):  # Blender < 5 (legacy actions)
+        return list(action.fcurves)
+    out = []
+    slot = getattr(ad, "action_slot", None)
+    for layer in action.layers:  # slotted actions (Blender 4.4+)
+        for strip in layer.strips:
+            bag = strip.channelbag(slot) if slot is not None else None
+            if bag is not None:
+                out.extend(bag.fcurves)
+    return out

@@ -1,0 +1,46 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
+"""Operators (``bpy.ops.hairy_brush.*``), one a file; thin glue over the engine in ``sim``."""
+
+from __future__ import annotations
+
+import bpy
+
+from .add_settings_preset import HAIRY_BRUSH_OT_add_settings_preset
+from .apply_preset import HAIRY_BRUSH_OT_apply_preset
+from .apply_to_mesh import HAIRY_BRUSH_OT_apply_to_mesh
+from .bake_samples import HAIRY_BRUSH_OT_bake_samples
+from .bake_sequence import HAIRY_BRUSH_OT_bake_sequence
+from .build_primitives import HAIRY_BRUSH_OT_build_primitives
+from .dip import HAIRY_BRUSH_OT_dip
+from .export_recording import HAIRY_BRUSH_OT_export_recording
+from .import_recording import HAIRY_BRUSH_OT_import_recording
+from .paint import HAIRY_BRUSH_OT_paint
+from .setup import HAIRY_BRUSH_OT_setup
+from .simulate import HAIRY_BRUSH_OT_simulate
+from .write_character import HAIRY_BRUSH_OT_write_character
+
+CLASSES = (
+    HAIRY_BRUSH_OT_setup,
+    HAIRY_BRUSH_OT_bake_samples,
+    HAIRY_BRUSH_OT_simulate,
+    HAIRY_BRUSH_OT_paint,
+    HAIRY_BRUSH_OT_dip,
+    HAIRY_BRUSH_OT_build_primitives,
+    HAIRY_BRUSH_OT_bake_sequence,
+    HAIRY_BRUSH_OT_import_recording,
+    HAIRY_BRUSH_OT_export_recording,
+    HAIRY_BRUSH_OT_apply_to_mesh,
+    HAIRY_BRUSH_OT_write_character,
+    HAIRY_BRUSH_OT_apply_preset,
+    HAIRY_BRUSH_OT_add_settings_preset,
+)
+
+
+def register():
+    for cls in CLASSES:
+        bpy.utils.register_class(cls)
+
+
+def unregister():
+    for cls in reversed(CLASSES):
+        bpy.utils.unregister_class(cls)

@@ -1,0 +1,44 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
+"""hairy_brush.build_primitives: the writing primitives as NURBS surface objects."""
+
+from __future__ import annotations
+
+import bpy
+import numpy as np
+
+from .. import bridge, playback
+from ..sim.engine import Simulation
+from ..sim.recording import Recording, RecordingError, from_dict
+
+
+class HAIRY_BRUSH_OT_build_primitives(bpy.types.Operator):
+    """Show each writing primitive of the brush, at the current frame, as a NURBS surface
+    object parented to the brush empty (the engine's own control points, weights and knots)"""
+
+    bl_idname = "hairy_brush.build_primitives"
+    bl_label = "Build Primitive Surfaces"
+    bl_options = {"REGISTER", "UNDO"}
+
+    def execute(self, context):
+        scene = context.scene
+        st = bridge.settings(scene)
+        try:
+            if st.brush_object is None or st.paper_object is None:
+                raise bridge.UserError("Set up a brush empty and a paper plane first (Setup)")
+            if st.recording is not None:
+                pb = playback.playback_for(scene)
+                sim = pb.seek(bridge.samples_at_frame(pb.rec, scene, scene.frame_current))
+            else:  # no recording yet: the free brush where the empty is
+                s = bridge.sample_from_matrices(
+                    st, st.brush_object.matrix_world, st.paper_object.matrix_world
+                )
+                d = Recording(np.array([s])).to_dict()
+                d.update(bridge.scene_overrides(st))
+                sim = Simulation(from_dict(d))
+                sim.brush.place(s)
+            n = playback.sync_primitives(scene, sim, create=True)
+        except (bridge.UserError, RecordingError) as exc:
+            self.report({"ERROR"}, str(exc))
+            return {"CANCELLED"}
+        self.report({"INFO"}, f"{n} writing primitive(s)")
+        return {"FINISHED"}

@@ -1,0 +1,35 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
+"""hairy_brush.import_recording: a recording JSON file into the .blend."""
+
+from __future__ import annotations
+
+import bpy
+from bpy_extras.io_utils import ImportHelper
+
+from .. import bridge
+from ..sim.recording import RecordingError, load
+
+
+class HAIRY_BRUSH_OT_import_recording(bpy.types.Operator, ImportHelper):
+    """Load a 6-DOF recording (the engine's JSON) into the scene; its settings fill the
+    sidebar, where another preset or resolution can re-render it"""
+
+    bl_idname = "hairy_brush.import_recording"
+    bl_label = "Import Recording"
+    bl_options = {"REGISTER", "UNDO"}
+
+    filename_ext = ".json"
+    filter_glob: bpy.props.StringProperty(default="*.json", options={"HIDDEN"})
+
+    def execute(self, context):
+        st = bridge.settings(context.scene)
+        try:
+            rec = load(self.filepath)
+        except RecordingError as exc:
+            self.report({"ERROR"}, f"{bpy.path.basename(self.filepath)}: {exc}")
+            return {"CANCELLED"}
+        bridge.copy_settings_from_recording(st, rec)
+        st.recording = None  # a new text block: the previous recording stays in the file
+        text = bridge.store_recording(st, rec)
+        self.report({"INFO"}, f"Imported {len(rec.samples)} samples into '{text.name}'")
+        return {"FINISHED"}

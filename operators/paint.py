@@ -1,0 +1,161 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
+"""hairy_brush.paint: live painting on the paper plane in the 3D viewport (Fig. 6(b)).
+
+The event logic is ``sim.live.LiveBrush`` (no bpy, tested with Blender's event sequences);
+this operator only projects the mouse onto the paper, runs a sampling timer, shows the image and
+stores the stroke."""
+
+from __future__ import annotations
+
+import time
+
+import bpy
+import numpy as np
+from bpy_extras import view3d_utils
+from mathutils import Matrix
+
+from .. import bridge, playback
+from ..sim.engine import Simulation
+from ..sim.live import LiveBrush, LiveEvent
+from ..sim.recording import Recording, RecordingError, from_dict
+
+IMAGE_UPDATE_S = 1.0 / 15.0
+NAVIGATION = {"MIDDLEMOUSE", "TRACKPADPAN", "TRACKPADZOOM", "NDOF_MOTION"}
+NAVIGATION_PREFIX = "NUMPAD_"
+
+
+def mouse_to_paper(context, st, mx: float, my: float):
+    region, rv3d = context.region, context.region_data
+    if region is None or rv3d is None:
+        return None
+    origin = view3d_utils.region_2d_to_origin_3d(region, rv3d, (mx, my))
+    direction = view3d_utils.region_2d_to_vector_3d(region, rv3d, (mx, my))
+    return bridge.ray_to_paper(bridge.engine_to_world(st, st.paper_object), origin, direction)
+
+
+def start_simulation(scene, xy) -> tuple[Simulation, bool]:
+    """The simulation at the end of the scene's recording, or a fresh one (True) hovering at
+    ``xy`` when there is none."""
+    st = bridge.settings(scene)
+    if st.recording is not None:
+        pb = playback.playback_for(scene)
+        return pb.seek(len(pb.rec.samples)), False
+    geom_len = bridge.hair_length(st)
+    x, y = xy if xy is not None else (st.paper_width_mm / 2, st.paper_height_mm / 2)
+    rec = Recording(np.array([[x, y, geom_len + 5.0, 0.0, 0.0, 0.0]]))
+    rec.sample_rate_hz = float(st.sample_rate_hz)
+    rec.dips = [bridge.current_dip(st, 0)]
+    rec.extra["blender"] = {"frame_start": scene.frame_start}
+    d = rec.to_dict()
+    d.update(bridge.scene_overrides(st))
+    return Simulation(from_dict(d)).run(), True
+
+
+def keep_stroke(scene, live: LiveBrush):
+    """Store the recording with the new stroke; the playback continues from the live state."""
+    st = bridge.settings(scene)
+    rec = live.sim.rec
+    bridge.store_recording(st, rec)
+    pb = playback.playback_for(scene)  # keyed by the stored recording
+    if pb.sim is not live.sim:
+        pb.sim, pb.rec = live.sim, live.sim.rec
+        pb.snaps = {k: v for k, v in pb.snaps.items() if k <= live.n0}
+
+
+class HAIRY_BRUSH_OT_paint(bpy.types.Operator):
+    """Paint with the brush: move the mouse over the paper, hold the left button to press,
+    wheel = press depth, Q/W E/R C/V = tilt and twist (Shift x4, left button x2), D = dip;
+    release or Enter keeps the stroke, Esc or right-click cancels"""
+
+    bl_idname = "hairy_brush.paint"
+    bl_label = "Paint"
+    bl_options = {"REGISTER", "UNDO", "BLOCKING"}
+
+    @classmethod
+    def poll(cls, context):
+        return context.area is not None and context.area.type == "VIEW_3D"
+
+    def invoke(self, context, event):
+        scene = context.scene
+        st = bridge.settings(scene)
+        if st.paper_object is None:
+            self.report({"ERROR"}, "No paper plane: run Setup first")
+            return {"CANCELLED"}
+        xy = mouse_to_paper(context, st, event.mouse_region_x, event.mouse_region_y)
+        try:
+            img = bridge.ensure_paper_image(st)
+            sim, _fresh = start_simulation(scene, xy)
+        except (bridge.UserError, RecordingError) as exc:
+            self.report({"ERROR"}, str(exc))
+            return {"CANCELLED"}
+        self._orig_pixels = bridge.read_image(img)
+        self._img = img
+        self._live = LiveBrush(sim, st.paint_press_mm, st.paint_angle_step, xy)
+        self._brush_mw = st.brush_object.matrix_world.copy() if st.brush_object else None
+        self._last_draw = 0.0
+        wm = context.window_manager
+        self._timer = wm.event_timer_add(1.0 / sim.rec.sample_rate_hz, window=context.window)
+        wm.modal_handler_add(self)
+        context.workspace.status_text_set(
+            "Hold LMB: press | Wheel: depth | Q/W E/R C/V: d q r | D: dip | "
+            "Enter/release: keep | Esc/RMB: cancel"
+        )
+        return {"RUNNING_MODAL"}
+
+    def modal(self, context, event):
+        st = bridge.settings(context.scene)
+        if event.type in NAVIGATION or event.type.startswith(NAVIGATION_PREFIX):
+            return {"PASS_THROUGH"}
+        if event.type == "D" and event.value == "PRESS":
+            self._live.dip(st.dip_depth, st.ink_color, st.dip_wetness)
+            return {"RUNNING_MODAL"}
+        xy = None
+        if event.type in ("MOUSEMOVE", "INBETWEEN_MOUSEMOVE", "LEFTMOUSE"):
+            xy = mouse_to_paper(context, st, event.mouse_region_x, event.mouse_region_y)
+        ev = LiveEvent(
+            event.type,
+            event.value,
+            xy,
+            float(getattr(event, "pressure", 1.0)),
+            tuple(getattr(event, "tilt", (0.0, 0.0))),
+            bool(getattr(event, "is_tablet", False)),
+            bool(event.shift),
+        )
+        state = self._live.handle(ev)
+        if state == "RUNNING":
+            if event.type == "TIMER":
+                self._show(st, final=False)
+            return {"RUNNING_MODAL"}
+        self._finish(context)
+        if state == "CANCELLED":
+            self._img.pixels.foreach_set(self._orig_pixels)
+            self._img.update()
+            return {"CANCELLED"}
+        keep_stroke(context.scene, self._live)
+        self._show(st, final=True)
+        self.report({"INFO"}, f"Stroke of {len(self._live.new_samples)} samples kept")
+        return {"FINISHED"}
+
+    def _show(self, st, final: bool):
+        now = time.perf_counter()
+        if not final and now - self._last_draw < IMAGE_UPDATE_S:
+            return
+        self._last_draw = now
+        bridge.write_image(self._img, self._live.sim.paper.rgb(), pack=final)
+        if st.brush_object is not None and not final:
+            mw = bridge.matrix_from_sample(
+                st, st.paper_object.matrix_world, self._live.sim.rec.samples[-1]
+            )
+            st.brush_object.matrix_world = Matrix(mw.tolist())
+
+    def _finish(self, context):
+        context.window_manager.event_timer_remove(self._timer)
+        context.workspace.status_text_set(None)
+        st = bridge.settings(context.scene)
+        if st.brush_object is not None and self._brush_mw is not None:
+            st.brush_object.matrix_world = self._brush_mw
+
+    def cancel(self, context):
+        self._finish(context)
+        self._img.pixels.foreach_set(self._orig_pixels)
+        self._img.update()

@@ -1,0 +1,80 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
+"""hairy_brush.write_character: keyframe the brush along a character's strokes (hanzi-writer
+data: a JSON file with 'strokes' and 'medians')."""
+
+from __future__ import annotations
+
+import math
+
+import bpy
+from bpy_extras.io_utils import ImportHelper
+
+from .. import bridge
+from ..sim.hanzi import load_char, simple_samples
+from ..sim.recording import Recording, RecordingError, from_dict
+from .setup import resize_paper
+
+
+class HAIRY_BRUSH_OT_write_character(bpy.types.Operator, ImportHelper):
+    """Keyframe the brush empty along a character's strokes (pressing, travelling, lifting
+    between strokes) and store the matching recording, ready to simulate, play or edit"""
+
+    bl_idname = "hairy_brush.write_character"
+    bl_label = "Write Character"
+    bl_options = {"REGISTER", "UNDO"}
+
+    filename_ext = ".json"
+    filter_glob: bpy.props.StringProperty(default="*.json", options={"HIDDEN"})
+    size_mm: bpy.props.FloatProperty(
+        name="Size", default=160.0, min=10.0, max=2000.0, description="Character size in mm"
+    )
+    press: bpy.props.FloatProperty(
+        name="Press",
+        default=0.4,
+        min=0.05,
+        max=0.9,
+        subtype="FACTOR",
+        description="How far the brush is pressed, as a fraction of the hair length",
+    )
+    speed_mm_s: bpy.props.FloatProperty(name="Speed", default=70.0, min=5.0, max=1000.0)
+
+    def execute(self, context):
+        scene = context.scene
+        st = bridge.settings(scene)
+        if st.brush_object is None or st.paper_object is None:
+            self.report({"ERROR"}, "Set up a brush empty and a paper plane first (Setup)")
+            return {"CANCELLED"}
+        try:
+            char = load_char(self.filepath)
+        except ValueError as exc:
+            self.report({"ERROR"}, str(exc))
+            return {"CANCELLED"}
+        st.paper_width_mm = st.paper_height_mm = self.size_mm
+        resize_paper(st)
+        hair = bridge.hair_length(st)
+        samples = simple_samples(
+            char,
+            self.size_mm,
+            hair_length_mm=hair,
+            press_mm=self.press * hair,
+            speed_mm_s=self.speed_mm_s,
+            rate_hz=st.sample_rate_hz,
+        )
+        rec = Recording(samples, sample_rate_hz=float(st.sample_rate_hz))
+        rec.dips = [bridge.current_dip(st, 0)]
+        rec.extra["blender"] = {"frame_start": scene.frame_start}
+        d = rec.to_dict()
+        try:
+            d.update(bridge.scene_overrides(st))
+            rec = from_dict(d)
+        except (RecordingError, bridge.UserError) as exc:
+            self.report({"ERROR"}, str(exc))
+            return {"CANCELLED"}
+        last = bridge.keyframe_samples(
+            scene, st, rec.samples, rec.sample_rate_hz, scene.frame_start
+        )
+        scene.frame_end = math.ceil(last)
+        bridge.store_recording(st, rec)
+        bridge.ensure_paper_image(st)
+        self.report({"INFO"}, f"{len(char['medians'])} strokes, {len(samples)} samples")
+        return {"FINISHED"}

@@ -1,0 +1,174 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
+"""The artwork at any frame: one engine Simulation per scene, moved to the sample a frame asks
+for. Forward moves step on; backward moves restore the nearest snapshot at or before the target
+and step on from there, so frame N always gives exactly the image of simulating straight to N.
+Also the NURBS surface objects that show the writing primitives (Sec. 2, 6)."""
+
+from __future__ import annotations
+
+import hashlib
+import json
+
+import bpy
+import numpy as np
+
+from . import bridge
+from .sim.engine import Simulation
+
+SNAPSHOT_BUDGET_BYTES = 768 * 2**20
+NU_AXIS, NV_RING = 28, 9  # control points of a primitive surface in Bezier form (see sim)
+
+
+class Playback:
+    def __init__(self, rec, key: str):
+        self.key = key
+        self.rec = rec
+        self.sim = Simulation(rec)
+        first = self.sim.snapshot()
+        size = sum(a.nbytes for a in first["paper"].values() if isinstance(a, np.ndarray))
+        max_snaps = max(2, int(SNAPSHOT_BUDGET_BYTES // max(size, 1)))
+        self.every = max(64, int(np.ceil(len(rec.samples) / (max_snaps - 1))))
+        self.snaps = {0: first}
+
+    def seek(self, index: int, progress=None):
+        index = int(min(max(index, 0), len(self.rec.samples)))
+        sim = self.sim
+        if index < sim.index:
+            best = max(k for k in self.snaps if k <= index)
+            sim.restore(self.snaps[best])
+        start, total = sim.index, max(index - sim.index, 1)
+        while sim.index < index:
+            sim.step()
+            if sim.index % self.every == 0 and sim.index not in self.snaps:
+                self.snaps[sim.index] = sim.snapshot()
+            if progress is not None and sim.index % 32 == 0:
+                progress((sim.index - start) / total)
+        return sim
+
+
+_PLAYBACKS: dict[str, Playback] = {}
+
+
+def clear():
+    _PLAYBACKS.clear()
+
+
+def playback_for(scene) -> Playback:
+    """The scene's Playback, rebuilt when the recording or any setting changed."""
+    rec = bridge.recording_from_scene(scene)
+    key = hashlib.sha1(
+        json.dumps(rec.to_dict(), sort_keys=True).encode("utf-8"), usedforsecurity=False
+    ).hexdigest()
+    pb = _PLAYBACKS.get(scene.name)
+    if pb is None or pb.key != key:
+        pb = Playback(rec, key)
+        _PLAYBACKS[scene.name] = pb
+    return pb
+
+
+def show_frame(scene, frame: float, pack: bool = False, progress=None) -> Simulation:
+    """Put the paper image (and the primitive objects, if built) at ``frame``."""
+    st = bridge.settings(scene)
+    pb = playback_for(scene)
+    sim = pb.seek(bridge.samples_at_frame(pb.rec, scene, frame), progress)
+    img = bridge.ensure_paper_image(st)
+    bridge.write_image(img, sim.paper.rgb(), pack=pack)
+    if primitive_objects(scene):
+        sync_primitives(scene, sim, create=False)
+    return sim
+
+
+# ------------------------------------------------------------------------------ primitives
+def primitive_objects(scene) -> list:
+    objs = [o for o in scene.objects if bridge.PRIMITIVE_TAG in o]
+    return sorted(objs, key=lambda o: int(o[bridge.PRIMITIVE_TAG]))
+
+
+def _new_surface_curve(name: str) -> bpy.types.Curve:
+    """A NURBS surface curve of NU_AXIS x NV_RING points. Blender's Python API cannot size a
+    surface directly, so rows are added as splines and joined with Make Segment, once."""
+    cu = bpy.data.curves.new(name, "SURFACE")
+    cu.dimensions = "3D"
+    for j in range(NU_AXIS):
+        sp = cu.splines.new("NURBS")
+        sp.points.add(NV_RING - 1)
+        for i, p in enumerate(sp.points):
+            p.co = (i, j, 0.0, 1.0)
+            p.select = True
+    tmp = bpy.data.objects.new(name + " (building)", cu)
+    scene = bpy.context.scene
+    scene.collection.objects.link(tmp)
+    vl = bpy.context.view_layer
+    prev_active = vl.objects.active
+    if bpy.context.mode != "OBJECT":
+        bpy.ops.object.mode_set(mode="OBJECT")
+    try:
+        vl.objects.active = tmp
+        bpy.ops.object.mode_set(mode="EDIT")
+        bpy.ops.curve.make_segment()
+        bpy.ops.object.mode_set(mode="OBJECT")
+    finally:
+        vl.objects.active = prev_active
+        bpy.data.objects.remove(tmp)
+    sp = cu.splines[0]
+    if len(cu.splines) != 1 or (sp.point_count_u, sp.point_count_v) != (NU_AXIS, NV_RING):
+        raise RuntimeError(
+            f"building a NURBS surface gave {len(cu.splines)} splines of "
+            f"{sp.point_count_u} x {sp.point_count_v} points (expected 1 of {NU_AXIS} x {NV_RING})"
+        )
+    sp.order_u, sp.order_v = 4, 3  # cubic along the axis, quadratic around it (Sec. 2)
+    sp.use_endpoint_u = sp.use_endpoint_v = True
+    sp.use_bezier_u = sp.use_bezier_v = True  # the engine net is refined to Bezier form
+    sp.resolution_u, sp.resolution_v = 3, 3
+    sp.use_smooth = True
+    return cu
+
+
+def _collection(scene):
+    coll = bpy.data.collections.get(bridge.PRIMITIVE_COLLECTION)
+    if coll is None:
+        coll = bpy.data.collections.new(bridge.PRIMITIVE_COLLECTION)
+    if coll.name not in scene.collection.children:
+        scene.collection.children.link(coll)
+    return coll
+
+
+def sync_primitives(scene, sim: Simulation, create: bool = True) -> int:
+    """Show each writing primitive of the brush as a NURBS surface object parented to the brush
+    empty; control points, weights and knots come from the engine (``HairyBrush.surface_nets``).
+    Splitting adds objects; merged primitives hide theirs. Returns the number shown."""
+    st = bridge.settings(scene)
+    brush_obj, paper_obj = st.brush_object, st.paper_object
+    if brush_obj is None or paper_obj is None:
+        raise bridge.UserError("Set up a brush empty and a paper plane first (Setup)")
+    nets, _breaks = sim.brush.surface_nets()
+    to_local = np.linalg.inv(np.array(brush_obj.matrix_world)) @ bridge.engine_to_world(
+        st, paper_obj
+    )
+    co = bridge.primitive_points(nets, to_local).astype(np.float32)
+    objs = primitive_objects(scene)
+    if len(objs) < len(co) and (create or objs):
+        coll = _collection(scene)
+        template = objs[0].data if objs else None
+        for i in range(len(objs), len(co)):
+            name = f"HairyBrush Primitive {i:02d}"
+            cu = template.copy() if template is not None else _new_surface_curve(name)
+            cu.name = name
+            template = cu
+            obj = bpy.data.objects.new(name, cu)
+            obj[bridge.PRIMITIVE_TAG] = i
+            coll.objects.link(obj)
+            obj.parent = brush_obj
+            objs.append(obj)
+    for i, obj in enumerate(objs):
+        shown = i < len(co)
+        obj.hide_viewport = obj.hide_render = not shown
+        if not shown:
+            continue
+        if obj.parent is not brush_obj:
+            obj.parent = brush_obj
+        obj.matrix_parent_inverse.identity()
+        obj.matrix_basis.identity()
+        obj.data.splines[0].points.foreach_set("co", co[i].ravel())
+        obj.data.update_tag()
+    return len(co)
