@@ -466,3 +466,30 @@ def test_write_character_keyframes_bake_back_into_the_same_samples(hb):
     with pytest.raises(RuntimeError, match="not hanzi-writer data"):
         bad = ROOT / "examples" / "strokes.json"
         bpy.ops.hairy_brush.write_character(filepath=str(bad))
+
+
+def test_an_animation_render_shows_each_frames_artwork(hb, tmp_path):
+    st = setup_scene(bpy)
+    keyframe_stroke(bpy, st)
+    bpy.ops.hairy_brush.bake_samples()
+    sc = bpy.context.scene
+    cam = bpy.data.objects.new("Cam", bpy.data.cameras.new("Cam"))
+    sc.collection.objects.link(cam)
+    cam.data.type, cam.data.ortho_scale = "ORTHO", 0.2
+    cam.location = (0.0, 0.0, 0.5)
+    sc.camera = cam
+    st.brush_object.hide_render = True
+    sc.world = bpy.data.worlds.new("W")
+    sc.render.engine = "CYCLES"
+    sc.cycles.samples, sc.cycles.device = 4, "CPU"
+    sc.view_settings.view_transform = "Standard"
+    sc.render.resolution_x = sc.render.resolution_y = 64
+    sc.render.filepath = str(tmp_path / "f_")
+    sc.frame_start, sc.frame_end, sc.frame_step = 12, 45, 33
+    bpy.ops.render.render(animation=True)  # Blender changes frames itself: the handler follows
+    ink = {}
+    for f in (12, 45):
+        im = bpy.data.images.load(str(tmp_path / f"f_{f:04d}.png"))
+        r = pixels(im)[..., 0]
+        ink[f] = int((r < 0.5 * np.median(r)).sum())
+    assert 0 < ink[12] < ink[45] / 2
