@@ -145,6 +145,18 @@ def copy_settings_from_recording(st, rec: Recording):
         setattr(st.quality, name, getattr(q, name))
 
 
+def new_recording(scene, samples, dips=None) -> Recording:
+    """A validated recording of ``samples`` at the scene's sample rate and settings, timed from
+    the scene's first frame; raises UserError (bad settings) or RecordingError (bad samples)."""
+    st = settings(scene)
+    rec = Recording(np.asarray(samples, dtype=float), sample_rate_hz=float(st.sample_rate_hz))
+    rec.dips = list(dips) if dips is not None else [current_dip(st, 0)]
+    rec.extra["blender"] = {"frame_start": scene.frame_start}
+    d = rec.to_dict()
+    d.update(scene_overrides(st))
+    return from_dict(d)
+
+
 def current_dip(st, before_sample: int) -> Dip:
     return Dip(before_sample, float(st.dip_depth), tuple(st.ink_color), float(st.dip_wetness))
 

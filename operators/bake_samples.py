@@ -9,7 +9,7 @@ import bpy
 import numpy as np
 
 from .. import bridge, handlers
-from ..sim.recording import Recording, RecordingError, from_dict
+from ..sim.recording import RecordingError, from_dict
 
 
 def nan_keyframes(obj):
@@ -100,20 +100,16 @@ class HAIRY_BRUSH_OT_bake_samples(bpy.types.Operator):
             i = int(np.argmax(bad_rows))
             self.report({"ERROR"}, f"The brush's pose is not a number at sample {i}")
             return {"CANCELLED"}
-        rec = Recording(samples, sample_rate_hz=float(st.sample_rate_hz))
-        rec.dips = [bridge.current_dip(st, 0)]
+        dips = None
         if st.recording is not None:  # re-baking keeps the dips already recorded
             try:
                 old = from_dict(bridge.read_recording_dict(st))
                 if old.dips:
-                    rec.dips = [dp for dp in old.dips if dp.before_sample <= len(samples)]
+                    dips = [dp for dp in old.dips if dp.before_sample <= len(samples)]
             except (bridge.UserError, RecordingError):
                 pass  # an unreadable old recording is replaced
-        rec.extra["blender"] = {"frame_start": scene.frame_start, "brush": st.brush_object.name}
-        d = rec.to_dict()
         try:
-            d.update(bridge.scene_overrides(st))
-            rec = from_dict(d)
+            rec = bridge.new_recording(scene, samples, dips)
         except (RecordingError, bridge.UserError) as exc:
             self.report({"ERROR"}, f"Cannot bake: {exc}")
             return {"CANCELLED"}

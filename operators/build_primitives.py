@@ -4,11 +4,10 @@
 from __future__ import annotations
 
 import bpy
-import numpy as np
 
 from .. import bridge, playback
 from ..sim.engine import Simulation
-from ..sim.recording import Recording, RecordingError, from_dict
+from ..sim.recording import RecordingError
 
 
 class HAIRY_BRUSH_OT_build_primitives(bpy.types.Operator):
@@ -32,9 +31,7 @@ class HAIRY_BRUSH_OT_build_primitives(bpy.types.Operator):
                 s = bridge.sample_from_matrices(
                     st, st.brush_object.matrix_world, st.paper_object.matrix_world
                 )
-                d = Recording(np.array([s])).to_dict()
-                d.update(bridge.scene_overrides(st))
-                sim = Simulation(from_dict(d))
+                sim = Simulation(bridge.new_recording(scene, [s]))
                 sim.brush.place(s)
             n = playback.sync_primitives(scene, sim, create=True)
         except (bridge.UserError, RecordingError) as exc:

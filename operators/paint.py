@@ -10,14 +10,13 @@ from __future__ import annotations
 import time
 
 import bpy
-import numpy as np
 from bpy_extras import view3d_utils
 from mathutils import Matrix
 
 from .. import bridge, playback
 from ..sim.engine import Simulation
 from ..sim.live import LiveBrush, LiveEvent
-from ..sim.recording import Recording, RecordingError, from_dict
+from ..sim.recording import RecordingError
 
 IMAGE_UPDATE_S = 1.0 / 15.0
 NAVIGATION = {"MIDDLEMOUSE", "TRACKPADPAN", "TRACKPADZOOM", "NDOF_MOTION"}
@@ -42,13 +41,8 @@ def start_simulation(scene, xy) -> tuple[Simulation, bool]:
         return pb.seek(len(pb.rec.samples)), False
     geom_len = bridge.hair_length(st)
     x, y = xy if xy is not None else (st.paper_width_mm / 2, st.paper_height_mm / 2)
-    rec = Recording(np.array([[x, y, geom_len + 5.0, 0.0, 0.0, 0.0]]))
-    rec.sample_rate_hz = float(st.sample_rate_hz)
-    rec.dips = [bridge.current_dip(st, 0)]
-    rec.extra["blender"] = {"frame_start": scene.frame_start}
-    d = rec.to_dict()
-    d.update(bridge.scene_overrides(st))
-    return Simulation(from_dict(d)).run(), True
+    rec = bridge.new_recording(scene, [[x, y, geom_len + 5.0, 0.0, 0.0, 0.0]])
+    return Simulation(rec).run(), True
 
 
 def keep_stroke(scene, live: LiveBrush):

@@ -11,7 +11,7 @@ from bpy_extras.io_utils import ImportHelper
 
 from .. import bridge
 from ..sim.hanzi import load_char, simple_samples
-from ..sim.recording import Recording, RecordingError, from_dict
+from ..sim.recording import RecordingError
 from .setup import resize_paper
 
 
@@ -60,13 +60,8 @@ class HAIRY_BRUSH_OT_write_character(bpy.types.Operator, ImportHelper):
             speed_mm_s=self.speed_mm_s,
             rate_hz=st.sample_rate_hz,
         )
-        rec = Recording(samples, sample_rate_hz=float(st.sample_rate_hz))
-        rec.dips = [bridge.current_dip(st, 0)]
-        rec.extra["blender"] = {"frame_start": scene.frame_start}
-        d = rec.to_dict()
         try:
-            d.update(bridge.scene_overrides(st))
-            rec = from_dict(d)
+            rec = bridge.new_recording(scene, samples)
         except (RecordingError, bridge.UserError) as exc:
             self.report({"ERROR"}, str(exc))
             return {"CANCELLED"}
