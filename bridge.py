@@ -14,8 +14,14 @@ import json
 import bpy
 import numpy as np
 
-from .sim.brush import angles_from_matrix
-from .sim.params import MAX_PAPER_PIXELS, MAX_PAPER_SIDE_PX, QualityParams
+from .sim.brush import angles_from_matrix, rotation_matrix
+from .sim.params import (
+    MAX_PAPER_PIXELS,
+    MAX_PAPER_SIDE_PX,
+    QualityParams,
+    geometry_from_preset,
+    load_preset,
+)
 from .sim.recording import Dip, Recording, RecordingError, from_dict
 
 RECORDING_TEXT = "HairyBrush Recording"
@@ -32,6 +38,14 @@ class UserError(Exception):
 
 def settings(scene):
     return scene.hairy_brush
+
+
+def require_brush_and_paper(st):
+    if st.brush_object is None:
+        raise UserError("No brush empty: run Setup or pick one in the sidebar")
+    if st.paper_object is None:
+        raise UserError("No paper plane: run Setup or pick one in the sidebar")
+    return st.brush_object, st.paper_object
 
 
 # ------------------------------------------------------------------------------ paper size
@@ -82,7 +96,7 @@ def sample_from_matrices(st, brush_mw, paper_mw) -> np.ndarray:
 # ------------------------------------------------------------------------------ recordings
 def scene_overrides(st) -> dict:
     """The scene's settings as recording fields: they decide how a recording is rendered."""
-    w, h = check_paper_size(st)
+    check_paper_size(st)
     return {
         "paper": {
             "width_mm": float(st.paper_width_mm),
@@ -258,8 +272,6 @@ def ray_to_paper(engine_to_world_m: np.ndarray, origin, direction):
 
 def matrix_from_sample(st, paper_mw, sample) -> np.ndarray:
     """World matrix of the brush empty for a 6-DOF sample (inverse of sample_from_matrices)."""
-    from .sim.brush import rotation_matrix
-
     x, y, z, d, q, r = (float(v) for v in sample)
     rel = np.eye(4)
     rel[:3, :3] = rotation_matrix(d, q, r)
@@ -270,8 +282,6 @@ def matrix_from_sample(st, paper_mw, sample) -> np.ndarray:
 
 
 def hair_length(st) -> float:
-    from .sim.params import geometry_from_preset, load_preset
-
     return geometry_from_preset(load_preset("brush", st.brush_preset)).hair_length_mm
 
 

@@ -57,7 +57,7 @@ def on_undo_redo(_scene, _data=None):
     for img in bpy.data.images:
         if bridge.PAPER_TAG in img and img.packed_file is not None:
             img.reload()
-    playback.clear()
+    # the playback cache is keyed by the recording and settings: still valid if they are
 
 
 @persistent

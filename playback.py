@@ -53,29 +53,49 @@ def clear():
     _PLAYBACKS.clear()
 
 
+def cache_key(scene) -> str:
+    """Identifies the stored recording text and every setting that renders it; cheap, so a
+    frame change does not re-parse and re-validate an unchanged recording."""
+    st = bridge.settings(scene)
+    text = st.recording.as_string() if st.recording is not None else ""
+    h = hashlib.sha1(text.encode("utf-8"), usedforsecurity=False)
+    h.update(json.dumps(bridge.scene_overrides(st), sort_keys=True).encode("utf-8"))
+    h.update(repr((scene.frame_start, scene.render.fps, scene.render.fps_base)).encode())
+    return h.hexdigest()
+
+
 def playback_for(scene) -> Playback:
-    """The scene's Playback, rebuilt when the recording or any setting changed."""
-    rec = bridge.recording_from_scene(scene)
-    key = hashlib.sha1(
-        json.dumps(rec.to_dict(), sort_keys=True).encode("utf-8"), usedforsecurity=False
-    ).hexdigest()
+    """The scene's Playback, rebuilt only when the recording or a setting changed."""
+    key = cache_key(scene)
     pb = _PLAYBACKS.get(scene.name)
     if pb is None or pb.key != key:
-        pb = Playback(rec, key)
+        pb = Playback(bridge.recording_from_scene(scene), key)
         _PLAYBACKS[scene.name] = pb
     return pb
 
 
-def show_frame(scene, frame: float, pack: bool = False, progress=None) -> Simulation:
-    """Put the paper image (and the primitive objects, if built) at ``frame``."""
+def adopt(scene, sim: Simulation):
+    """After a live stroke was stored: the scene's Playback goes on from the live simulation
+    (same samples, same state) instead of simulating the whole recording again."""
+    pb = _PLAYBACKS.get(scene.name)
+    if pb is None or pb.sim is not sim:
+        return
+    pb.key, pb.rec = cache_key(scene), sim.rec
+
+
+def show(scene, index: int, pack: bool = False, progress=None) -> Simulation:
+    """Put the paper image (and the primitive objects, if built) at sample ``index``."""
     st = bridge.settings(scene)
-    pb = playback_for(scene)
-    sim = pb.seek(bridge.samples_at_frame(pb.rec, scene, frame), progress)
-    img = bridge.ensure_paper_image(st)
-    bridge.write_image(img, sim.paper.rgb(), pack=pack)
+    sim = playback_for(scene).seek(index, progress)
+    bridge.write_image(bridge.ensure_paper_image(st), sim.paper.rgb(), pack=pack)
     if primitive_objects(scene):
         sync_primitives(scene, sim, create=False)
     return sim
+
+
+def show_frame(scene, frame: float) -> Simulation:
+    pb = playback_for(scene)
+    return show(scene, bridge.samples_at_frame(pb.rec, scene, frame))
 
 
 # ------------------------------------------------------------------------------ primitives
@@ -138,9 +158,7 @@ def sync_primitives(scene, sim: Simulation, create: bool = True) -> int:
     empty; control points, weights and knots come from the engine (``HairyBrush.surface_nets``).
     Splitting adds objects; merged primitives hide theirs. Returns the number shown."""
     st = bridge.settings(scene)
-    brush_obj, paper_obj = st.brush_object, st.paper_object
-    if brush_obj is None or paper_obj is None:
-        raise bridge.UserError("Set up a brush empty and a paper plane first (Setup)")
+    brush_obj, paper_obj = bridge.require_brush_and_paper(st)
     nets, _breaks = sim.brush.surface_nets()
     to_local = np.linalg.inv(np.array(brush_obj.matrix_world)) @ bridge.engine_to_world(
         st, paper_obj

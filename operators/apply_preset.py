@@ -31,12 +31,10 @@ class HAIRY_BRUSH_OT_apply_preset(bpy.types.Operator):
         except ParameterError as exc:
             self.report({"ERROR"}, str(exc))
             return {"CANCELLED"}
-        prop = PROPERTY[self.kind]
-        if getattr(st, prop) == self.name:  # re-applying restores the preset's values
-            if self.kind == "ink":
-                apply_ink_preset(st)
-            else:
-                apply_quality_presets(st, brush=self.kind == "brush", paper=self.kind == "paper")
+        setattr(st, PROPERTY[self.kind], self.name)
+        # also when the preset was already chosen (no update then): restore its values
+        if self.kind == "ink":
+            apply_ink_preset(st)
         else:
-            setattr(st, prop, self.name)
+            apply_quality_presets(st, brush=self.kind == "brush", paper=self.kind == "paper")
         return {"FINISHED"}

@@ -64,11 +64,10 @@ class HAIRY_BRUSH_OT_bake_samples(bpy.types.Operator):
     def execute(self, context):
         scene = context.scene
         st = bridge.settings(scene)
-        if st.brush_object is None:
-            self.report({"ERROR"}, "No brush empty: run Setup or pick one in the sidebar")
-            return {"CANCELLED"}
-        if st.paper_object is None:
-            self.report({"ERROR"}, "No paper plane: run Setup or pick one in the sidebar")
+        try:
+            bridge.require_brush_and_paper(st)
+        except bridge.UserError as exc:
+            self.report({"ERROR"}, str(exc))
             return {"CANCELLED"}
         bad = nan_keyframes(st.brush_object)
         if bad is not None:

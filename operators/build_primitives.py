@@ -22,8 +22,7 @@ class HAIRY_BRUSH_OT_build_primitives(bpy.types.Operator):
         scene = context.scene
         st = bridge.settings(scene)
         try:
-            if st.brush_object is None or st.paper_object is None:
-                raise bridge.UserError("Set up a brush empty and a paper plane first (Setup)")
+            bridge.require_brush_and_paper(st)
             if st.recording is not None:
                 pb = playback.playback_for(scene)
                 sim = pb.seek(bridge.samples_at_frame(pb.rec, scene, scene.frame_current))

@@ -15,7 +15,7 @@ from mathutils import Matrix
 
 from .. import bridge, playback
 from ..sim.engine import Simulation
-from ..sim.live import LiveBrush, LiveEvent
+from ..sim.live import HOVER_MM, LiveBrush, LiveEvent
 from ..sim.recording import RecordingError
 
 IMAGE_UPDATE_S = 1.0 / 15.0
@@ -41,19 +41,14 @@ def start_simulation(scene, xy) -> tuple[Simulation, bool]:
         return pb.seek(len(pb.rec.samples)), False
     geom_len = bridge.hair_length(st)
     x, y = xy if xy is not None else (st.paper_width_mm / 2, st.paper_height_mm / 2)
-    rec = bridge.new_recording(scene, [[x, y, geom_len + 5.0, 0.0, 0.0, 0.0]])
+    rec = bridge.new_recording(scene, [[x, y, geom_len + HOVER_MM, 0.0, 0.0, 0.0]])
     return Simulation(rec).run(), True
 
 
 def keep_stroke(scene, live: LiveBrush):
     """Store the recording with the new stroke; the playback continues from the live state."""
-    st = bridge.settings(scene)
-    rec = live.sim.rec
-    bridge.store_recording(st, rec)
-    pb = playback.playback_for(scene)  # keyed by the stored recording
-    if pb.sim is not live.sim:
-        pb.sim, pb.rec = live.sim, live.sim.rec
-        pb.snaps = {k: v for k, v in pb.snaps.items() if k <= live.n0}
+    bridge.store_recording(bridge.settings(scene), live.sim.rec)
+    playback.adopt(scene, live.sim)
 
 
 class HAIRY_BRUSH_OT_paint(bpy.types.Operator):

@@ -4,8 +4,10 @@
 from __future__ import annotations
 
 import bpy
+import numpy as np
 
 from .. import bridge
+from ..sim.live import HOVER_MM
 from ..sim.params import load_preset, paper_from_preset
 
 PAPER_MATERIAL = "HairyBrush Paper"
@@ -97,7 +99,7 @@ class HAIRY_BRUSH_OT_setup(bpy.types.Operator):
             brush.rotation_euler = (0.0, 0.0, 0.0)  # upright: the hair hangs down -Z
             geom_len = bridge.hair_length(st)
             brush.parent = st.paper_object
-            brush.location = (0.0, 0.0, (geom_len + 5.0) / bridge.MM)
+            brush.location = (0.0, 0.0, (geom_len + HOVER_MM) / bridge.MM)
             coll.objects.link(brush)
             st.brush_object = brush
         self.report({"INFO"}, f"Paper {st.paper_object.name}, brush {st.brush_object.name}")
@@ -105,8 +107,6 @@ class HAIRY_BRUSH_OT_setup(bpy.types.Operator):
 
 
 def _blank(st, color):
-    import numpy as np
-
     w, h = bridge.paper_pixels(st)
     out = np.empty((h, w, 3), np.float32)
     out[:] = color

@@ -28,15 +28,11 @@ class HAIRY_BRUSH_OT_simulate(bpy.types.Operator):
         wm = context.window_manager
         wm.progress_begin(0, 100)
         try:
-            pb = playback.playback_for(scene)
-            n = len(pb.rec.samples)
+            rec = playback.playback_for(scene).rec
+            n = len(rec.samples)
             if self.to_current_frame:
-                n = bridge.samples_at_frame(pb.rec, scene, scene.frame_current)
-            sim = pb.seek(n, lambda f: wm.progress_update(int(100 * f)))
-            img = bridge.ensure_paper_image(st)
-            bridge.write_image(img, sim.paper.rgb(), pack=True)
-            if playback.primitive_objects(scene):
-                playback.sync_primitives(scene, sim, create=False)
+                n = bridge.samples_at_frame(rec, scene, scene.frame_current)
+            playback.show(scene, n, pack=True, progress=lambda f: wm.progress_update(int(100 * f)))
         except (bridge.UserError, RecordingError) as exc:
             self.report({"ERROR"}, str(exc))
             return {"CANCELLED"}
@@ -45,5 +41,5 @@ class HAIRY_BRUSH_OT_simulate(bpy.types.Operator):
             return {"CANCELLED"}
         finally:
             wm.progress_end()
-        self.report({"INFO"}, f"Simulated {n} samples into '{img.name}'")
+        self.report({"INFO"}, f"Simulated {n} samples into '{st.paper_image.name}'")
         return {"FINISHED"}

@@ -41,12 +41,10 @@ class HAIRY_BRUSH_OT_write_character(bpy.types.Operator, ImportHelper):
     def execute(self, context):
         scene = context.scene
         st = bridge.settings(scene)
-        if st.brush_object is None or st.paper_object is None:
-            self.report({"ERROR"}, "Set up a brush empty and a paper plane first (Setup)")
-            return {"CANCELLED"}
         try:
+            bridge.require_brush_and_paper(st)
             char = load_char(self.filepath)
-        except ValueError as exc:
+        except (bridge.UserError, ValueError) as exc:
             self.report({"ERROR"}, str(exc))
             return {"CANCELLED"}
         st.paper_width_mm = st.paper_height_mm = self.size_mm

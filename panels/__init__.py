@@ -9,12 +9,4 @@ from . import presets_menu, sidebar
 
 CLASSES = (*presets_menu.CLASSES, *sidebar.CLASSES)
 
-
-def register():
-    for cls in CLASSES:
-        bpy.utils.register_class(cls)
-
-
-def unregister():
-    for cls in reversed(CLASSES):
-        bpy.utils.unregister_class(cls)
+register, unregister = bpy.utils.register_classes_factory(CLASSES)

@@ -51,7 +51,6 @@ class LiveBrush:
         self.step_deg = float(step_deg)
         self.L = sim.geometry.hair_length_mm
         self.n0 = len(sim.rec.samples)
-        self.index0 = sim.index
         if sim.index != self.n0:
             raise ValueError("the simulation must have run to the end of its recording")
         self._snapshot = sim.snapshot()

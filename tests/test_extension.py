@@ -183,8 +183,10 @@ def test_undo_restores_the_paper_and_redo_brings_the_ink_back(hb):
     undo_step(bpy, "simulated")
     after = pixels(bpy.context.scene.hairy_brush.paper_image)
     assert np.abs(after - before).max() > 0.5
+    pb = ext().playback.playback_for(bpy.context.scene)
     call(bpy, "undo")
     np.testing.assert_array_equal(pixels(bpy.context.scene.hairy_brush.paper_image), before)
+    assert ext().playback.playback_for(bpy.context.scene) is pb  # cache kept: same recording
     call(bpy, "redo")
     np.testing.assert_array_equal(pixels(bpy.context.scene.hairy_brush.paper_image), after)
 
@@ -361,9 +363,8 @@ def test_clear_errors_for_bad_input(hb):
     st.paper_width_mm, st.px_per_mm = 200.0, 2.0
     setup_scene(bpy, ppm=2.0)
     keyframe_stroke(bpy, st)
-    fc = st.brush_object.animation_data.action
-    ext().bridge._fcurves(st.brush_object.animation_data)[0].keyframe_points[1].co.y = float("nan")
-    del fc
+    fcurve = ext().bridge._fcurves(st.brush_object.animation_data)[0]
+    fcurve.keyframe_points[1].co.y = float("nan")
     with pytest.raises(RuntimeError, match="not a number on location"):
         bpy.ops.hairy_brush.bake_samples()
     st.recording = bpy.data.texts.new("junk")
@@ -402,7 +403,7 @@ def test_apply_to_mesh_puts_the_ink_over_the_meshs_own_material(hb):
 
 # ----------------------------------------------------------------------------- live painting
 def test_live_stroke_is_kept_in_the_recording_and_replays_identically(hb):
-    from sim.live import LiveEvent
+    LiveEvent = ext().sim.live.LiveEvent  # noqa: N806 - the installed copy's class
 
     st = setup_scene(bpy)
     sc = bpy.context.scene
@@ -425,6 +426,20 @@ def test_live_stroke_is_kept_in_the_recording_and_replays_identically(hb):
     replay = Simulation(rec).run().paper.rgb()
     np.testing.assert_array_equal(replay, live.sim.paper.rgb())
     assert (replay[..., 0] < 0.5).sum() > 100
+    # a second stroke continues the stored recording; the frame cache adopts the live state
+    sim2, fresh = paint.start_simulation(sc, (60.0, 60.0))
+    assert not fresh and sim2.index == 61
+    live2 = ext().sim.live.LiveBrush(sim2, press_mm=5.0, xy=(60.0, 60.0))
+    live2.handle(LiveEvent("LEFTMOUSE", "PRESS", (60.0, 60.0)))
+    for i in range(30):
+        live2.handle(LiveEvent("MOUSEMOVE", "NOTHING", (60.0, 60.0 + i)))
+        live2.handle(LiveEvent("TIMER", "NOTHING"))
+    assert live2.handle(LiveEvent("RET", "PRESS")) == "FINISHED"
+    paint.keep_stroke(sc, live2)
+    assert ext().playback.playback_for(sc).sim is live2.sim  # no re-simulation
+    rec2 = ext().bridge.recording_from_scene(sc)
+    assert len(rec2.samples) == 91
+    np.testing.assert_array_equal(Simulation(rec2).run().paper.rgb(), live2.sim.paper.rgb())
 
 
 def test_register_unregister_register_leaves_nothing_behind(hb):
@@ -440,7 +455,9 @@ def test_register_unregister_register_leaves_nothing_behind(hb):
     addon_utils.disable(ADDON, default_set=True)
     assert not hasattr(bpy.types.Scene, "hairy_brush")
     assert not hasattr(bpy.types, "HAIRY_BRUSH_PT_main")
-    assert "hairy_brush" not in dir(bpy.ops) or not dir(bpy.ops.hairy_brush)
+    assert not hasattr(bpy.types, "HAIRY_BRUSH_OT_setup")
+    with pytest.raises(AttributeError):
+        bpy.ops.hairy_brush.setup()
     assert from_handlers() == []
     addon_utils.enable(ADDON, default_set=True)
     assert hasattr(bpy.types.Scene, "hairy_brush") and len(from_handlers()) == 2
