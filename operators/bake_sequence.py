@@ -36,7 +36,7 @@ class HAIRY_BRUSH_OT_bake_sequence(bpy.types.Operator):
             with handlers.suspended():
                 for k, f in enumerate(frames):
                     sim = pb.seek(bridge.samples_at_frame(pb.rec, scene, f))
-                    write_png(os.path.join(folder, f"paper_{f:04d}.png"), sim.image())
+                    write_png(os.path.join(folder, f"paper_{f:04d}.png"), sim.image8())
                     wm.progress_update(k)
         except (bridge.UserError, RecordingError, OSError) as exc:
             self.report({"ERROR"}, str(exc))

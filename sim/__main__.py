@@ -35,7 +35,7 @@ def cmd_render(args) -> int:
         rec.seed = args.seed
     t0 = time.perf_counter()
     sim = Simulation(rec).run(progress=None if args.quiet else _progress)
-    write_png(args.output, sim.image())
+    write_png(args.output, sim.image8())
     if not args.quiet:
         dt = time.perf_counter() - t0
         print(

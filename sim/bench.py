@@ -119,7 +119,7 @@ def replay_seconds(recording_path, size_px, out_png, repeats=2):
     for _ in range(repeats):
         t0 = time.perf_counter()
         sim = Simulation(rec).run()
-        write_png(out_png, sim.image(), level=1)
+        write_png(out_png, sim.image8(), level=1)
         times.append(time.perf_counter() - t0)
     return statistics.median(times)
 

@@ -62,6 +62,24 @@ REF_RATE = 30.0  # time slices per second
 SLIP = 0.3  # share of the way hair held on the paper slides after the brush each step
 
 
+# ink information carried by a key point (Eq. 3-5), as columns of one array
+INK_FIELDS = {
+    "wet": slice(0, 1),
+    "col": slice(1, 4),
+    "wr": slice(4, 5),
+    "cr": slice(5, 6),
+    "wv": slice(6, 9),
+    "cv": slice(9, 12),
+}
+INK_WIDTH = 12
+
+
+def ink_field(rows, name: str) -> np.ndarray:
+    """One field of a stacked ink array (..., INK_WIDTH); scalars lose their last axis."""
+    out = rows[..., INK_FIELDS[name]]
+    return out[..., 0] if out.shape[-1] == 1 else out
+
+
 def rotation_matrix(d_deg: float, q_deg: float, r_deg: float) -> np.ndarray:
     """R = Rx(q) Ry(d) Rz(r), angles in degrees (Sec. 4, Fig. 6(a))."""
     d, q, r = np.radians([d_deg, q_deg, r_deg])
@@ -298,9 +316,10 @@ class HairyBrush:
         beta = np.where(below, r + (b2 - r) * up, b2 * down)
         return alpha, beta
 
-    def rows_ink(self, sec: Sections):
+    def rows_ink(self, sec: Sections) -> np.ndarray:
         """Ink information at the surface rows' axis points V^ (Eq. 21): distance-weighted linear
-        interpolation between the two key points that bracket each row along the axis."""
+        interpolation between the two key points that bracket each row along the axis. Returns
+        (m, Ns, INK_WIDTH), the fields laid out as INK_FIELDS says."""
         s = self.layout.grid_s
         t = sec.params  # (m, n)
         m, n = t.shape
@@ -310,25 +329,23 @@ class HairyBrush:
         w1 = np.clip((s[None, :] - t0) / np.maximum(t1 - t0, 1e-12), 0.0, 1.0)
         w0 = 1.0 - w1
 
-        def lerp(field):
-            if field.ndim == 2:
-                return w0 * np.take_along_axis(field, j, 1) + w1 * np.take_along_axis(
-                    field, j + 1, 1
-                )
-            jj = j[..., None]
-            return w0[..., None] * np.take_along_axis(field, jj, 1) + w1[..., None] * (
-                np.take_along_axis(field, jj + 1, 1)
-            )
-
-        # vector-mode fields live in the brush frame; the mark works in paper coordinates
-        return {
-            "wet": lerp(self.wet),
-            "col": lerp(self.col),
-            "wr": lerp(self.wr),
-            "cr": lerp(self.cr),
-            "wv": lerp(self.wv) @ self.R.T,
-            "cv": lerp(self.cv) @ self.R.T,
-        }
+        # every field of a key point stacked into one array, in INK_FIELDS order; vector-mode
+        # fields live in the brush frame, the mark works in paper coordinates
+        keys = np.concatenate(
+            [
+                self.wet[..., None],
+                self.col,
+                self.wr[..., None],
+                self.cr[..., None],
+                self.wv @ self.R.T,
+                self.cv @ self.R.T,
+            ],
+            axis=2,
+        )  # (m, n, INK_WIDTH)
+        jj = j[..., None]
+        return w0[..., None] * np.take_along_axis(keys, jj, 1) + w1[..., None] * (
+            np.take_along_axis(keys, jj + 1, 1)
+        )
 
     # ----------------------------------------------------------------- dynamics (Sec. 5)
     def move(self, pose6, vel6, dt: float):

@@ -95,6 +95,10 @@ class Simulation:
         """RGB float image (H, W, 3), top row first."""
         return self.paper.rgb()[::-1]
 
+    def image8(self) -> np.ndarray:
+        """RGB uint8 image (H, W, 3), top row first, made band by band (little memory)."""
+        return self.paper.rgb8()
+
     # -------------------------------------------------------------- snapshots
     def snapshot(self) -> dict:
         return {

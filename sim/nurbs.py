@@ -106,28 +106,33 @@ def derivative_ctrl(ctrl, knots, degree: int):
 
 def rotation_minimising_frames(points, tangents, r0):
     """Double-reflection RMF (Wang, Juttler, Zheng, Liu 2008). points, tangents: (m, N, 3);
-    r0: (m, 3) initial normal, perpendicular to tangents[:, 0]. Returns normals (m, N, 3)."""
+    r0: (m, 3) initial normal, perpendicular to tangents[:, 0]. Returns normals (m, N, 3).
+
+    Each step is two reflections, r_{i+1} = H2_i H1_i r_i, and the reflections depend only on
+    the points and tangents: they are built for all steps at once, and only the 3 x 3 products
+    run in sequence."""
     m, N, _ = points.shape
+    v1 = np.diff(points, axis=1)  # (m, N-1, 3)
+    c1 = np.einsum("mik,mik->mi", v1, v1)
+    f1 = np.where(c1 > 1e-18, 2.0 / np.where(c1 > 1e-18, c1, 1.0), 0.0)
+    t0 = tangents[:, :-1]
+    tl = t0 - (f1 * np.einsum("mik,mik->mi", v1, t0))[..., None] * v1
+    v2 = tangents[:, 1:] - tl
+    c2 = np.einsum("mik,mik->mi", v2, v2)
+    f2 = np.where(c2 > 1e-18, 2.0 / np.where(c2 > 1e-18, c2, 1.0), 0.0)
+    eye = np.eye(3)
+    H1 = eye - f1[..., None, None] * v1[..., :, None] * v1[..., None, :]
+    H2 = eye - f2[..., None, None] * v2[..., :, None] * v2[..., None, :]
+    M = H2 @ H1  # (m, N-1, 3, 3)
     out = np.empty_like(points)
-    r = r0
+    r = np.asarray(r0, dtype=float)
     out[:, 0] = r
     for i in range(N - 1):
-        v1 = points[:, i + 1] - points[:, i]
-        c1 = np.einsum("ij,ij->i", v1, v1)
-        c1s = np.where(c1 > 1e-18, c1, 1.0)
-        f1 = np.where(c1 > 1e-18, 2.0 / c1s, 0.0)
-        rl = r - (f1 * np.einsum("ij,ij->i", v1, r))[:, None] * v1
-        tl = tangents[:, i] - (f1 * np.einsum("ij,ij->i", v1, tangents[:, i]))[:, None] * v1
-        v2 = tangents[:, i + 1] - tl
-        c2 = np.einsum("ij,ij->i", v2, v2)
-        c2s = np.where(c2 > 1e-18, c2, 1.0)
-        f2 = np.where(c2 > 1e-18, 2.0 / c2s, 0.0)
-        r = rl - (f2 * np.einsum("ij,ij->i", v2, rl))[:, None] * v2
-        # re-orthogonalise against round-off
-        t = tangents[:, i + 1]
-        r = r - np.einsum("ij,ij->i", r, t)[:, None] * t
-        r = r / np.maximum(np.linalg.norm(r, axis=1), 1e-12)[:, None]
+        r = np.einsum("mij,mj->mi", M[:, i], r)
         out[:, i + 1] = r
+    # against round-off: exactly perpendicular to the tangents and of unit length
+    out -= np.einsum("mik,mik->mi", out, tangents)[..., None] * tangents
+    out /= np.maximum(np.linalg.norm(out, axis=2), 1e-12)[..., None]
     return out
 
 

@@ -19,6 +19,8 @@ from __future__ import annotations
 
 import numpy as np
 
+from .png import to_uint8
+
 DRY_RATE = 1.0  # capacity units per second at dry = 1
 _NEIGHBOURS = [(-1, -1), (-1, 0), (-1, 1), (0, -1), (0, 1), (1, -1), (1, 0), (1, 1)]
 
@@ -139,6 +141,17 @@ class Paper:
     def rgb(self) -> np.ndarray:
         """Visible colour (H, W, 3) float32 in [0, 1], bottom row first."""
         return self.color * (1.0 - np.clip(self.ink, 0.0, 1.0))
+
+    def rgb8(self, chunk_rows: int = 256) -> np.ndarray:
+        """Visible colour as (H, W, 3) uint8, TOP row first (an image file's order), made a band
+        of rows at a time so that a 4K paper needs no full-size float temporaries."""
+        out = np.empty((self.H, self.W, 3), dtype=np.uint8)
+        for y0 in range(0, self.H, chunk_rows):
+            y1 = min(y0 + chunk_rows, self.H)
+            band = self.ink[self.H - y1 : self.H - y0][::-1]
+            rgb = self.color * (1.0 - np.clip(band, 0.0, 1.0))
+            out[y0:y1] = to_uint8(rgb)
+        return out
 
     def snapshot(self) -> dict:
         return {

@@ -29,15 +29,20 @@ def write_png(path, img, level: int = 6) -> None:
         a = a[..., None]
     h, w, c = a.shape
     ctype = {1: 0, 3: 2, 4: 6}[c]
-    raw = np.concatenate([np.zeros((h, 1), dtype=np.uint8), a.reshape(h, w * c)], axis=1)
-    data = (
-        b"\x89PNG\r\n\x1a\n"
-        + _chunk(b"IHDR", struct.pack(">IIBBBBB", w, h, 8, ctype, 0, 0, 0))
-        + _chunk(b"IDAT", zlib.compress(raw.tobytes(), level))
-        + _chunk(b"IEND", b"")
-    )
+    z = zlib.compressobj(level)
+    parts = []
+    band = max(1, (1 << 22) // max(w * c, 1))  # about 4 MB of rows per band
+    for y0 in range(0, h, band):
+        rows = a[y0 : y0 + band].reshape(-1, w * c)
+        raw = np.zeros((rows.shape[0], 1 + w * c), dtype=np.uint8)  # filter byte 0 per row
+        raw[:, 1:] = rows
+        parts.append(z.compress(raw.tobytes()))
+    parts.append(z.flush())
     with open(path, "wb") as f:
-        f.write(data)
+        f.write(b"\x89PNG\r\n\x1a\n")
+        f.write(_chunk(b"IHDR", struct.pack(">IIBBBBB", w, h, 8, ctype, 0, 0, 0)))
+        f.write(_chunk(b"IDAT", b"".join(parts)))
+        f.write(_chunk(b"IEND", b""))
 
 
 def read_png(path) -> np.ndarray:
