@@ -13,6 +13,7 @@ from .bake_sequence import HAIRY_BRUSH_OT_bake_sequence
 from .build_primitives import HAIRY_BRUSH_OT_build_primitives
 from .dip import HAIRY_BRUSH_OT_dip
 from .export_recording import HAIRY_BRUSH_OT_export_recording
+from .fit_parameters import HAIRY_BRUSH_OT_fit_parameters
 from .import_recording import HAIRY_BRUSH_OT_import_recording
 from .paint import HAIRY_BRUSH_OT_paint
 from .setup import HAIRY_BRUSH_OT_setup
@@ -31,6 +32,7 @@ CLASSES = (
     HAIRY_BRUSH_OT_export_recording,
     HAIRY_BRUSH_OT_apply_to_mesh,
     HAIRY_BRUSH_OT_write_character,
+    HAIRY_BRUSH_OT_fit_parameters,
     HAIRY_BRUSH_OT_apply_preset,
     HAIRY_BRUSH_OT_add_settings_preset,
 )

@@ -99,6 +99,7 @@ class HAIRY_BRUSH_PT_quality(_Panel, bpy.types.Panel):
             col.label(text=title)
             for name in names:
                 col.prop(q, name, slider=True)
+        layout.operator("hairy_brush.fit_parameters", icon="DRIVER_DISTANCE")
 
 
 class HAIRY_BRUSH_PT_recording(_Panel, bpy.types.Panel):

@@ -4,6 +4,7 @@
 from __future__ import annotations
 
 import argparse
+import os
 import sys
 import time
 
@@ -45,6 +46,167 @@ def cmd_render(args) -> int:
     return 0
 
 
+def _template(args):
+    """A recording carrying the chosen brush, paper, ink, quality and seed (no samples yet)."""
+    import numpy as np
+
+    from .recording import Recording
+
+    quality = {}
+    if getattr(args, "quality", None):
+        from .fit import load_quality
+
+        quality = load_quality(args.quality)
+    return Recording(
+        np.zeros((1, 6)),
+        seed=args.seed,
+        brush={"preset": args.brush},
+        paper_preset=args.paper,
+        ink={"preset": args.ink},
+        quality=quality,
+    )
+
+
+def _chars(specs, data):
+    from .hanzi import find_char
+
+    out = []
+    for spec in specs:
+        try:
+            out.append(find_char(spec, data))
+        except ValueError as exc:
+            raise SystemExit(f"error: {exc}") from None
+    return out
+
+
+def cmd_write(args) -> int:
+    from .imitate import write_character
+    from .png import write_png
+
+    (char,) = _chars([args.char], args.data)
+    t0 = time.perf_counter()
+    rec, resp, sim = write_character(
+        char,
+        args.size,
+        _template(args),
+        size_mm=args.size_mm,
+        passes=args.passes,
+        progress=None if args.quiet else _progress,
+    )
+    write_png(args.output, sim.image8())
+    if args.recording:
+        rec.save(args.recording)
+    if not args.quiet:
+        print(
+            f"{args.output}: {args.size} x {args.size} px, {len(char['medians'])} strokes, "
+            f"{len(rec.samples)} samples, {len(rec.dips)} dips, character {rec.width_mm:.1f} mm, "
+            f"{time.perf_counter() - t0:.1f} s"
+        )
+    return 0
+
+
+def cmd_iou(args) -> int:
+    import json
+
+    import numpy as np
+
+    from .imitate import coverage_mask, write_character
+    from .outline import baseline_masks, iou, rasterise
+
+    chars = _chars(args.chars, args.data)
+    template = _template(args)
+    rows, resp = [], None
+    for spec, ch in zip(args.chars, chars, strict=True):
+        font = rasterise(ch, args.size)
+        base = baseline_masks(ch, args.size)
+        rec, resp, sim = write_character(
+            ch, args.size, template, size_mm=args.size_mm, response=resp, passes=args.passes
+        )
+        ink = coverage_mask(sim)
+        name = spec if len(spec) == 1 else os.path.basename(spec)
+        rows.append(
+            (name, iou(base["round_pen"], font), iou(base["true_discs"], font), iou(ink, font))
+        )
+        print(
+            f"{name:<8} round pen {rows[-1][1]:.3f}  true discs {rows[-1][2]:.3f}  "
+            f"brush {rows[-1][3]:.3f}",
+            flush=True,
+        )
+    mean = np.mean([r[1:] for r in rows], axis=0)
+    print(f"{'mean':<8} round pen {mean[0]:.3f}  true discs {mean[1]:.3f}  brush {mean[2]:.3f}")
+    print(
+        json.dumps(
+            {
+                "size": args.size,
+                "brush": args.brush,
+                "paper": args.paper,
+                "quality_file": args.quality,
+                "mean_iou_brush": round(float(mean[2]), 4),
+                "mean_iou_round_pen": round(float(mean[0]), 4),
+                "mean_iou_true_discs": round(float(mean[1]), 4),
+                "per_char": {r[0]: round(r[3], 4) for r in rows},
+            },
+            ensure_ascii=False,
+        )
+    )
+    return 0
+
+
+def cmd_fit(args) -> int:
+    from .fit import FitSettings, character_samples, fit, image_sample, load_quality, save_preset
+    from .params import load_preset, quality_from_presets
+    from .recording import load
+
+    template = _template(args)
+    if not args.quiet:
+        sys.stderr.write("writing the training samples...\n")
+    samples = (
+        character_samples(_chars(args.chars, args.data), args.size, template, names=args.chars)
+        if args.chars
+        else []
+    )
+    for png, rec in zip(args.image or [], args.image_recording or [], strict=False):
+        samples.append(image_sample(load(rec), png))
+    if len(args.image or []) != len(args.image_recording or []):
+        raise SystemExit("error: every --image needs its --image-recording")
+    if not samples:
+        raise SystemExit("error: give training characters (--chars) or --image/--image-recording")
+    if args.seed_preset:
+        seed_q = (
+            load_quality(args.seed_preset)
+            if args.seed_preset.endswith(".json")
+            else (quality_from_presets(load_preset("brush", args.seed_preset), None))
+        )
+    else:
+        seed_q = quality_from_presets(
+            load_preset("brush", args.brush), load_preset("paper", args.paper)
+        )
+    seed_q = {**seed_q, **template.quality}
+    settings = FitSettings(
+        divisions=args.divisions,
+        rounds=args.rounds,
+        iterations=args.iterations,
+        workers=args.workers,
+        max_grid=args.max_grid,
+        stages=tuple(args.stages.split(",")),
+    )
+    t0 = time.perf_counter()
+
+    def progress(frac, stage, rnd, best):
+        if not args.quiet:
+            _progress(frac)
+            sys.stderr.write(f"  {stage} round {rnd}: Eq. 28 = {best:.5f}\n")
+
+    res = fit(samples, seed_q, settings, progress=progress)
+    save_preset(res, args.output)
+    print(
+        f"{args.output}: Eq. 28 (mean per pixel) {res.start_target:.5f} -> {res.target:.5f}, "
+        f"{res.evaluations} evaluations, {time.perf_counter() - t0:.0f} s"
+    )
+    print("  " + "  ".join(f"{k}={v:.3f}" for k, v in res.quality.items()))
+    return 0
+
+
 def cmd_bench(args) -> int:
     from .bench import main as bench
 
@@ -62,13 +224,53 @@ def main(argv=None) -> int:
     r.add_argument("--seed", type=int, default=None, help="override the seed")
     r.add_argument("-q", "--quiet", action="store_true")
     r.set_defaults(func=cmd_render)
+
+    def common(p):
+        p.add_argument("--data", default=None, help="folder of <char>.json or graphics.txt")
+        p.add_argument("--brush", default="wolf_stiff", help="brush preset")
+        p.add_argument("--paper", default="smooth", help="paper preset")
+        p.add_argument("--ink", default="sumi_black", help="ink preset")
+        p.add_argument("--quality", default=None, help="quality JSON (e.g. from sim fit)")
+        p.add_argument("--seed", type=int, default=0)
+        p.add_argument("--size-mm", type=float, default=None, help="character size (auto)")
+        p.add_argument("--passes", type=int, default=4, help="practice passes per stroke")
+
+    w = sub.add_parser("write", help="write a character from stroke data with the brush")
+    w.add_argument("char", help="hanzi-writer JSON file, or one character (with --data)")
+    w.add_argument("-o", "--output", required=True)
+    w.add_argument("--size", type=int, default=512, help="image size N (the em box)")
+    w.add_argument("--recording", default=None, help="also save the recording it made")
+    w.add_argument("-q", "--quiet", action="store_true")
+    common(w)
+    w.set_defaults(func=cmd_write)
+    m = sub.add_parser("iou", help="IoU of written characters against the font outlines")
+    m.add_argument("chars", nargs="+")
+    m.add_argument("--size", type=int, default=512)
+    common(m)
+    m.set_defaults(func=cmd_iou)
+    f = sub.add_parser("fit", help="fit the quality parameters (Sec. 7.2, Eq. 28)")
+    f.add_argument("--chars", nargs="*", default=[], help="training characters (stroke data)")
+    f.add_argument("--image", nargs="*", help="training images (PNG) ...")
+    f.add_argument("--image-recording", nargs="*", help="... and their recordings")
+    f.add_argument("-o", "--output", required=True, help="preset JSON to write")
+    f.add_argument("--size", type=int, default=96, help="training image size")
+    f.add_argument("--seed-preset", default=None, help="brush preset name or quality JSON")
+    f.add_argument("--divisions", type=int, default=1)
+    f.add_argument("--rounds", type=int, default=2)
+    f.add_argument("--iterations", type=int, default=6)
+    f.add_argument("--workers", type=int, default=0, help="processes (0: all cores)")
+    f.add_argument("--max-grid", type=int, default=64)
+    f.add_argument("--stages", default="qp1,qp2")
+    f.add_argument("-q", "--quiet", action="store_true")
+    common(f)
+    f.set_defaults(func=cmd_fit)
     b = sub.add_parser("bench", help="speed benchmark: a table, then one JSON line")
     b.add_argument("--quick", action="store_true", help="one repetition instead of three")
     b.set_defaults(func=cmd_bench)
     args = ap.parse_args(argv)
     try:
         return args.func(args)
-    except (RecordingError, ParameterError) as exc:
+    except (RecordingError, ParameterError, ValueError) as exc:
         print(f"error: {exc}", file=sys.stderr)
         return 2
     except OSError as exc:

@@ -28,6 +28,40 @@ def load_char(path) -> dict:
     return d
 
 
+DATA_DIR = Path(__file__).resolve().parent.parent / "data" / "hanzi"
+
+
+def find_char(spec: str, data=None) -> dict:
+    """Character data from a path to a hanzi-writer JSON file, or from a character looked up in
+    ``data``: a folder of hanzi-writer-data files (``<char>.json``) or Make Me a Hanzi's
+    ``graphics.txt`` (one JSON object per line with a "character" key). Without ``data`` the
+    characters bundled with the add-on are searched."""
+    p = Path(spec)
+    if p.suffix == ".json" and p.is_file():
+        return load_char(p)
+    if len(spec) != 1:
+        raise ValueError(f"{spec!r} is neither a character data file nor a single character")
+    src = Path(data) if data else DATA_DIR
+    if src.is_dir():
+        f = src / f"{spec}.json"
+        if not f.is_file():
+            raise ValueError(f"no data for {spec!r} in {src} (looked for {f.name})")
+        return load_char(f)
+    if src.is_file():
+        key = f'"character":"{spec}"'
+        with open(src, encoding="utf-8") as fh:
+            for line in fh:
+                if key in line.replace(" ", ""):
+                    try:
+                        d = json.loads(line)
+                    except json.JSONDecodeError as exc:
+                        raise ValueError(f"{src}: bad line for {spec!r}: {exc}") from None
+                    if d.get("character") == spec and "strokes" in d and "medians" in d:
+                        return d
+        raise ValueError(f"no data for {spec!r} in {src}")
+    raise ValueError(f"character data {src} does not exist")
+
+
 def to_paper(points, size_mm: float, origin=(0.0, 0.0)) -> np.ndarray:
     """Data units -> paper mm (y up): the em box [0, 1024] x [900 - 1024, 900] fills the square."""
     pts = np.asarray(points, dtype=float)

@@ -18,7 +18,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from .engine import Simulation
-from .recording import Dip
+from .recording import Dip, quantise
 
 HOVER_MM = 5.0  # brush base above the hair length while the button is up
 WHEEL_STEP_MM = 0.5
@@ -123,7 +123,7 @@ class LiveBrush:
             grown = np.empty((max(64, 2 * len(self._buf)), 6))
             grown[: self._n] = self._buf[: self._n]
             self._buf = grown
-        self._buf[self._n] = np.round(self.pose(), 5)  # as stored in recordings
+        self._buf[self._n] = quantise(self.pose())  # as stored in recordings
         self._n += 1
         self.sim.rec.samples = self._buf[: self._n]
         self.sim.step()

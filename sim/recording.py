@@ -38,6 +38,17 @@ Z_LIMIT_MM = 1000.0
 ANGLE_LIMIT_DEG = 89.0
 
 
+SAMPLE_DECIMALS = 5
+
+
+def quantise(samples) -> np.ndarray:
+    """Samples exactly as a saved recording holds them (each value rounded to SAMPLE_DECIMALS by
+    Python's correctly rounded ``round``), so that whatever simulated them live or while
+    writing replays bit for bit from the file."""
+    a = np.asarray(samples, dtype=float)
+    return np.array([round(float(v), SAMPLE_DECIMALS) for v in a.ravel()]).reshape(a.shape)
+
+
 class RecordingError(ValueError):
     """A recording is malformed; the message names the field."""
 
@@ -121,7 +132,7 @@ class Recording:
             "quality": dict(self.quality),
             "sample_rate_hz": self.sample_rate_hz,
             "seed": self.seed,
-            "samples": [[round(float(v), 5) for v in s] for s in self.samples],
+            "samples": quantise(self.samples).tolist(),
             "dips": [dp.to_dict() for dp in self.dips],
         }
         d.update(self.extra)

@@ -485,6 +485,50 @@ def test_write_character_keyframes_bake_back_into_the_same_samples(hb):
         bpy.ops.hairy_brush.write_character(filepath=str(bad))
 
 
+def test_write_character_presses_from_the_outline_and_shows_the_writing(hb):
+    st = setup_scene(bpy, ppm=1.5)
+    before = (st.paper_width_mm, st.paper_height_mm)
+    with pytest.raises(RuntimeError, match="no data"):
+        bpy.ops.hairy_brush.write_character(character="龘", size_mm=80.0)
+    assert (st.paper_width_mm, st.paper_height_mm) == before  # nothing changed on an error
+    # a character looked up in the bundled data; the size follows from the brush
+    assert bpy.ops.hairy_brush.write_character(character="一", passes=2) == {"FINISHED"}
+    rec = ext().bridge.recording_from_scene(bpy.context.scene)
+    assert rec.width_mm == pytest.approx(st.paper_width_mm) and 30 < rec.width_mm < 300
+    z = rec.samples[:, 2]
+    pressed = z[z < HAIR]
+    assert pressed.max() - pressed.min() > 2.0  # the press follows the stroke's width
+    # what the operator shows is what the stored recording renders (to the image's 8 bits)
+    shown = pixels(st.paper_image)[..., :3]
+    replay = Simulation(rec).run().paper.rgb()
+    assert np.abs(shown - replay).max() <= 0.5 / 255 + 1e-6
+    assert (shown.mean(axis=2) < 0.5).mean() > 0.03
+
+
+def test_fit_parameters_sets_the_quality_and_saves_a_user_preset(hb):
+    import os
+
+    st = setup_scene(bpy, ppm=1.0)
+    before = st.quality.as_dict()
+    r = bpy.ops.hairy_brush.fit_parameters(
+        characters="一",
+        size_px=24,
+        divisions=1,
+        rounds=1,
+        iterations=1,
+        max_grid=2,
+        preset_name="My Fit",
+    )
+    assert r == {"FINISHED"}
+    after = st.quality.as_dict()
+    assert all(0.0 <= v <= 1.0 for v in after.values()) and after != before
+    folder = bpy.utils.user_resource("SCRIPTS", path="presets/hairy_brush/settings")
+    text = open(os.path.join(folder, "My_Fit.py"), encoding="utf-8").read()
+    assert f"st.quality.e = {st.quality.e!r}" in text
+    with pytest.raises(RuntimeError, match="no image named"):
+        bpy.ops.hairy_brush.fit_parameters(source="IMAGE", image="nope")
+
+
 def test_an_animation_render_shows_each_frames_artwork(hb, tmp_path):
     st = setup_scene(bpy)
     keyframe_stroke(bpy, st)

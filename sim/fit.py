@@ -1,0 +1,380 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
+"""Configuring the brush automatically (Sec. 7.2): fit the quality parameters to training
+samples by minimising Eq. 28.
+
+A training sample is a recording (the 6-DOF strokes a student wrote) and the image it should
+have made (S^i: strokes inside given boundaries, the "MiaoHong" practice). The target function
+(Eq. 28) sums |dr| + |dg| + |db| over every pixel of every sample between S^i and the brush's
+result C^i; here it is divided by the number of pixels, so it reads as the mean per-pixel
+difference (0 = identical, 3 = black against white everywhere).
+
+The search (Sec. 7.2): Qp1 (e, tre, nu, re, ie, sm) first, with Qp2 = 0 (no dry brush, no
+diffusion), then Qp2 (ren, eta, ab, pw, dry) with Qp1 fixed. Each stage divides the edges of the
+current cube into d parts, evaluates the grid points (and any preset given as a seed), and runs
+steepest descent - forward-difference gradient, line search along the descent direction - from
+the best few of them, in parallel processes; the cube then shrinks to [x - 1/d, x + 1/d] around
+the grid point nearest the best solution, and the procedure repeats until the target stops
+improving by more than the error bound or the rounds run out. Every evaluation is a seeded
+simulation and the parallel results are gathered in a fixed order, so a fit is deterministic.
+"""
+
+from __future__ import annotations
+
+import itertools
+import json
+import os
+from concurrent.futures import ProcessPoolExecutor
+from dataclasses import dataclass, field
+from pathlib import Path
+
+import numpy as np
+
+from .engine import Simulation
+from .params import QP1, QP2, ParameterError, QualityParams
+from .recording import Recording, from_dict
+
+
+@dataclass
+class TrainingSample:
+    """One training pair: a recording and the image S^i (H, W, 3) in [0, 1], top row first, at
+    the recording's paper size."""
+
+    recording: Recording
+    target: np.ndarray
+    name: str = ""
+    # Sec. 7.2's two classes of training samples: "shape" (boundaries only, fits Qp1 with
+    # Qp2 = 0), "texture" (fits Qp2); "both" serves either stage
+    kind: str = "both"
+
+    def __post_init__(self):
+        t = np.asarray(self.target, dtype=np.float32)
+        if t.ndim != 3 or t.shape[2] != 3:
+            raise ParameterError(f"training sample {self.name!r}: image must be (H, W, 3) RGB")
+        h, w = self.recording.height_px, self.recording.width_px
+        if t.shape[:2] != (h, w):
+            raise ParameterError(
+                f"training sample {self.name!r}: image is {t.shape[1]} x {t.shape[0]} px but "
+                f"its recording's paper is {w} x {h} px"
+            )
+        self.target = t
+        if self.kind not in ("shape", "texture", "both"):
+            raise ParameterError(f"training sample {self.name!r}: kind must be shape or texture")
+
+
+@dataclass
+class FitSettings:
+    divisions: int = 2  # d: edge divisions of the cube (grid of (d + 1)^k points)
+    starts: int = 0  # descents per round (0: one per worker)
+    rounds: int = 3  # cube shrinks
+    iterations: int = 4  # steepest-descent steps per descent
+    step: float = 0.05  # finite-difference step (Delta x_i), as a share of the cube's edge
+    line_steps: int = 6  # line search: lambda_max, lambda_max / 2, ... this many values
+    error_bound: float = 1e-3  # stop when a round improves the target by less than this
+    grad_bound: float = 1e-3  # epsilon of step 2: stop a descent when |y| is smaller
+    workers: int = 0  # processes (0: all cores)
+    max_grid: int = 40  # at most this many grid points are evaluated per round
+    seed: int = 0  # draws the grid subset
+    stages: tuple = ("qp1", "qp2")
+    only: tuple = ()  # fit just these parameters (the others keep the seed's values)
+
+
+@dataclass
+class FitResult:
+    quality: dict
+    target: float  # Eq. 28 (mean per pixel) at the result
+    start_target: float  # at the seed
+    evaluations: int
+    history: list = field(default_factory=list)
+
+    def to_preset(self, name: str, label: str = "", description: str = "") -> dict:
+        return {
+            "kind": "quality",
+            "label": label or name,
+            "description": description
+            or f"Fitted by sim fit (Eq. 28: {self.start_target:.4f} -> {self.target:.4f})",
+            "quality": {k: round(float(v), 4) for k, v in self.quality.items()},
+            "fit": {
+                "target": self.target,
+                "start_target": self.start_target,
+                "evaluations": self.evaluations,
+            },
+        }
+
+
+# ---------------------------------------------------------------- the target function, Eq. 28
+_SAMPLES: list[TrainingSample] = []
+
+
+def _init_worker(samples):
+    global _SAMPLES
+    _SAMPLES = samples
+
+
+def _for_stage(samples, stage: str | None):
+    """The samples of a stage's class (all of them when that class is empty)."""
+    if stage is None:
+        return samples
+    want = "shape" if stage == "qp1" else "texture"
+    own = [s for s in samples if s.kind in (want, "both")]
+    return own or samples
+
+
+def render(rec: Recording, quality: dict) -> np.ndarray:
+    """The brush's result C^i for a recording with the given quality values."""
+    d = rec.to_dict()
+    d["quality"] = {**d.get("quality", {}), **quality}
+    return Simulation(from_dict(d)).run().image()
+
+
+def target_function(quality: dict, samples=None, stage: str | None = None) -> float:
+    """Eq. 28 divided by the number of pixels: mean per-pixel |dr| + |dg| + |db|."""
+    samples = _for_stage(_SAMPLES if samples is None else samples, stage)
+    total, pixels = 0.0, 0
+    for s in samples:
+        c = render(s.recording, quality)
+        total += float(np.abs(s.target - c).sum(dtype=np.float64))
+        pixels += s.target.shape[0] * s.target.shape[1]
+    return total / max(pixels, 1)
+
+
+# ---------------------------------------------------------------- steepest descent (Sec. 7.2)
+def _values(names, x, fixed) -> dict:
+    return {**fixed, **{n: float(v) for n, v in zip(names, x, strict=True)}}
+
+
+def descend(names, x0, lo, hi, fixed, settings: FitSettings, f0=None, stage=None):
+    """Steepest descent from x0 inside the box [lo, hi]: y = -grad (forward differences, a
+    backward one at the upper face), lambda by a line search over halving steps from the
+    longest step that stays in the box; stops when |y| < epsilon, no step improves, or after
+    ``settings.iterations`` steps. Returns (x, f, evaluations, path)."""
+    x = np.asarray(x0, dtype=float)
+    f = target_function(_values(names, x, fixed), stage=stage) if f0 is None else f0
+    evals = 0 if f0 is not None else 1
+    path = [(x.tolist(), f)]
+    # the difference step scales with the current cube, so a shrunken cube probes finer
+    h = np.maximum(settings.step * (hi - lo), 1e-3)
+    for _ in range(settings.iterations):
+        g = np.zeros(len(x))
+        for i in range(len(x)):
+            xi = x.copy()
+            sgn = 1.0 if x[i] + h[i] <= hi[i] else -1.0
+            xi[i] = x[i] + sgn * h[i]
+            g[i] = sgn * (target_function(_values(names, xi, fixed), stage=stage) - f) / h[i]
+            evals += 1
+        y = -g
+        # a face of the box that y pushes against is held
+        y = np.where(((x <= lo) & (y < 0)) | ((x >= hi) & (y > 0)), 0.0, y)
+        norm = float(np.linalg.norm(y))
+        if norm < settings.grad_bound:
+            break
+        u = y / norm
+        with np.errstate(divide="ignore", invalid="ignore"):
+            reach = np.where(u > 0, (hi - x) / u, np.where(u < 0, (lo - x) / u, np.inf))
+        lam_max = float(min(np.min(reach), 0.5 * np.max(hi - lo)))
+        best = (f, None)
+        lam = lam_max
+        for _ in range(settings.line_steps):  # line search: lambda_max, /2, /4, ...
+            if lam < 1e-4:
+                break
+            xn = np.clip(x + lam * u, lo, hi)
+            fn = target_function(_values(names, xn, fixed), stage=stage)
+            evals += 1
+            if fn < best[0]:
+                best = (fn, xn)
+            lam *= 0.5
+        if best[1] is None:
+            break
+        f, x = best[0], best[1]
+        path.append((x.tolist(), f))
+    return x, f, evals, path
+
+
+def _descend_task(args):
+    names, x0, lo, hi, fixed, settings, f0, stage = args
+    x, f, evals, path = descend(
+        names, np.asarray(x0), np.asarray(lo), np.asarray(hi), fixed, settings, f0, stage
+    )
+    return x.tolist(), f, evals, path
+
+
+def _eval_task(args):
+    names, x, fixed, stage = args
+    return target_function(_values(names, x, fixed), stage=stage)
+
+
+class _Pool:
+    """Runs tasks in worker processes (or in this one for workers = 1), results in order."""
+
+    def __init__(self, samples, workers: int):
+        self.workers = workers
+        self.samples = samples
+        self.ex = None
+        if workers > 1:
+            self.ex = ProcessPoolExecutor(workers, initializer=_init_worker, initargs=(samples,))
+        _init_worker(samples)
+
+    def map(self, fn, tasks):
+        if self.ex is None:
+            return [fn(t) for t in tasks]
+        return list(self.ex.map(fn, tasks))
+
+    def close(self):
+        if self.ex is not None:
+            self.ex.shutdown()
+
+
+def _grid(lo, hi, d: int, limit: int, rng: np.random.Generator):
+    """Grid points of the box [lo, hi] with d divisions per edge (corners of the subcubes); when
+    there are more than ``limit``, a subset drawn by the fit's seeded generator."""
+    axes = [np.linspace(a, b, d + 1) for a, b in zip(lo, hi, strict=True)]
+    pts = np.array(list(itertools.product(*axes)))
+    if len(pts) > limit:
+        pts = pts[np.sort(rng.choice(len(pts), size=limit, replace=False))]
+    return pts
+
+
+def fit(
+    samples: list[TrainingSample],
+    seed_quality: dict | None = None,
+    settings: FitSettings | None = None,
+    progress=None,
+) -> FitResult:
+    """Fit the quality parameters to the training samples (Sec. 7.2, Eq. 28), starting from
+    ``seed_quality`` (a preset's values, say); parameters it does not name start from the first
+    training recording's own values."""
+    if not samples:
+        raise ParameterError("fit needs at least one training sample")
+    settings = settings or FitSettings()
+    workers = settings.workers or os.cpu_count() or 1
+    starts = settings.starts or workers
+    # values not given by the seed are the ones the (first) training recording already uses
+    seed = samples[0].recording.resolve()[0].to_dict()
+    if seed_quality:
+        checked = QualityParams().with_values(seed_quality).to_dict()
+        seed.update({k: checked[k] for k in seed_quality})
+    pool = _Pool(samples, workers)
+    rng = np.random.Generator(np.random.PCG64(settings.seed))
+    evaluations = 0
+    history = []
+    try:
+        start_target = target_function(seed, samples)
+        evaluations += 1
+        current = dict(seed)
+        stages = [s for s in settings.stages if s in ("qp1", "qp2")]
+        total_rounds = max(len(stages) * settings.rounds, 1)
+        done_rounds = 0
+        for stage in stages:
+            names = QP1 if stage == "qp1" else QP2
+            if settings.only:
+                names = tuple(n for n in names if n in settings.only)
+                if not names:
+                    continue
+            # Sec. 7.2: while fitting Qp1, Qp2 = 0 (no dry brush, no diffusion)
+            fixed = {k: v for k, v in current.items() if k not in names}
+            if stage == "qp1":
+                fixed.update({k: 0.0 for k in QP2})
+            lo, hi = np.zeros(len(names)), np.ones(len(names))
+            d = max(int(settings.divisions), 1)
+            best_x = np.array([current[n] for n in names])
+            best_f = target_function(_values(names, best_x, fixed), samples, stage)
+            evaluations += 1
+            for rnd in range(settings.rounds):
+                grid = _grid(lo, hi, d, settings.max_grid, rng)
+                fs = pool.map(_eval_task, [(names, g.tolist(), fixed, stage) for g in grid])
+                evaluations += len(grid)
+                cands = [(f, i, g) for i, (f, g) in enumerate(zip(fs, grid, strict=True))]
+                cands.sort(key=lambda c: (c[0], c[1]))
+                starts_x = [(best_x, best_f)] + [(g, f) for f, _, g in cands[: starts - 1]]
+                tasks = [
+                    (names, x.tolist(), lo, hi, fixed, settings, f, stage) for x, f in starts_x
+                ]
+                results = pool.map(_descend_task, tasks)
+                prev = best_f
+                for x, f, ev, _path in results:
+                    evaluations += ev
+                    if f < best_f:
+                        best_f, best_x = f, np.asarray(x)
+                history.append(
+                    {
+                        "stage": stage,
+                        "round": rnd,
+                        "cube": [lo.round(4).tolist(), hi.round(4).tolist()],
+                        "best": best_f,
+                        "x": dict(zip(names, np.round(best_x, 4).tolist(), strict=True)),
+                    }
+                )
+                done_rounds += 1
+                if progress is not None:
+                    progress(done_rounds / total_rounds, stage, rnd, best_f)
+                if prev - best_f < settings.error_bound and rnd > 0:
+                    break
+                # the cube shrinks around the grid point nearest the best solution
+                cell = (hi - lo) / d
+                nearest = lo + np.round((best_x - lo) / cell) * cell
+                lo = np.clip(nearest - cell, 0.0, 1.0)
+                hi = np.clip(nearest + cell, 0.0, 1.0)
+            current.update(_values(names, best_x, {}))
+        final = target_function(current, samples)
+        evaluations += 1
+    finally:
+        pool.close()
+    return FitResult(current, final, start_target, evaluations, history)
+
+
+# ---------------------------------------------------------------- training samples
+def ink_image(mask, paper_rgb, ink_rgb) -> np.ndarray:
+    """S^i from a boundary: ink colour inside, paper colour outside; (H, W, 3) float32."""
+    m = np.asarray(mask, dtype=np.float32)[..., None]
+    return (
+        np.asarray(paper_rgb, np.float32) * (1 - m) + np.asarray(ink_rgb, np.float32) * m
+    ).astype(np.float32)
+
+
+def character_samples(chars: list[dict], n_px: int, template: Recording, names=None, passes=1):
+    """Training samples from stroke data: the outline is the boundary, the median the path. The
+    recording is what the writer (``sim.imitate``) makes with the template's settings; the
+    target is the font's character in the template's ink on its paper."""
+    from .imitate import font_mask, write_character
+
+    out = []
+    response = None
+    for k, ch in enumerate(chars):
+        rec, response, sim = write_character(ch, n_px, template, response=response, passes=passes)
+        target = ink_image(font_mask(ch, n_px), sim.paper.color, sim.ink.color)
+        out.append(TrainingSample(rec, target, (names or [""] * len(chars))[k]))
+    return out
+
+
+def image_sample(recording: Recording, png_path, name: str = "") -> TrainingSample:
+    """A training sample from the user's own image and the recording that goes with it."""
+    from .png import read_png
+
+    a = read_png(png_path).astype(np.float32) / 255.0
+    if a.shape[2] == 1:
+        a = np.repeat(a, 3, axis=2)
+    return TrainingSample(recording, a[..., :3], name or str(png_path))
+
+
+def load_quality(path) -> dict:
+    """Quality values from a JSON file with a "quality" object (a fitted preset, a brush or
+    paper preset, or a bare object of values); every value is checked."""
+    p = Path(path)
+    try:
+        d = json.loads(p.read_text(encoding="utf-8"))
+    except (OSError, json.JSONDecodeError) as exc:
+        raise ParameterError(f"cannot read quality file {p}: {exc}") from None
+    q = d.get("quality", d) if isinstance(d, dict) else None
+    if not isinstance(q, dict):
+        raise ParameterError(f"{p}: needs a 'quality' object of parameter values")
+    return (
+        QualityParams().with_values(q).to_dict() | {}
+        if False
+        else {k: v for k, v in QualityParams().with_values(q).to_dict().items() if k in q}
+    )
+
+
+def save_preset(result: FitResult, path, name: str | None = None) -> Path:
+    p = Path(path)
+    p.parent.mkdir(parents=True, exist_ok=True)
+    p.write_text(json.dumps(result.to_preset(name or p.stem), indent=2) + "\n", encoding="utf-8")
+    return p

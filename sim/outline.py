@@ -1,0 +1,192 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
+"""Stroke outlines of character data (hanzi-writer-data / Make Me a Hanzi): SVG paths parsed
+and flattened to polygons, filled on a pixel grid, and read as stroke widths along the medians.
+
+Data coordinates: the 1024-unit em box, y up; image coordinates of an N x N image are
+x_img = x * N / 1024, y_img = (900 - y) * N / 1024 (top row first)."""
+
+from __future__ import annotations
+
+import re
+
+import numpy as np
+
+EM = 1024.0
+TOP = 900.0
+_TOKEN = re.compile(r"[A-Za-z]|[-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?")
+_ARGS = {"M": 2, "L": 2, "Q": 4, "C": 6, "Z": 0}
+_CURVE_STEPS = 8
+
+
+def parse_path(d: str) -> list[np.ndarray]:
+    """Closed polygons (K, 2) in data units from an SVG path of absolute M, L, Q, C, Z."""
+    tokens = _TOKEN.findall(d)
+    polys, cur, pos, cmd, i = [], [], None, None, 0
+    while i < len(tokens):
+        t = tokens[i]
+        if t.isalpha():
+            cmd = t
+            i += 1
+            if cmd not in _ARGS:
+                raise ValueError(f"unsupported SVG path command {cmd!r} (absolute M L Q C Z only)")
+            if cmd == "Z":
+                if len(cur) >= 3:
+                    polys.append(np.array(cur, dtype=float))
+                cur = []
+                continue
+        if cmd is None:
+            raise ValueError(f"SVG path starts with a number: {d[:40]!r}")
+        n = _ARGS[cmd]
+        if n == 0 or i + n > len(tokens):
+            raise ValueError(f"SVG path command {cmd!r} is missing numbers: {d[:40]!r}")
+        try:
+            v = [float(x) for x in tokens[i : i + n]]
+        except ValueError:
+            raise ValueError(f"SVG path has a bad number near {tokens[i : i + n]}") from None
+        i += n
+        if cmd == "M":
+            if len(cur) >= 3:
+                polys.append(np.array(cur, dtype=float))
+            cur = [v]
+            cmd = "L"  # further pairs after M are line-tos
+        elif cmd == "L":
+            cur.append(v)
+        else:
+            p0 = np.array(cur[-1] if cur else pos)
+            t = np.linspace(0, 1, _CURVE_STEPS + 1)[1:, None]
+            c = np.array(v).reshape(-1, 2)
+            if cmd == "Q":
+                pts = (1 - t) ** 2 * p0 + 2 * (1 - t) * t * c[0] + t**2 * c[1]
+            else:
+                pts = (
+                    (1 - t) ** 3 * p0
+                    + 3 * (1 - t) ** 2 * t * c[0]
+                    + 3 * (1 - t) * t**2 * c[1]
+                    + t**3 * c[2]
+                )
+            cur.extend(pts.tolist())
+        pos = cur[-1]
+    if len(cur) >= 3:
+        polys.append(np.array(cur, dtype=float))
+    return polys
+
+
+def stroke_polygons(char: dict) -> list[list[np.ndarray]]:
+    """Every stroke's outline as polygons in data units."""
+    return [parse_path(d) for d in char["strokes"]]
+
+
+def to_image(points, n: int) -> np.ndarray:
+    p = np.asarray(points, dtype=float)
+    return np.stack([p[:, 0] * n / EM, (TOP - p[:, 1]) * n / EM], axis=1)
+
+
+def fill(polys_img, n: int) -> np.ndarray:
+    """Even-odd fill of polygons given in image pixels: (n, n) bool, top row first; a pixel is
+    inside when its centre is."""
+    out = np.zeros((n, n + 1), dtype=np.int32)
+    if not polys_img:
+        return out[:, :n] > 0
+    a = np.concatenate(polys_img, axis=0)
+    b = np.concatenate([np.roll(p, -1, axis=0) for p in polys_img], axis=0)
+    yc = np.arange(n) + 0.5
+    y0, y1 = a[:, 1], b[:, 1]
+    crosses = (y0[None, :] <= yc[:, None]) != (y1[None, :] <= yc[:, None])  # (n, E)
+    dy = np.where(y1 != y0, y1 - y0, 1.0)
+    x = a[None, :, 0] + (yc[:, None] - y0[None, :]) * ((b[:, 0] - a[:, 0]) / dy)[None, :]
+    x = np.where(crosses, x, np.inf)
+    x.sort(axis=1)
+    k = crosses.sum(axis=1)
+    rows, idx = np.nonzero(np.arange(x.shape[1])[None, :] < k[:, None])
+    col = np.clip(np.ceil(x[rows, idx] - 0.5), 0, n).astype(np.int64)
+    sign = np.where(idx % 2 == 0, 1, -1)
+    np.add.at(out, (rows, col), sign)
+    return np.cumsum(out, axis=1)[:, :n] > 0
+
+
+def rasterise(char: dict, n: int) -> np.ndarray:
+    """The font's character: every stroke filled (a stroke's own contours even-odd, strokes
+    united), (n, n) bool, top row first."""
+    mask = np.zeros((n, n), dtype=bool)
+    for polys in stroke_polygons(char):
+        mask |= fill([to_image(p, n) for p in polys], n)
+    return mask
+
+
+def _inside(points, polys) -> np.ndarray:
+    """Even-odd point-in-polygon for points (K, 2) against polygons (data units)."""
+    a = np.concatenate(polys, axis=0)
+    b = np.concatenate([np.roll(p, -1, axis=0) for p in polys], axis=0)
+    px, py = points[:, 0:1], points[:, 1:2]
+    cond = (a[None, :, 1] > py) != (b[None, :, 1] > py)
+    dy = np.where(b[:, 1] != a[:, 1], b[:, 1] - a[:, 1], 1.0)
+    xc = a[None, :, 0] + (py - a[None, :, 1]) * ((b[:, 0] - a[:, 0]) / dy)[None, :]
+    return (np.sum(cond & (px < xc), axis=1) % 2) == 1
+
+
+def distance_to_outline(points, polys) -> np.ndarray:
+    """Signed distance (data units) from points (K, 2) to a stroke's outline: positive inside."""
+    pts = np.asarray(points, dtype=float)
+    a = np.concatenate(polys, axis=0)
+    b = np.concatenate([np.roll(p, -1, axis=0) for p in polys], axis=0)
+    ab = b - a
+    L2 = np.maximum(np.sum(ab * ab, axis=1), 1e-12)
+    ap = pts[:, None, :] - a[None, :, :]
+    t = np.clip(np.sum(ap * ab[None], axis=2) / L2[None], 0.0, 1.0)
+    d = np.sqrt(np.min(np.sum((ap - t[..., None] * ab[None]) ** 2, axis=2), axis=1))
+    return np.where(_inside(pts, polys), d, -d)
+
+
+def resample(polyline, step: float) -> tuple[np.ndarray, np.ndarray]:
+    """Points every ``step`` along a polyline (K, 2), and their arc length."""
+    p = np.asarray(polyline, dtype=float)
+    seg = np.linalg.norm(np.diff(p, axis=0), axis=1)
+    cum = np.concatenate([[0.0], np.cumsum(seg)])
+    total = float(cum[-1])
+    n = max(int(np.ceil(total / max(step, 1e-9))), 1) + 1
+    s = np.linspace(0.0, total, n)
+    return np.stack([np.interp(s, cum, p[:, 0]), np.interp(s, cum, p[:, 1])], axis=1), s
+
+
+def median_radii(char: dict, step: float = 4.0) -> list[tuple[np.ndarray, np.ndarray]]:
+    """For every stroke, points along its median (data units, every ``step``) and the
+    stroke's half-width there: the distance to its outline (0 where the median leaves it)."""
+    out = []
+    for med, polys in zip(char["medians"], stroke_polygons(char), strict=True):
+        pts, _ = resample(med, step)
+        out.append((pts, np.maximum(distance_to_outline(pts, polys), 0.0)))
+    return out
+
+
+def discs(centres_img, radii_img, n: int) -> np.ndarray:
+    """Union of discs (image pixels) on an (n, n) grid, top row first."""
+    mask = np.zeros((n, n), dtype=bool)
+    for (cx, cy), r in zip(centres_img, radii_img, strict=True):
+        if r <= 0:
+            continue
+        x0, x1 = max(int(cx - r - 1), 0), min(int(cx + r + 2), n)
+        y0, y1 = max(int(cy - r - 1), 0), min(int(cy + r + 2), n)
+        if x1 <= x0 or y1 <= y0:
+            continue
+        yy, xx = np.mgrid[y0:y1, x0:x1]
+        mask[y0:y1, x0:x1] |= (xx + 0.5 - cx) ** 2 + (yy + 0.5 - cy) ** 2 <= r * r
+    return mask
+
+
+def iou(a, b) -> float:
+    a, b = np.asarray(a, bool), np.asarray(b, bool)
+    union = np.count_nonzero(a | b)
+    return float(np.count_nonzero(a & b) / union) if union else 1.0
+
+
+def baseline_masks(char: dict, n: int) -> dict:
+    """The issue's two yardsticks at n x n: a constant-width round pen along the medians (its
+    radius the character's mean half-width) and discs whose radii are read off the outline."""
+    per = median_radii(char)
+    centres = np.concatenate([to_image(p, n) for p, _ in per])
+    radii = np.concatenate([r for _, r in per]) * n / EM
+    mean_r = float(np.mean(radii[radii > 0])) if np.any(radii > 0) else 1.0
+    return {
+        "round_pen": discs(centres, np.full(len(radii), mean_r), n),
+        "true_discs": discs(centres, radii, n),
+    }
