@@ -16,7 +16,12 @@ class HAIRY_BRUSH_MT_settings_presets(bpy.types.Menu):
 
     def draw(self, context):
         layout = self.layout
-        for kind, title in (("brush", "Brushes"), ("paper", "Papers"), ("ink", "Inks")):
+        for kind, title in (
+            ("brush", "Brushes"),
+            ("paper", "Papers"),
+            ("ink", "Inks"),
+            ("quality", "Fitted Quality"),
+        ):
             layout.label(text=title)
             for name in preset_names(kind):
                 op = layout.operator("hairy_brush.apply_preset", text=load_preset(kind, name).label)

@@ -43,14 +43,16 @@ def write_character():
     bpy.ops.wm.read_homefile(use_empty=True)
     scene = bpy.context.scene
     st = scene.hairy_brush
-    st.brush_preset = "goat_soft"
-    st.paper_preset = "raw_xuan"
+    st.brush_preset = "wolf_stiff"
+    st.paper_preset = "sized_xuan"
     st.ink_preset = "sumi_black"
-    st.px_per_mm = 6.0
+    st.px_per_mm = 10.0
     st.sync_frames = False  # the demo simulates once, at the end
     bpy.ops.hairy_brush.setup()
+    # the brush presses as wide as the font's strokes (its response calibrated by simulation);
+    # size 0: the character is sized to the brush
     bpy.ops.hairy_brush.write_character(
-        filepath=str(ROOT / "data" / "hanzi" / f"{CHAR}.json"), size_mm=160.0, press=0.41
+        filepath=str(ROOT / "data" / "hanzi" / f"{CHAR}.json"), size_mm=0.0, passes=2
     )
     bpy.ops.hairy_brush.bake_samples()  # what an artist does after editing the keyframes
     t0 = time.perf_counter()

@@ -8,18 +8,17 @@ measured by simulation (``calibrate``) and turns width into press (z) and into w
 must go so that the ink lands on the median. A stroke is written as a calligrapher writes it:
 the brush comes down onto the start, presses where the stroke is thick, travels, eases off
 where it thins and lifts off the end, leaving the point; between strokes it travels in the air,
-and it dips again when the ink it has spent calls for it.
+and it dips again before every stroke (or after every ``dip_every_mm`` of writing).
 """
 
 from __future__ import annotations
 
-import os
 from dataclasses import dataclass
 
 import numpy as np
 
 from .engine import Simulation
-from .outline import EM, TOP, median_radii, rasterise
+from .outline import EM, TOP, median_bands, median_radii, rasterise
 from .recording import Dip, Recording, quantise
 from .strokes import stroke
 
@@ -226,12 +225,14 @@ def plan(
     tg, wd, tn, ph, dips, strokes = [], [], [], [], [], []
     since_dip, prev = np.inf, None
     fine = max(step_mm / scale / 4.0, 0.25)
-    for pts_d, rad_d in median_radii(char, step=fine):
+    for pts_d, width_d in median_bands(char, step=fine):
         dense = np.stack(
             [origin[0] + pts_d[:, 0] * scale, origin[1] + (pts_d[:, 1] - (TOP - EM)) * scale],
             axis=1,
         )
-        pts, width = _timed(dense, 2.0 * rad_d * scale, step_mm, slow_corners)
+        k = max(int(round(3.0 / fine / scale)), 1)  # +-1.5 mm: the cut's jitter smoothed
+        dense = np.stack([_smooth(dense[:, 0], k), _smooth(dense[:, 1], k)], axis=1)
+        pts, width = _timed(dense, _smooth(width_d * scale, k), step_mm, slow_corners)
         width = _smooth(width, 3)
         tang = np.gradient(pts, axis=0) if len(pts) > 1 else np.array([[1.0, 0.0]])
         tang = np.stack([_smooth(tang[:, 0], 5), _smooth(tang[:, 1], 5)], axis=1)
@@ -276,8 +277,9 @@ def _coverage(sim: Simulation, rows, cols) -> np.ndarray:
 def measure_band(sim: Simulation, points, tangents, reach_mm: float, before=None):
     """Across the way of travel at each of ``points`` (mm): the width (mm) of the ink band
     (coverage above half) nearest the point, the offset (mm, along the left normal) of its
-    centre from the point, and whether the reading belongs to this stroke (ink that was there
-    before, ``before`` = the coverage before the stroke, makes up less than a third of it)."""
+    centre from the point, and whether the reading is the brush's own there: ink that was on
+    the paper before the brush came to the point - ``before(index, rows, cols)`` says where,
+    per point - makes up less than a third of the band."""
     ppm = sim.paper.ppm
     normal = np.stack([-tangents[:, 1], tangents[:, 0]], axis=1)
     k = max(int(reach_mm * ppm), 1)
@@ -286,7 +288,7 @@ def measure_band(sim: Simulation, points, tangents, reach_mm: float, before=None
     cols = np.clip((pts[..., 0] * ppm).astype(int), 0, sim.paper.W - 1)
     rows = np.clip((pts[..., 1] * ppm).astype(int), 0, sim.paper.H - 1)
     cov = _coverage(sim, rows, cols)
-    old = before[rows, cols] if before is not None else np.zeros_like(cov)
+    old = before(np.arange(len(points)), rows, cols) if before is not None else np.zeros_like(cov)
     width = np.zeros(len(points))
     centre = np.zeros(len(points))
     valid = np.zeros(len(points), dtype=bool)
@@ -305,6 +307,87 @@ def measure_band(sim: Simulation, points, tangents, reach_mm: float, before=None
         centre[j] = (mid[r] - k) / ppm
         valid[j] = np.count_nonzero(old[j, a:b]) < (b - a) / 3.0
     return width, centre, valid
+
+
+def _lead_along(path, lag):
+    """Where the brush's base must be so that the ink lands on ``path``: the hair trails the
+    base along the way it came, so the base runs ahead of the mark by the lag *along the path*
+    (round a curve, not off its tangent). The lead builds up over the first stretch of the
+    stroke, as the hair bends over behind the base, and beyond the path's end the base goes on
+    along the last direction."""
+    seg = np.linalg.norm(np.diff(path, axis=0), axis=1)
+    s = np.concatenate([[0.0], np.cumsum(seg)])
+    lead = np.asarray(lag, dtype=float) * np.clip(s / np.maximum(lag, 1e-6), 0.0, 1.0)
+    q = s + lead
+    out = np.stack([np.interp(q, s, path[:, 0]), np.interp(q, s, path[:, 1])], axis=1)
+    if len(path) > 1 and s[-1] > 0:
+        end_dir = path[-1] - path[-2]
+        end_dir = end_dir / max(float(np.linalg.norm(end_dir)), 1e-9)
+        past = np.maximum(q - s[-1], 0.0)
+        out += past[:, None] * end_dir[None, :]
+    return out
+
+
+@dataclass
+class _Window:
+    rows: np.ndarray  # (h, w) paper rows (bottom first) of the window
+    cols: np.ndarray
+    inside: np.ndarray  # (h, w) the stroke's outline
+
+
+def _stroke_masks(char: dict, H: int, W: int, size_mm: float) -> list[_Window]:
+    """Every stroke's filled outline on the paper grid (the sheet is the em box), as a window
+    around it."""
+    from .outline import fill, stroke_polygons, to_image
+
+    out = []
+    for polys in stroke_polygons(char):
+        img = [to_image(p, H) for p in polys]  # top-first pixel coordinates, H x H em box
+        m = fill(img, H)[::-1]  # bottom row first, as the paper
+        ys, xs = np.nonzero(m)
+        if ys.size == 0:
+            ys, xs = np.array([0]), np.array([0])
+        r0, r1 = max(ys.min() - 2, 0), min(ys.max() + 3, H)
+        c0, c1 = max(xs.min() - 2, 0), min(xs.max() + 3, W)
+        rr, cc = np.mgrid[r0:r1, c0:c1]
+        out.append(_Window(rr, cc, m[r0:r1, c0:c1]))
+    return out
+
+
+RECORD_EVERY = 4  # samples between the coverage records of a practice pass
+
+
+def _practise(sim, a, b, body, want, step_mm, pl, reach):
+    """Write samples a..b, keeping a record of the ink coverage around the stroke every few
+    samples; returns ``before(index, rows, cols)``: the coverage each body point had just
+    before the brush's mark reached it (so that a stroke crossing its own ink, as at a hook,
+    reads only the band it is laying down)."""
+    ppm = sim.paper.ppm
+    lo = pl.target[a:b].min(axis=0) - reach - 2.0
+    hi = pl.target[a:b].max(axis=0) + reach + 2.0
+    c0, r0 = max(int(lo[0] * ppm), 0), max(int(lo[1] * ppm), 0)
+    c1, r1 = min(int(hi[0] * ppm) + 1, sim.paper.W), min(int(hi[1] * ppm) + 1, sim.paper.H)
+    rr, cc = np.mgrid[r0:r1, c0:c1]
+    times, records = [], []
+    for i in range(a, b):
+        if (i - a) % RECORD_EVERY == 0:
+            times.append(i)
+            records.append(_coverage(sim, rr, cc))
+        sim.step()
+    times = np.array(times)
+    # the brush's mark reaches a point about half its width (plus a millimetre) ahead of time
+    ahead = np.ceil((want / 2.0 + 1.0) / step_mm).astype(int) + 1
+    which = np.clip(np.searchsorted(times, body - ahead, side="right") - 1, 0, len(times) - 1)
+
+    def before(idx, rows, cols):
+        out = np.zeros(rows.shape, dtype=bool)
+        inside = (rows >= r0) & (rows < r1) & (cols >= c0) & (cols < c1)
+        for j in idx:
+            m = inside[j]
+            out[j, m] = records[which[j]][rows[j, m] - r0, cols[j, m] - c0]
+        return out
+
+    return before
 
 
 def write_character(
@@ -353,12 +436,13 @@ def write_character(
     samples[:] = quantise(samples)
     sim = Simulation(rec)
     reach = max(float(pl.width.max()), 1.0)
+    masks = _stroke_masks(char, sim.paper.H, sim.paper.W, size) if passes > 1 else None
 
     def fill(a, b, press, side):
         """Samples a..b of one stroke: come down, write, lift off."""
         body = np.flatnonzero(pl.phase[a:b] == 2) + a
-        lead = response.lag_for(press)[:, None] * pl.tangent[body]
-        samples[body, :2] = pl.target[body] + lead + side[:, None] * normal[body]
+        samples[body, :2] = _lead_along(pl.target[body], response.lag_for(press))
+        samples[body, :2] += side[:, None] * normal[body]
         samples[body, 2] = hair - press
         entry = np.flatnonzero(pl.phase[a:b] == 1) + a
         f = np.arange(1, len(entry) + 1) / max(len(entry), 1)
@@ -371,27 +455,30 @@ def write_character(
         samples[a:b] = quantise(samples[a:b])  # as the saved recording will hold them
         return body
 
-    done = 0
-    for a, b in pl.strokes:
+    for n_stroke, (a, b) in enumerate(pl.strokes):
         sim.run(until=a)  # travel in the air up to the stroke
         body = np.flatnonzero(pl.phase[a:b] == 2) + a
         want = pl.width[body]
         press = response.press_for(want)
         side = np.zeros(len(body))
         snap = sim.snapshot() if passes > 1 else None
-        before = _coverage(sim, slice(None), slice(None)) if passes > 1 else None
+        if passes > 1:
+            own = masks[n_stroke]
+            inked_before = _coverage(sim, own.rows, own.cols)
         best = None
         for k in range(passes):
             if k:
                 sim.restore(snap)
             fill(a, b, press, side)
-            sim.run(until=b)
             if passes == 1:
+                sim.run(until=b)
                 break
+            before = _practise(sim, a, b, body, want, step_mm, pl, reach)
             got, centre, valid = measure_band(sim, pl.target[body], pl.tangent[body], reach, before)
-            err = float(np.mean(np.abs(want - got)[valid]) + np.mean(np.abs(centre)[valid]))
-            if os.environ.get("HB_DEBUG"):
-                print("stroke", a, "pass", k, "err", round(err, 3), "valid", valid.mean().round(2))
+            # the pass that best fills the stroke's own outline stays (new ink against it)
+            new = _coverage(sim, own.rows, own.cols) & ~inked_before
+            inter = np.count_nonzero(new & own.inside)
+            err = -inter / max(np.count_nonzero(new | own.inside), 1)
             if best is None or err < best[0]:
                 best = (err, press.copy(), side.copy(), k)
             if k == passes - 1:
@@ -406,7 +493,6 @@ def write_character(
             sim.restore(snap)
             fill(a, b, best[1], best[2])
             sim.run(until=b)
-        done += b - a
         if progress is not None:
             progress(b / N)
     sim.run()

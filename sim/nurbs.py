@@ -91,8 +91,29 @@ def interpolate_cubic(points, params=None):
         params = chord_params(points)
     knots = averaged_knots(params, 3)
     N = bspline_basis(knots, 3, params)  # (..., n, n)
-    ctrl = np.linalg.solve(N, points)
+    ctrl = solve_collocation(N, points)
     return ctrl, knots, params
+
+
+def solve_collocation(A, B):
+    """Solve A X = B for stacks of B-spline collocation matrices (..., n, n), B (..., n, k).
+
+    Collocation matrices are totally positive, so Gaussian elimination without pivoting is
+    stable (de Boor); done here in numpy over the whole stack, it avoids LAPACK, whose threads
+    cost more than the work itself on matrices this small (and fight each other in parallel
+    worker processes)."""
+    A = np.array(A, dtype=float)
+    X = np.array(B, dtype=float)
+    n = A.shape[-1]
+    for k in range(n - 1):
+        f = A[..., k + 1 :, k] / A[..., k, k, None]
+        A[..., k + 1 :, k:] -= f[..., None] * A[..., k, None, k:]
+        X[..., k + 1 :, :] -= f[..., None] * X[..., k, None, :]
+    for k in range(n - 1, -1, -1):
+        if k < n - 1:
+            X[..., k, :] -= np.einsum("...j,...jk->...k", A[..., k, k + 1 :], X[..., k + 1 :, :])
+        X[..., k, :] /= A[..., k, k, None]
+    return X
 
 
 def derivative_ctrl(ctrl, knots, degree: int):

@@ -158,6 +158,45 @@ def median_radii(char: dict, step: float = 4.0) -> list[tuple[np.ndarray, np.nda
     return out
 
 
+def _ray_hits(points, dirs, polys) -> np.ndarray:
+    """Distance from each point along its direction to the first outline edge (inf: none)."""
+    a = np.concatenate(polys, axis=0)
+    b = np.concatenate([np.roll(p, -1, axis=0) for p in polys], axis=0)
+    e = b - a  # (E, 2)
+    ap = a[None, :, :] - points[:, None, :]  # (P, E, 2)
+    den = dirs[:, None, 0] * e[None, :, 1] - dirs[:, None, 1] * e[None, :, 0]
+    ok = np.abs(den) > 1e-12
+    den = np.where(ok, den, 1.0)
+    t = (ap[..., 0] * e[None, :, 1] - ap[..., 1] * e[None, :, 0]) / den
+    u = (ap[..., 0] * dirs[:, None, 1] - ap[..., 1] * dirs[:, None, 0]) / den
+    hit = ok & (t > 1e-9) & (u >= 0.0) & (u <= 1.0)
+    return np.where(hit, t, np.inf).min(axis=1)
+
+
+def median_bands(char: dict, step: float = 4.0) -> list[tuple[np.ndarray, np.ndarray]]:
+    """For every stroke, points along the middle of its outline and the stroke's full width
+    there (data units, every ``step`` along the median): the outline is cut across the median's
+    direction, the median point moved to the middle of the cut. A cut that runs far along the
+    stroke (at a corner or an end) is held to three times the distance to the nearest edge."""
+    out = []
+    for med, polys in zip(char["medians"], stroke_polygons(char), strict=True):
+        pts, _ = resample(med, step)
+        r = np.maximum(distance_to_outline(pts, polys), 0.0)
+        if len(pts) > 1:
+            tan = np.gradient(pts, axis=0)
+            tan /= np.maximum(np.linalg.norm(tan, axis=1, keepdims=True), 1e-9)
+        else:
+            tan = np.array([[1.0, 0.0]])
+        nrm = np.stack([-tan[:, 1], tan[:, 0]], axis=1)
+        left = np.minimum(_ray_hits(pts, nrm, polys), 3.0 * r)
+        right = np.minimum(_ray_hits(pts, -nrm, polys), 3.0 * r)
+        inside = r > 0
+        left, right = np.where(inside, left, 0.0), np.where(inside, right, 0.0)
+        centre = pts + (0.5 * (left - right))[:, None] * nrm
+        out.append((centre, left + right))
+    return out
+
+
 def discs(centres_img, radii_img, n: int) -> np.ndarray:
     """Union of discs (image pixels) on an (n, n) grid, top row first."""
     mask = np.zeros((n, n), dtype=bool)

@@ -13,7 +13,7 @@ from dataclasses import asdict, dataclass, field, fields, replace
 from pathlib import Path
 
 PRESET_DIR = Path(__file__).resolve().parent.parent / "presets"
-PRESET_KINDS = {"brush": "brushes", "paper": "papers", "ink": "inks"}
+PRESET_KINDS = {"brush": "brushes", "paper": "papers", "ink": "inks", "quality": "qualities"}
 
 # Fig. 8(a): name, concise meaning, category, where used.
 QUALITY_DOC = {

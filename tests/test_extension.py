@@ -310,6 +310,14 @@ def test_presets_shipped_and_the_users_own(hb):
         assert math.isclose(getattr(st.quality, k), v, abs_tol=1e-6)
     with pytest.raises(RuntimeError, match="unknown brush preset"):
         bpy.ops.hairy_brush.apply_preset(kind="brush", name="no_such_brush")
+    # a fitted quality preset sets the quality values and leaves the chosen brush
+    assert bpy.ops.hairy_brush.apply_preset(kind="quality", name="kaishu_fit") == {"FINISHED"}
+    fitted = json.loads(
+        (ext().sim.params.PRESET_DIR / "qualities" / "kaishu_fit.json").read_text("utf-8")
+    )
+    for k, v in fitted["quality"].items():
+        assert math.isclose(getattr(st.quality, k), v, abs_tol=1e-6)
+    assert st.brush_preset == "wolf_stiff"
     # the user's own preset, through Blender's preset system
     st.quality.e = 0.123
     st.ink_preset = "indigo"
@@ -527,6 +535,31 @@ def test_fit_parameters_sets_the_quality_and_saves_a_user_preset(hb):
     assert f"st.quality.e = {st.quality.e!r}" in text
     with pytest.raises(RuntimeError, match="no image named"):
         bpy.ops.hairy_brush.fit_parameters(source="IMAGE", image="nope")
+
+
+def test_fit_parameters_against_an_image_of_the_artwork(hb):
+    st = setup_scene(bpy)
+    keyframe_stroke(bpy, st)
+    bpy.ops.hairy_brush.bake_samples()
+    bpy.ops.hairy_brush.simulate()
+    target = st.paper_image.copy()  # "the real artwork": what these quality values make
+    target.name = "Scan"
+    truth = st.quality.as_dict()
+    st.quality.e = min(truth["e"] + 0.3, 1.0)  # a wrong start
+    r = bpy.ops.hairy_brush.fit_parameters(
+        source="IMAGE",
+        image="Scan",
+        divisions=1,
+        rounds=1,
+        iterations=2,
+        max_grid=2,
+        preset_name="From Scan",
+    )
+    assert r == {"FINISHED"}
+    assert abs(st.quality.e - truth["e"]) < 0.3  # moved back toward the truth
+    small = bpy.data.images.new("Small", 8, 8)
+    with pytest.raises(RuntimeError, match="8 x 8 px but the paper is"):
+        bpy.ops.hairy_brush.fit_parameters(source="IMAGE", image=small.name)
 
 
 def test_an_animation_render_shows_each_frames_artwork(hb, tmp_path):

@@ -244,3 +244,18 @@ def test_cli_iou_and_fit(tmp_path):
     assert preset["kind"] == "quality" and len(preset["quality"]) == 11
     assert preset["fit"]["target"] <= preset["fit"]["start_target"]
     assert load_quality(out) == preset["quality"]
+
+
+def test_base_leads_the_ink_along_the_path_not_off_its_tangent():
+    from sim.imitate import _lead_along
+
+    t = np.linspace(0, np.pi, 200)
+    arc = np.stack([10 * np.cos(t), 10 * np.sin(t)], axis=1)  # a half circle, radius 10
+    base = _lead_along(arc, np.full(len(arc), 3.0))
+    r = np.hypot(base[:, 0], base[:, 1])
+    inner = np.arange(len(arc)) < 150  # before the path runs out
+    np.testing.assert_allclose(r[inner], 10.0, atol=0.01)  # on the curve
+    s = np.concatenate([[0], np.cumsum(np.linalg.norm(np.diff(arc, axis=0), axis=1))])
+    ahead = np.arctan2(base[:, 1], base[:, 0]) * 10 - s
+    np.testing.assert_allclose(ahead[60:150], 3.0, atol=0.02)  # 3 mm ahead once the lag is built
+    assert ahead[0] == pytest.approx(0.0, abs=1e-9)  # touching down: no lead yet

@@ -15,11 +15,9 @@ def _states(primitives, ppm, every=37):
     """Brush states along a long pressed zig-zag stroke (bent, spread and split brushes)."""
     s = _long_stroke()
     sim = _sim(s, int(200 * ppm), ppm, primitives)
-    out = []
     while not sim.done:
         sim.step()
         if sim.index % every == 0:
-            out.append(sim)
             yield sim
 
 

@@ -115,3 +115,13 @@ def test_angles_from_matrix_inverts_rotation_matrix():
         np.testing.assert_allclose(
             angles_from_matrix(rotation_matrix(d, q, r)), (d, q, r), atol=1e-9
         )
+
+
+def test_collocation_solve_equals_lapack():
+    from sim.nurbs import averaged_knots, bspline_basis, chord_params, solve_collocation
+
+    rng = np.random.default_rng(1)
+    pts = np.cumsum(rng.random((5, 9, 3)) - 0.3, axis=1)
+    params = chord_params(pts)
+    N = bspline_basis(averaged_knots(params, 3), 3, params)
+    np.testing.assert_allclose(solve_collocation(N, pts), np.linalg.solve(N, pts), atol=1e-12)

@@ -8,7 +8,7 @@ import numpy as np
 import pytest
 from conftest import ROOT
 
-from sim.params import ParameterError, QualityParams, load_preset, preset_names
+from sim.params import PRESET_DIR, ParameterError, QualityParams, load_preset, preset_names
 from sim.recording import RecordingError, from_dict, load, loads
 
 GOOD = {
@@ -116,6 +116,13 @@ def test_every_shipped_preset_loads_and_is_in_range():
     rec = from_dict(GOOD)
     for b in preset_names("brush"):
         rec.brush = {"preset": b}
+        rec.resolve()
+    from sim.fit import load_quality
+
+    for n in preset_names("quality"):  # fitted quality presets: all eleven values, in range
+        q = load_quality(PRESET_DIR / "qualities" / f"{n}.json")
+        assert len(q) == 11
+        rec.quality = q
         rec.resolve()
 
 
