@@ -49,10 +49,12 @@ def write_character():
     st.px_per_mm = 10.0
     st.sync_frames = False  # the demo simulates once, at the end
     bpy.ops.hairy_brush.setup()
+    # quality values fitted to kaishu outlines by `python -m sim fit` (Sec. 7.2)
+    bpy.ops.hairy_brush.apply_preset(kind="quality", name="kaishu_fit")
     # the brush presses as wide as the font's strokes (its response calibrated by simulation);
     # size 0: the character is sized to the brush
     bpy.ops.hairy_brush.write_character(
-        filepath=str(ROOT / "data" / "hanzi" / f"{CHAR}.json"), size_mm=0.0, passes=2
+        filepath=str(ROOT / "data" / "hanzi" / f"{CHAR}.json"), size_mm=0.0, passes=4
     )
     bpy.ops.hairy_brush.bake_samples()  # what an artist does after editing the keyframes
     t0 = time.perf_counter()

@@ -72,8 +72,40 @@ def effects():
     return rows
 
 
+def imitation(chars="永心法风", n=256, passes=7):
+    """docs/img/imitate.png: for each character, the font (left) and the brush's writing with
+    the fitted kaishu quality (right), and below them the two laid over each other (red: ink
+    outside the outline, cyan: outline the ink missed)."""
+    from sim.fit import load_quality
+    from sim.hanzi import find_char
+    from sim.imitate import coverage_mask, font_mask, write_character
+    from sim.outline import iou
+
+    q = load_quality(ROOT / "presets" / "qualities" / "kaishu_fit.json")
+    tmpl = Recording(
+        np.zeros((1, 6)), brush={"preset": "wolf_stiff"}, paper_preset="smooth", quality=q
+    )
+    cols, response = [], None
+    for ch in chars:
+        c = find_char(ch)
+        _, response, sim = write_character(c, n, tmpl, response=response, passes=passes)
+        font, ink = font_mask(c, n), coverage_mask(sim)
+        top = np.concatenate([np.repeat(1.0 - font[..., None] * 0.9, 3, axis=2), sim.image()], 1)
+        over = np.ones((n, n, 3))
+        over[ink & ~font] = (0.9, 0.2, 0.2)
+        over[font & ~ink] = (0.2, 0.8, 0.9)
+        over[font & ink] = (0.1, 0.1, 0.1)
+        pad = np.ones((n, n, 3))
+        cols.append(np.concatenate([top, np.concatenate([over, pad], 1)], 0))
+        print(f"{ch}: IoU {iou(ink, font):.3f}")
+    write_png(OUT / "imitate.png", np.concatenate(cols, axis=1))
+
+
 def main():
     OUT.mkdir(parents=True, exist_ok=True)
+    if "--imitation" in sys.argv:
+        imitation()
+        return
     rows = effects()
     imgs = []
     for name, sim in rows:
