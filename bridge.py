@@ -171,6 +171,12 @@ def new_recording(scene, samples, dips=None) -> Recording:
     return from_dict(d)
 
 
+def settings_recording(scene) -> Recording:
+    """A one-sample recording that carries only the scene's settings (brush, paper, ink,
+    quality, rate, seed): the template from which the engine writes or fits."""
+    return new_recording(scene, [[0.0, 0.0, 100.0, 0.0, 0.0, 0.0]])
+
+
 def current_dip(st, before_sample: int) -> Dip:
     return Dip(before_sample, float(st.dip_depth), tuple(st.ink_color), float(st.dip_wetness))
 

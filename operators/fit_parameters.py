@@ -73,7 +73,7 @@ class HAIRY_BRUSH_OT_fit_parameters(bpy.types.Operator):
         return context.window_manager.invoke_props_dialog(self)
 
     def _samples(self, scene, st):
-        template = bridge.new_recording(scene, [[0.0, 0.0, 100.0, 0.0, 0.0, 0.0]])
+        template = bridge.settings_recording(scene)
         if self.source == "CHARACTERS":
             chars = [find_char(c, self.data_path or None) for c in self.characters if c.strip()]
             if not chars:

@@ -62,7 +62,7 @@ class HAIRY_BRUSH_OT_write_character(bpy.types.Operator, ImportHelper):
                 char = find_char(self.character, self.filepath or None)
             else:
                 char = find_char(self.filepath)
-            template = bridge.new_recording(scene, [[0.0, 0.0, 100.0, 0.0, 0.0, 0.0]])
+            template = bridge.settings_recording(scene)
         except (bridge.UserError, ValueError, RecordingError) as exc:
             self.report({"ERROR"}, str(exc))
             return {"CANCELLED"}
