@@ -189,6 +189,7 @@ def cmd_fit(args) -> int:
         workers=args.workers,
         max_grid=args.max_grid,
         stages=tuple(args.stages.split(",")),
+        seed=args.seed,
     )
     t0 = time.perf_counter()
 
