@@ -171,17 +171,15 @@ def cmd_fit(args) -> int:
         raise SystemExit("error: every --image needs its --image-recording")
     if not samples:
         raise SystemExit("error: give training characters (--chars) or --image/--image-recording")
+    # the seed: a quality file, a brush preset's values, or (none given) the values the training
+    # recordings already use - the chosen brush and paper presets and --quality
+    seed_q = None
     if args.seed_preset:
         seed_q = (
             load_quality(args.seed_preset)
             if args.seed_preset.endswith(".json")
-            else (quality_from_presets(load_preset("brush", args.seed_preset), None))
+            else quality_from_presets(load_preset("brush", args.seed_preset), None)
         )
-    else:
-        seed_q = quality_from_presets(
-            load_preset("brush", args.brush), load_preset("paper", args.paper)
-        )
-    seed_q = {**seed_q, **template.quality}
     settings = FitSettings(
         divisions=args.divisions,
         rounds=args.rounds,

@@ -146,11 +146,12 @@ def descend(names, x0, lo, hi, fixed, settings: FitSettings, f0=None, stage=None
     """Steepest descent from x0 inside the box [lo, hi]: y = -grad (forward differences, a
     backward one at the upper face), lambda by a line search over halving steps from the
     longest step that stays in the box; stops when |y| < epsilon, no step improves, or after
-    ``settings.iterations`` steps. Returns (x, f, evaluations, path)."""
+    ``settings.iterations`` steps. Returns (x, f, evaluations). The paper writes the difference
+    quotient as theta(X + dx) / dx; the forward difference (theta(X + dx) - theta(X)) / dx is
+    meant."""
     x = np.asarray(x0, dtype=float)
     f = target_function(_values(names, x, fixed), stage=stage) if f0 is None else f0
     evals = 0 if f0 is not None else 1
-    path = [(x.tolist(), f)]
     # the difference step scales with the current cube, so a shrunken cube probes finer
     h = np.maximum(settings.step * (hi - lo), 1e-3)
     for _ in range(settings.iterations):
@@ -185,16 +186,15 @@ def descend(names, x0, lo, hi, fixed, settings: FitSettings, f0=None, stage=None
         if best[1] is None:
             break
         f, x = best[0], best[1]
-        path.append((x.tolist(), f))
-    return x, f, evals, path
+    return x, f, evals
 
 
 def _descend_task(args):
     names, x0, lo, hi, fixed, settings, f0, stage = args
-    x, f, evals, path = descend(
+    x, f, evals = descend(
         names, np.asarray(x0), np.asarray(lo), np.asarray(hi), fixed, settings, f0, stage
     )
-    return x.tolist(), f, evals, path
+    return x.tolist(), f, evals
 
 
 def _eval_task(args):
@@ -290,7 +290,7 @@ def fit(
                 ]
                 results = pool.map(_descend_task, tasks)
                 prev = best_f
-                for x, f, ev, _path in results:
+                for x, f, ev in results:
                     evaluations += ev
                     if f < best_f:
                         best_f, best_x = f, np.asarray(x)

@@ -13,7 +13,7 @@ and it dips again before every stroke (or after every ``dip_every_mm`` of writin
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 
@@ -64,22 +64,16 @@ class Response:
 
 
 def _settings(template: Recording, **changes) -> Recording:
-    """A recording with the template's brush, paper, ink and quality, and other samples."""
-    kw = dict(
-        width_mm=template.width_mm,
-        height_mm=template.height_mm,
-        px_per_mm=template.px_per_mm,
-        sample_rate_hz=template.sample_rate_hz,
-        seed=template.seed,
-        brush=dict(template.brush),
-        paper_preset=template.paper_preset,
-        ink=dict(template.ink),
-        quality=dict(template.quality),
-        dips=[],
-    )
-    kw.update(changes)
-    samples = kw.pop("samples")
-    return Recording(samples, **kw)
+    """A recording with the template's brush, paper, ink, quality, rate and seed, no dips, and
+    the given samples and paper."""
+    kw = {
+        "brush": dict(template.brush),
+        "ink": dict(template.ink),
+        "quality": dict(template.quality),
+        "dips": [],
+        "extra": {},
+    }
+    return replace(template, **{**kw, **changes})
 
 
 def calibrate(
@@ -88,11 +82,10 @@ def calibrate(
     """Measure the brush's response by simulation: one straight stroke per press depth, each
     after a fresh dip, on one sheet; the width is read across the ink band in the stroke's
     steady middle, the lag between the base and the centroid of the current marks."""
-    sim0 = Simulation(_settings(template, samples=np.zeros((1, 6))))
-    hair = sim0.geometry.hair_length_mm
-    ink = sim0.ink
+    _, geometry, _, ink = template.resolve()
+    hair = geometry.hair_length_mm
     depths = np.linspace(0.04, 0.75, presses) * hair
-    gap = 6.0 * sim0.geometry.belly_diameter_mm + 10.0
+    gap = 6.0 * geometry.belly_diameter_mm + 10.0
     width_mm = CAL_LENGTH_MM + 40.0
     height_mm = gap * (presses + 1)
     parts, dips, bands = [], [], []
@@ -137,7 +130,7 @@ def calibrate(
             xs = [(mk.cols + mk.ix0 + 0.5) / ppm for mk in sim.last_marks if mk.rows.size]
             if xs:
                 lags[k].append(float(sim.brush.B[0] - np.concatenate(xs).mean()))
-    dark = _darkness(sim) > 0.5  # (H, W) bottom row first
+    dark = _coverage(sim)  # (H, W) bottom row first
     widths = []
     x0, x1 = int((20 + 0.3 * CAL_LENGTH_MM) * ppm), int((20 + 0.7 * CAL_LENGTH_MM) * ppm)
     for y, _, _ in bands:
@@ -147,21 +140,17 @@ def calibrate(
     return Response(depths, np.array(widths), lag, float(speed_mm_s))
 
 
-def _darkness(sim: Simulation) -> np.ndarray:
-    """Ink coverage of every pixel in [0, 1] (1 = full ink), bottom row first."""
-    rgb = sim.paper.rgb()
-    paper = np.asarray(sim.paper.color, dtype=np.float32)
-    ink = 1.0 - np.asarray(sim.ink.color, dtype=np.float32)
-    return np.clip(np.mean((paper - rgb) / np.maximum(paper * ink, 1e-6), axis=2), 0.0, 1.0)
-
-
-def darkness_top_first(sim: Simulation) -> np.ndarray:
-    return _darkness(sim)[::-1]
+def _coverage(sim: Simulation, rows=slice(None), cols=slice(None)) -> np.ndarray:
+    """Ink coverage above half at the given pixels (bottom-first rows; all by default): the
+    pixel's ink density against the density of the ink the brush carries."""
+    full = np.maximum(1.0 - np.asarray(sim.ink.color, dtype=np.float32), 1e-6)
+    dens = np.clip(sim.paper.ink[rows, cols], 0.0, 1.0)
+    return np.mean(dens / full, axis=-1) > 0.5
 
 
 def auto_size_mm(char: dict, response: Response, fill: float = 0.85) -> float:
-    """A character size at which the character's widest stroke needs ``fill`` of the widest
-    band the brush can leave."""
+    """A character size at which the character's widest stroke (twice the largest distance
+    from a median to its outline) needs ``fill`` of the widest band the brush can leave."""
     widest = max(float(r.max()) for _, r in median_radii(char)) * 2.0  # data units
     return float(np.clip(fill * response.max_width_mm * EM / max(widest, 1e-6), 20.0, 2000.0))
 
@@ -266,14 +255,6 @@ def plan(
     )
 
 
-def _coverage(sim: Simulation, rows, cols) -> np.ndarray:
-    """Ink coverage above half at the given pixels (bottom-first rows)."""
-    paper = np.asarray(sim.paper.color, dtype=np.float32)
-    ink = 1.0 - np.asarray(sim.ink.color, dtype=np.float32)
-    dens = sim.paper.ink[rows, cols]
-    return np.mean(dens * paper / np.maximum(paper * ink, 1e-6), axis=-1) > 0.5
-
-
 def measure_band(sim: Simulation, points, tangents, reach_mm: float, before=None):
     """Across the way of travel at each of ``points`` (mm): the width (mm) of the ink band
     (coverage above half) nearest the point, the offset (mm, along the left normal) of its
@@ -335,7 +316,7 @@ class _Window:
     inside: np.ndarray  # (h, w) the stroke's outline
 
 
-def _stroke_masks(char: dict, H: int, W: int, size_mm: float) -> list[_Window]:
+def _stroke_masks(char: dict, H: int, W: int) -> list[_Window]:
     """Every stroke's filled outline on the paper grid (the sheet is the em box), as a window
     around it."""
     from .outline import fill, stroke_polygons, to_image
@@ -375,18 +356,16 @@ def _practise(sim, a, b, body, want, step_mm, pl, reach):
             times.append(i)
             records.append(_coverage(sim, rr, cc))
         sim.step()
-    times = np.array(times)
+    times, records = np.array(times), np.stack(records)
     # the brush's mark reaches a point about half its width (plus a millimetre) ahead of time
     ahead = np.ceil((want / 2.0 + 1.0) / step_mm).astype(int) + 1
     which = np.clip(np.searchsorted(times, body - ahead, side="right") - 1, 0, len(times) - 1)
 
     def before(idx, rows, cols):
-        out = np.zeros(rows.shape, dtype=bool)
         inside = (rows >= r0) & (rows < r1) & (cols >= c0) & (cols < c1)
-        for j in idx:
-            m = inside[j]
-            out[j, m] = records[which[j]][rows[j, m] - r0, cols[j, m] - c0]
-        return out
+        rr_ = np.clip(rows - r0, 0, r1 - r0 - 1)
+        cc_ = np.clip(cols - c0, 0, c1 - c0 - 1)
+        return inside & records[which[idx][:, None], rr_, cc_]
 
     return before
 
@@ -415,8 +394,8 @@ def write_character(
     if response is None:
         response = calibrate(template)
     size = auto_size_mm(char, response) if size_mm is None else float(size_mm)
-    probe = Simulation(_settings(template, samples=np.zeros((1, 6))))
-    hair, ink = probe.geometry.hair_length_mm, probe.ink
+    _, geometry, _, ink = template.resolve()
+    hair = geometry.hair_length_mm
     step_mm = response.speed_mm_s / template.sample_rate_hz
     pl = plan(char, size, step_mm, dip_every_mm)
     N = len(pl.target)
@@ -437,7 +416,7 @@ def write_character(
     samples[:] = quantise(samples)
     sim = Simulation(rec)
     reach = max(float(pl.width.max()), 1.0)
-    masks = _stroke_masks(char, sim.paper.H, sim.paper.W, size) if passes > 1 else None
+    masks = _stroke_masks(char, sim.paper.H, sim.paper.W) if passes > 1 else None
 
     def fill(a, b, press, side):
         """Samples a..b of one stroke: come down, write, lift off."""
@@ -504,7 +483,7 @@ def write_character(
 
 def coverage_mask(sim: Simulation) -> np.ndarray:
     """Ink coverage above half, (H, W) bool, top row first."""
-    return darkness_top_first(sim) > 0.5
+    return _coverage(sim)[::-1]
 
 
 def font_mask(char: dict, n_px: int) -> np.ndarray:

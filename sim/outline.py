@@ -81,14 +81,19 @@ def to_image(points, n: int) -> np.ndarray:
     return np.stack([p[:, 0] * n / EM, (TOP - p[:, 1]) * n / EM], axis=1)
 
 
+def _edges(polys):
+    """Every edge of closed polygons as start and end points (E, 2) each."""
+    a = np.concatenate(polys, axis=0)
+    return a, np.concatenate([np.roll(p, -1, axis=0) for p in polys], axis=0)
+
+
 def fill(polys_img, n: int) -> np.ndarray:
     """Even-odd fill of polygons given in image pixels: (n, n) bool, top row first; a pixel is
     inside when its centre is."""
     out = np.zeros((n, n + 1), dtype=np.int32)
     if not polys_img:
         return out[:, :n] > 0
-    a = np.concatenate(polys_img, axis=0)
-    b = np.concatenate([np.roll(p, -1, axis=0) for p in polys_img], axis=0)
+    a, b = _edges(polys_img)
     yc = np.arange(n) + 0.5
     y0, y1 = a[:, 1], b[:, 1]
     crosses = (y0[None, :] <= yc[:, None]) != (y1[None, :] <= yc[:, None])  # (n, E)
@@ -115,8 +120,7 @@ def rasterise(char: dict, n: int) -> np.ndarray:
 
 def _inside(points, polys) -> np.ndarray:
     """Even-odd point-in-polygon for points (K, 2) against polygons (data units)."""
-    a = np.concatenate(polys, axis=0)
-    b = np.concatenate([np.roll(p, -1, axis=0) for p in polys], axis=0)
+    a, b = _edges(polys)
     px, py = points[:, 0:1], points[:, 1:2]
     cond = (a[None, :, 1] > py) != (b[None, :, 1] > py)
     dy = np.where(b[:, 1] != a[:, 1], b[:, 1] - a[:, 1], 1.0)
@@ -127,8 +131,7 @@ def _inside(points, polys) -> np.ndarray:
 def distance_to_outline(points, polys) -> np.ndarray:
     """Signed distance (data units) from points (K, 2) to a stroke's outline: positive inside."""
     pts = np.asarray(points, dtype=float)
-    a = np.concatenate(polys, axis=0)
-    b = np.concatenate([np.roll(p, -1, axis=0) for p in polys], axis=0)
+    a, b = _edges(polys)
     ab = b - a
     L2 = np.maximum(np.sum(ab * ab, axis=1), 1e-12)
     ap = pts[:, None, :] - a[None, :, :]
@@ -160,8 +163,7 @@ def median_radii(char: dict, step: float = 4.0) -> list[tuple[np.ndarray, np.nda
 
 def _ray_hits(points, dirs, polys) -> np.ndarray:
     """Distance from each point along its direction to the first outline edge (inf: none)."""
-    a = np.concatenate(polys, axis=0)
-    b = np.concatenate([np.roll(p, -1, axis=0) for p in polys], axis=0)
+    a, b = _edges(polys)
     e = b - a  # (E, 2)
     ap = a[None, :, :] - points[:, None, :]  # (P, E, 2)
     den = dirs[:, None, 0] * e[None, :, 1] - dirs[:, None, 1] * e[None, :, 0]

@@ -140,7 +140,10 @@ class Paper:
 
     def rgb(self) -> np.ndarray:
         """Visible colour (H, W, 3) float32 in [0, 1], bottom row first."""
-        return self.color * (1.0 - np.clip(self.ink, 0.0, 1.0))
+        return self._visible(self.ink)
+
+    def _visible(self, ink) -> np.ndarray:
+        return self.color * (1.0 - np.clip(ink, 0.0, 1.0))
 
     def rgb8(self, chunk_rows: int = 256) -> np.ndarray:
         """Visible colour as (H, W, 3) uint8, TOP row first (an image file's order), made a band
@@ -149,8 +152,7 @@ class Paper:
         for y0 in range(0, self.H, chunk_rows):
             y1 = min(y0 + chunk_rows, self.H)
             band = self.ink[self.H - y1 : self.H - y0][::-1]
-            rgb = self.color * (1.0 - np.clip(band, 0.0, 1.0))
-            out[y0:y1] = to_uint8(rgb)
+            out[y0:y1] = to_uint8(self._visible(band))
         return out
 
     def snapshot(self) -> dict:
