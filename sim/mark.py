@@ -37,11 +37,11 @@ _CASES = {
     5: [(0, 1), (2, 3)],
     10: [(0, 3), (1, 2)],
 }
-# kept on each side of cur_u's extent on a scanline: a section between two grid rows reaches a
-# little past the grid's contour where the surface grazes the paper (measured: up to 0.26 mm at
-# 20 px/mm on the benchmark stroke), plus the grid's chords and a pixel and a half
-SPAN_MARGIN_MM = 0.35
-SPAN_MARGIN_PX = 1.5
+# kept on each side of cur_u's extent on a scanline, besides the grid's chord error. Where the
+# surface grazes the paper a section between two grid rows can reach further past the grid's
+# contour (measured up to 1.7 mm); a mark whose inside pixels touch the end of a span is then
+# scanned again over the cut's whole bounding box (see compute_marks)
+SPAN_MARGIN_PX = 2.0
 
 _SEG_A = np.full((16, 2), -1)
 _SEG_B = np.full((16, 2), -1)
@@ -110,39 +110,52 @@ def slice_grid(X) -> np.ndarray:
     return slice_grids(X[None])[0]
 
 
-def _scanline_spans(xy, ppm, ix0, iy0, h, w, margin_px):
-    """Pixel columns [lo, hi) of every pixel row of the window that can lie inside the cut.
+def _scanline_spans(xy, owner, ppm, win, margin_px):
+    """Pixel columns [lo, hi) of every pixel row of every window that can lie inside a cut.
 
-    The section's boundary is cur_u, so every inside point of a scanline has cur_u on both
-    sides of it on that scanline: the pixels outside the x range of the segments that come
-    near the scanline are outside (the margin covers the grid's chords against the true
-    surface)."""
-    m = margin_px / ppm
-    ylo = xy[:, :, 1].min(axis=1) - m
-    yhi = xy[:, :, 1].max(axis=1) + m
-    xlo = xy[:, :, 0].min(axis=1) - m
-    xhi = xy[:, :, 0].max(axis=1) + m
-    yc = (iy0 + np.arange(h) + 0.5) / ppm
-    near = (ylo[None, :] <= yc[:, None]) & (yc[:, None] <= yhi[None, :])  # (h, M)
-    lo_mm = np.where(near, xlo[None, :], np.inf).min(axis=1)
-    hi_mm = np.where(near, xhi[None, :], -np.inf).max(axis=1)
+    A section's boundary is its cur_u, so every inside point of a scanline has cur_u on both
+    sides of it on that scanline: the pixels outside the x range of the parts of the segments
+    that come near the scanline are outside (the margin covers the grid's chords against the
+    true surface). All windows at once: ``xy`` (M, 2, 2) segments, ``owner`` (M,) their window,
+    ``win`` (k, 4) windows (iy0, ix0, h, w), ``margin_px`` (k,). Returns lo, hi over the
+    windows' rows stacked in window order."""
+    m = (margin_px / ppm)[owner]
+    x0, y0, x1, y1 = xy[:, 0, 0], xy[:, 0, 1], xy[:, 1, 0], xy[:, 1, 1]
+    ylo = np.minimum(y0, y1) - m
+    yhi = np.maximum(y0, y1) + m
+    iy0, ix0, h, w = (win[:, j] for j in range(4))
+    start = np.cumsum(h) - h  # first stacked row of each window
+    # rows r of the segment's window with ylo <= (iy0 + r + 0.5) / ppm <= yhi (one row more on
+    # each side against rounding: the spans only need to contain the cut)
+    r0 = np.clip(np.ceil(ylo * ppm - 0.5).astype(np.int64) - 1 - iy0[owner], 0, h[owner])
+    r1 = np.clip(np.floor(yhi * ppm - 0.5).astype(np.int64) + 2 - iy0[owner], 0, h[owner])
+    n = np.maximum(r1 - r0, 0)
+    seg = np.repeat(np.arange(len(owner)), n)
+    local = np.arange(int(n.sum())) - np.repeat(np.cumsum(n) - n - r0, n)  # window row
+    row = start[owner][seg] + local
+    # the part of the segment within the margin of the scanline, widened by the margin
+    yc = (iy0[owner][seg] + local + 0.5) / ppm
+    ms = m[seg]
+    sx0, sy0, dx, dy = x0[seg], y0[seg], (x1 - x0)[seg], (y1 - y0)[seg]
+    with np.errstate(divide="ignore", invalid="ignore"):
+        ta = np.where(dy != 0, (yc - ms - sy0) / dy, 0.0)
+        tb = np.where(dy != 0, (yc + ms - sy0) / dy, 1.0)
+    ta, tb = np.clip(np.minimum(ta, tb), 0.0, 1.0), np.clip(np.maximum(ta, tb), 0.0, 1.0)
+    xa, xb = sx0 + ta * dx, sx0 + tb * dx
+    total = int(h.sum())
+    lo_mm = np.full(total, np.inf)
+    hi_mm = np.full(total, -np.inf)
+    np.minimum.at(lo_mm, row, np.minimum(xa, xb) - ms)
+    np.maximum.at(hi_mm, row, np.maximum(xa, xb) + ms)
     seen = np.isfinite(lo_mm)
+    wx0 = np.repeat(ix0, h)
+    ww = np.repeat(w, h)
     lo_mm = np.where(seen, lo_mm, 0.0)
     hi_mm = np.where(seen, hi_mm, 0.0)
-    lo = np.clip(np.floor(lo_mm * ppm - 0.5).astype(np.int64) + 1 - ix0, 0, w)
-    hi = np.clip(np.floor(hi_mm * ppm - 0.5).astype(np.int64) + 1 - ix0, 0, w)
+    lo = np.clip(np.floor(lo_mm * ppm - 0.5).astype(np.int64) + 1 - wx0, 0, ww)
+    hi = np.clip(np.floor(hi_mm * ppm - 0.5).astype(np.int64) + 1 - wx0, 0, ww)
     hi = np.where(seen, hi, lo)
     return lo, np.maximum(hi, lo)
-
-
-def _span_pixels(lo, hi):
-    """Row and column indices of every pixel in the spans [lo_r, hi_r)."""
-    lens = hi - lo
-    total = int(lens.sum())
-    rows = np.repeat(np.arange(len(lo)), lens)
-    starts = np.cumsum(lens) - lens
-    cols = np.arange(total) - np.repeat(starts - lo, lens)
-    return rows, cols
 
 
 def compute_marks(brush, sec, ink_rows, ppm: float, paper_shape) -> list[Mark]:
@@ -162,56 +175,72 @@ def compute_marks(brush, sec, ink_rows, ppm: float, paper_shape) -> list[Mark]:
         + rows_V[touching][:, :, None, :] * ring[None, None, :, 1, None]
     )
     all_segs, owner = slice_grids(X)
-    # chord error of the grid's polygon against the true sections, plus a pixel
+    if owner.size == 0:
+        return []
+    # each touching primitive's cut: bounding box, S_i and hei_i (Eq. 10), pixel window
+    k = len(touching)
+    xy_all = all_segs[:, :, :2]
+    cnt = np.bincount(owner, minlength=k)
+    order = np.argsort(owner, kind="stable")
+    xy_sorted = xy_all[order]
+    cuts = np.nonzero(cnt)[0]  # grids with a cut
+    first = (np.cumsum(cnt) - cnt)[cuts]
+    pts_x = xy_sorted[..., 0].min(axis=1), xy_sorted[..., 0].max(axis=1)
+    pts_y = xy_sorted[..., 1].min(axis=1), xy_sorted[..., 1].max(axis=1)
+    xmin = np.minimum.reduceat(pts_x[0], first)
+    xmax = np.maximum.reduceat(pts_x[1], first)
+    ymin = np.minimum.reduceat(pts_y[0], first)
+    ymax = np.maximum.reduceat(pts_y[1], first)
+    prims = touching[cuts]
+    area = (xmax - xmin) * (ymax - ymin)
+    centroid = np.stack([(xmin + xmax) / 2, (ymin + ymax) / 2, np.zeros(len(cuts))], axis=1)
+    height = _norm(brush.cc[prims, -1] - centroid)
+    ix0 = np.maximum(np.floor(xmin * ppm - 0.5).astype(np.int64), 0)
+    iy0 = np.maximum(np.floor(ymin * ppm - 0.5).astype(np.int64), 0)
+    ix1 = np.minimum(np.ceil(xmax * ppm - 0.5).astype(np.int64) + 1, W)
+    iy1 = np.minimum(np.ceil(ymax * ppm - 0.5).astype(np.int64) + 1, H)
+    h = np.maximum(iy1 - iy0, 0)
+    w = np.maximum(ix1 - ix0, 0)
+    # chord error of the grid's polygon against the true sections, plus a pixel and a half
     sag = 1.0 - np.cos(np.pi / ring.shape[0])
+    semi = np.max(np.hypot(_norm(rows_U[prims]), _norm(rows_V[prims])), axis=1)
+    margin = SPAN_MARGIN_PX + sag * semi * ppm
+    slot = np.full(k, -1)
+    slot[cuts] = np.arange(len(cuts))
+    seg_win = slot[owner[order]]
+    hh = np.where(w > 0, h, 0)  # a window without columns has no pixels
+    win = np.stack([iy0, ix0, hh, w], axis=1)
+    lo, hi = _scanline_spans(xy_sorted, seg_win, ppm, win, margin)
+    rows = (rows_c, rows_U, rows_V, rows_T, Zmin, ink_rows)
+    ink, edge = _marks_ink(prims, win, lo, hi, ppm, *rows)
+    redo = np.nonzero(edge)[0]
+    if redo.size:  # the solid reaches past a span: scan those cuts' whole bounding boxes
+        wr = win[redo]
+        full = np.zeros(int(wr[:, 2].sum()), dtype=np.int64), np.repeat(wr[:, 3], wr[:, 2])
+        again, _ = _marks_ink(prims[redo], wr, *full, ppm, *rows)
+        for field, field2 in zip(ink, again, strict=True):
+            for jj, j in enumerate(redo.tolist()):
+                field[j] = field2[jj]
+    seg_split = np.cumsum(cnt[cuts])[:-1]
+    xys = np.split(xy_sorted, seg_split)
     marks = []
-    for g, i in enumerate(touching):
-        segs = all_segs[owner == g]
-        if len(segs) == 0:
-            continue
-        xy = segs[:, :, :2]
-        xmin, ymin = xy.reshape(-1, 2).min(axis=0)
-        xmax, ymax = xy.reshape(-1, 2).max(axis=0)
-        area = float((xmax - xmin) * (ymax - ymin))
-        centroid = np.array([(xmin + xmax) / 2, (ymin + ymax) / 2, 0.0])
-        height = float(np.linalg.norm(brush.cc[i, -1] - centroid))
-        ix0 = max(int(np.floor(xmin * ppm - 0.5)), 0)
-        iy0 = max(int(np.floor(ymin * ppm - 0.5)), 0)
-        ix1 = min(int(np.ceil(xmax * ppm - 0.5)) + 1, W)
-        iy1 = min(int(np.ceil(ymax * ppm - 0.5)) + 1, H)
-        h, w = max(iy1 - iy0, 0), max(ix1 - ix0, 0)
-        pr = pc = np.zeros(0, dtype=np.intp)
-        if h and w:
-            semi = float(np.max(np.hypot(_norm(rows_U[i]), _norm(rows_V[i]))))
-            lo, hi = _scanline_spans(
-                xy, ppm, ix0, iy0, h, w, SPAN_MARGIN_PX + (SPAN_MARGIN_MM + sag * semi) * ppm
-            )
-            pr, pc = _span_pixels(lo, hi)
-        if pr.size == 0:
-            marks.append(
-                Mark(
-                    i,
-                    iy0,
-                    ix0,
-                    pr,
-                    pc,
-                    np.zeros(0),
-                    np.zeros((0, 3)),
-                    np.zeros(0),
-                    (h, w),
-                    xy,
-                    area,
-                    height,
-                )
-            )
-            continue
-        px = (ix0 + pc + 0.5) / ppm
-        py = (iy0 + pr + 0.5) / ppm
-        inside, wet, col, lateral = _pixel_ink(
-            px, py, rows_c[i], rows_U[i], rows_V[i], rows_T[i], Zmin[i], ink_rows[i]
-        )
+    for j, i in enumerate(prims.tolist()):
+        pr, pc, wet, col, lateral = (a[j] for a in ink)
         marks.append(
-            Mark(i, iy0, ix0, pr[inside], pc[inside], wet, col, lateral, (h, w), xy, area, height)
+            Mark(
+                i,
+                int(iy0[j]),
+                int(ix0[j]),
+                pr,
+                pc,
+                wet,
+                col,
+                lateral,
+                (int(h[j]), int(w[j])),
+                xys[j],
+                float(area[j]),
+                float(height[j]),
+            )
         )
     return marks
 
@@ -220,77 +249,157 @@ def _norm(v):
     return np.sqrt(np.sum(v * v, axis=-1))
 
 
-def _pixel_ink(px, py, c, U, V, T, zmin, ink):
-    """Which of the pixels (px, py) on psi lie inside one primitive's solid, and their ink
-    (Eq. 21-23). A pixel lies in the section plane through it between two rows of the surface
-    where its signed distance to the rows' planes changes sign; that distance is affine in the
-    pixel's (x, y), so it is cheap for every row, and the full evaluation runs only on the (at
-    most two) slabs where it changes sign: the first and the last, which covers a fold. Only
-    the rows around the slabs that reach the paper are looked at."""
-    reach = zmin <= 0.0
-    slab_ok = reach[:-1] | reach[1:]  # slabs between rows that reach the paper
-    ks = np.nonzero(slab_ok)[0]
-    k_lo, k_hi = int(ks[0]), int(ks[-1]) + 2  # rows k_lo .. k_hi - 1
-    c, U, V, T = c[k_lo:k_hi], U[k_lo:k_hi], V[k_lo:k_hi], T[k_lo:k_hi]
-    slab_ok = slab_ok[k_lo : k_hi - 1]
-    ink = ink[k_lo:k_hi]
-    Nr = c.shape[0]
-    cT = np.einsum("sk,sk->s", c, T)
-    Hd = px[:, None] * T[None, :, 0] + (py[:, None] * T[None, :, 1] - cT[None, :])  # (N, Nr)
-    pos = Hd >= 0
-    cross = (pos[:, :-1] != pos[:, 1:]) & slab_ok[None, :]
-    hit = np.nonzero(cross.any(axis=1))[0]
-    cross = cross[hit]
-    Hd = Hd[hit]
-    first = np.argmax(cross, axis=1)
-    last = Nr - 2 - np.argmax(cross[:, ::-1], axis=1)
-    pxh, pyh = px[hit], py[hit]
-    # Between rows k and k + 1 the section's centre, U and V are linear in lam, so every dot
+def _dot(a, b):
+    return np.einsum("...k,...k->...", a, b)
+
+
+def _marks_ink(prims, win, lo, hi, ppm, c, U, V, T, zmin, ink):
+    """Which pixels of the windows' spans lie inside their primitive's solid, and their ink
+    (Eq. 21-23), for all primitives at once.
+
+    A pixel lies in the section plane through it between two rows of the surface where its
+    signed distance Hd to the rows' planes changes sign; the full evaluation runs on the first
+    and the last such slab (a fold of the bent axis gives two: the solid is the union of its
+    sections). Hd = x T_x + (y T_y - c.T) is affine in the pixel's column on a scanline and,
+    rounded, still monotone in it: so each row's sign changes at one column per scanline, found
+    from the row's plane and confirmed with the same rounded formula, and every slab's
+    crossing pixels on a scanline are at most two column intervals. The work is per scanline
+    and row plus per pixel, never per pixel and row. Only slabs between rows that reach the
+    paper count.
+
+    Returns, per primitive, lists of (rows, cols, wet, col, lateral) of its inside pixels, and
+    whether an inside pixel of the primitive lies at the end of a span that the window could
+    extend (the span may then have cut the solid short)."""
+    k = len(prims)
+    Ns = c.shape[1]
+    iy0, ix0, h, _w = (win[:, j] for j in range(4))
+    lens = hi - lo
+    S = len(lo)
+    scan_win = np.repeat(np.arange(k), h)  # window of every scanline
+    scan_row = np.arange(S) - np.repeat(np.cumsum(h) - h, h)
+    scan_x0 = ix0[scan_win]
+    scan_y = (iy0[scan_win] + scan_row + 0.5) / ppm
+    scan_off = np.cumsum(lens) - lens  # first pixel of every scanline
+    N = int(lens.sum())
+    empty = [
+        [np.zeros(0, dtype=np.int64)] * k,
+        [np.zeros(0, dtype=np.int64)] * k,
+        [np.zeros(0)] * k,
+        [np.zeros((0, 3))] * k,
+        [np.zeros(0)] * k,
+    ]
+    no_edge = np.zeros(k, dtype=bool)
+    if N == 0:
+        return empty, no_edge
+    cp, Up, Vp, Tp = c[prims], U[prims], V[prims], T[prims]
+    cT = _dot(cp, Tp)  # (k, Ns)
+    reach = zmin[prims] <= 0.0
+    slab_ok = reach[:, :-1] | reach[:, 1:]  # (k, Ns - 1)
+    # the sign change of every row on every scanline
+    T0 = Tp[scan_win, :, 0]  # (S, Ns)
+    bk = scan_y[:, None] * Tp[scan_win, :, 1] - cT[scan_win]
+    sl, sh = lo[:, None], hi[:, None]
+    x0 = scan_x0[:, None]
+    rise = T0 > 0  # Hd >= 0 on a suffix of the scanline (a prefix when T0 < 0)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        cstar = np.where(T0 != 0, (-bk / np.where(T0 != 0, T0, 1.0)) * ppm - x0 - 0.5, 0.0)
+    cstar = np.clip(np.nan_to_num(cstar), -1.0, float(np.max(hi, initial=0)) + 1.0)
+    t = np.where(rise, np.ceil(cstar), np.floor(cstar) + 1).astype(np.int64)
+    t = np.clip(t, sl, sh)
+
+    def flipped(col):  # True where the column is past the sign change (monotone in col)
+        hd = ((x0 + col + 0.5) / ppm) * T0 + bk
+        return np.where(rise, hd >= 0, hd < 0)
+
+    for _ in range(4):  # the plane's estimate is off by a column at most: confirm exactly
+        back = (t > sl) & flipped(t - 1)
+        fwd = (t < sh) & ~flipped(t) & ~back
+        if not (back.any() or fwd.any()):
+            break
+        t = t - back + fwd
+    flat = T0 == 0
+    A = np.where(rise, t, sl)
+    B = np.where(rise, sh, t)
+    A = np.where(flat, sl, A)
+    B = np.where(flat, np.where(bk >= 0, sh, sl), B)
+    # crossing pixels of slab j: [A_j, B_j) xor [A_j+1, B_j+1) = [a0, a1) u [b0, b1)
+    a0 = np.minimum(A[:, :-1], A[:, 1:])
+    a1 = np.maximum(A[:, :-1], A[:, 1:])
+    b0 = np.minimum(B[:, :-1], B[:, 1:])
+    b1 = np.maximum(B[:, :-1], B[:, 1:])
+    s0 = np.stack([a0, np.maximum(a1, b0)], axis=-1)  # (S, Ns - 1, 2)
+    s1 = np.stack([np.minimum(a1, b0), b1], axis=-1)
+    ok = slab_ok[scan_win][..., None]
+    n = np.where(ok, np.maximum(s1 - s0, 0), 0).ravel()
+    if not n.any():
+        return empty, no_edge
+    iv = np.nonzero(n)[0]
+    n = n[iv]
+    iv_scan = iv // (2 * (Ns - 1))
+    iv_slab = (iv // 2) % (Ns - 1)
+    start = scan_off[iv_scan] + s0.ravel()[iv] - lo[iv_scan]
+    pix = np.repeat(start - (np.cumsum(n) - n), n) + np.arange(int(n.sum()))
+    slab = np.repeat(iv_slab, n)
+    first = np.full(N, Ns, dtype=np.int64)
+    last = np.full(N, -1, dtype=np.int64)
+    np.minimum.at(first, pix, slab)
+    np.maximum.at(last, pix, slab)
+    hit = np.nonzero(last >= 0)[0]
+    first, last = first[hit], last[hit]
+    scan = np.repeat(np.arange(S), lens)[hit]
+    colh = hit - scan_off[scan] + lo[scan]
+    g = scan_win[scan]  # window (primitive slot) of every hit pixel
+    pxh = (scan_x0[scan] + colh + 0.5) / ppm
+    pyh = scan_y[scan]
+    # Between rows j and j + 1 the section's centre, U and V are linear in lam, so every dot
     # product of the least-squares solve below is a quadratic in lam whose coefficients belong
-    # to the slab: one table row per slab, gathered once per pixel.
-    dc, dU, dV = np.diff(c, axis=0), np.diff(U, axis=0), np.diff(V, axis=0)
-    c0, U0, V0 = c[:-1], U[:-1], V[:-1]
-
-    def dot(a, b):
-        return np.einsum("sk,sk->s", a, b)
-
-    coef = np.stack(
+    # to the slab: one table column per slab (with the two rows' planes), gathered once per
+    # pixel into contiguous rows.
+    dc, dU, dV = np.diff(cp, axis=1), np.diff(Up, axis=1), np.diff(Vp, axis=1)
+    c0, U0, V0 = cp[:, :-1], Up[:, :-1], Vp[:, :-1]
+    T0r, T1r = Tp[..., 0], Tp[..., 1]
+    solve_tab = np.stack(
         [
-            dot(U0, U0),
-            2 * dot(U0, dU),
-            dot(dU, dU),  # |U|^2
-            dot(V0, V0),
-            2 * dot(V0, dV),
-            dot(dV, dV),  # |V|^2
-            dot(U0, V0),
-            dot(U0, dV) + dot(dU, V0),
-            dot(dU, dV),  # U.V
-            U0[:, 0],
-            U0[:, 1],
-            dot(c0, U0),
-            dU[:, 0],
-            dU[:, 1],
-            dot(c0, dU) + dot(dc, U0),
-            dot(dc, dU),  # (tau - V^).U
-            V0[:, 0],
-            V0[:, 1],
-            dot(c0, V0),
-            dV[:, 0],
-            dV[:, 1],
-            dot(c0, dV) + dot(dc, V0),
-            dot(dc, dV),  # (tau - V^).V
-        ],
-        axis=1,
-    )
+            _dot(U0, U0),
+            2 * _dot(U0, dU),
+            _dot(dU, dU),  # |U|^2
+            _dot(V0, V0),
+            2 * _dot(V0, dV),
+            _dot(dV, dV),  # |V|^2
+            _dot(U0, V0),
+            _dot(U0, dV) + _dot(dU, V0),
+            _dot(dU, dV),  # U.V
+            U0[..., 0],
+            U0[..., 1],
+            _dot(c0, U0),
+            dU[..., 0],
+            dU[..., 1],
+            _dot(c0, dU) + _dot(dc, U0),
+            _dot(dc, dU),  # (tau - V^).U
+            V0[..., 0],
+            V0[..., 1],
+            _dot(c0, V0),
+            dV[..., 0],
+            dV[..., 1],
+            _dot(c0, dV) + _dot(dc, V0),
+            _dot(dc, dV),  # (tau - V^).V
+            T0r[:, :-1],
+            T1r[:, :-1],
+            cT[:, :-1],
+            T0r[:, 1:],
+            T1r[:, 1:],
+            cT[:, 1:],  # the planes of rows j and j + 1
+        ]
+    ).reshape(29, -1)
 
-    def section(sel, k):
-        """Position (lam, p, f^2) of pixels ``sel`` in the section plane between rows k, k+1:
+    def section(sel, j):
+        """Position (lam, p, f^2) of pixels ``sel`` in the section plane between rows j, j+1:
         tau - V^ = p U + q V (least squares, tolerant of the flat tip line)."""
-        h0 = Hd[sel, k]
-        h1 = Hd[sel, k + 1]
-        lam = np.clip(h0 / np.where(h0 != h1, h0 - h1, 1.0), 0.0, 1.0)
         x, y = pxh[sel], pyh[sel]
-        C = coef[k].T
+        C = np.take(solve_tab, g[sel] * (Ns - 1) + j, axis=1)
+        h0 = x * C[23] + (y * C[24] - C[25])
+        h1 = x * C[26] + (y * C[27] - C[28])
+        lam = np.clip(h0 / np.where(h0 != h1, h0 - h1, 1.0), 0.0, 1.0)
         uu = C[0] + lam * (C[1] + lam * C[2]) + 1e-12
         vv = C[3] + lam * (C[4] + lam * C[5]) + 1e-12
         uv = C[6] + lam * (C[7] + lam * C[8])
@@ -307,26 +416,42 @@ def _pixel_ink(px, py, c, U, V, T, zmin, ink):
     if fold.size:  # the most inside of the two candidate sections: union of sections
         lam2, p2, f22 = section(fold, last[fold])
         better = f22 < f2[fold]
-        b = fold[better]
-        lam[b], p[b], f2[b] = lam2[better], p2[better], f22[better]
-        ka[b] = last[b]
+        bsel = fold[better]
+        lam[bsel], p[bsel], f2[bsel] = lam2[better], p2[better], f22[better]
+        ka[bsel] = last[bsel]
     ok = np.nonzero(f2 <= 1.0)[0]
-    inside = np.zeros(len(px), dtype=bool)
-    inside[hit[ok]] = True
-    f, lam, ka = np.sqrt(f2[ok]), lam[ok], ka[ok]
+    f, lam, g = np.sqrt(f2[ok]), lam[ok], g[ok]
+    scan = scan[ok]
     lateral = np.clip(p[ok], -1.0, 1.0)
-    L = lam[:, None]
-    offset = np.stack([pxh[ok], pyh[ok], np.zeros(len(ok))], axis=1) - (c0[ka] + L * dc[ka])
-    # Eq. 21 along the axis: V^'s ink between the two rows around it
-    at = ink[ka] + L * (ink[ka + 1] - ink[ka])
-    wet_a, col_a = at[:, 0], at[:, 1:4]
-    wr, cr, wv, cv = at[:, 4], at[:, 5], at[:, 6:9], at[:, 9:12]
-    # V = V^ + (tau - V^) / f  lies on the surface; Eq. 22 gives its ink from V^'s texture function
-    ov = offset / np.maximum(f, 1e-9)[:, None]
-    ov = np.where((f > 1e-9)[:, None], ov, 0.0)
-    dist_v = _norm(ov)
-    wet_v = wet_a * (1.0 + dist_v * wr + np.einsum("nk,nk->n", ov, wv))  # Eq. 22
-    col_v = col_a * (1.0 + dist_v * cr + np.einsum("nk,nk->n", ov, cv))[:, None]
-    wet = (1.0 - f) * wet_a + f * wet_v  # Eq. 23
-    col = (1.0 - f)[:, None] * col_a + f[:, None] * col_v
-    return inside, np.clip(wet, 0.0, None), np.clip(col, 0.0, 1.0), lateral
+    # ink of the rows (Eq. 21 along the axis) and the axis, per slab: value at row j, change to j+1
+    inkp = ink[prims]
+    ink_tab = np.concatenate(
+        [
+            np.moveaxis(c0, -1, 0).reshape(3, -1),
+            np.moveaxis(dc, -1, 0).reshape(3, -1),
+            np.moveaxis(inkp[:, :-1], -1, 0).reshape(inkp.shape[-1], -1),
+            np.moveaxis(np.diff(inkp, axis=1), -1, 0).reshape(inkp.shape[-1], -1),
+        ]
+    )
+    D = np.take(ink_tab, g * (Ns - 1) + ka[ok], axis=1)
+    nf = inkp.shape[-1]
+    at = D[6 : 6 + nf] + lam * D[6 + nf :]  # Eq. 21: V^'s ink between the two rows around it
+    ox = pxh[ok] - (D[0] + lam * D[3])  # tau - V^
+    oy = pyh[ok] - (D[1] + lam * D[4])
+    oz = -(D[2] + lam * D[5])
+    # V = V^ + (tau - V^) / f lies on the surface; Eq. 22 gives its ink from V^'s texture
+    # function and Eq. 23 mixes V^'s and V's by f, which folds into one factor on V^'s ink:
+    # (1 - f) a + f a (1 + |V - V^| r + (V - V^).v) = a (1 + |tau - V^| r + (tau - V^).v)
+    dist = np.where(f > 1e-9, np.sqrt(ox * ox + oy * oy + oz * oz), 0.0)
+    ox, oy, oz = (np.where(f > 1e-9, o, 0.0) for o in (ox, oy, oz))
+    w_fac = 1.0 + dist * at[4] + ox * at[6] + oy * at[7] + oz * at[8]  # Eq. 22, 23
+    c_fac = 1.0 + dist * at[5] + ox * at[9] + oy * at[10] + oz * at[11]
+    wet = np.maximum(at[0] * w_fac, 0.0)
+    col = np.clip(at[1:4].T * c_fac[:, None], 0.0, 1.0)
+    rows = scan_row[scan]
+    cols = colh[ok]
+    s_lo, s_hi = lo[scan], hi[scan]
+    at_end = ((cols == s_lo) & (s_lo > 0)) | ((cols == s_hi - 1) & (s_hi < _w[g]))
+    edge = np.bincount(g[at_end], minlength=k) > 0
+    cut = np.searchsorted(g, np.arange(1, k))
+    return [np.split(a, cut) for a in (rows, cols, wet, col, lateral)], edge

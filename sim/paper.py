@@ -21,6 +21,7 @@ import numpy as np
 
 from .png import to_uint8
 
+_RGB = np.dtype((np.void, 12))  # a pixel's three float32 ink densities as one item
 DRY_RATE = 1.0  # capacity units per second at dry = 1
 _NEIGHBOURS = [(-1, -1), (-1, 0), (-1, 1), (0, -1), (0, 1), (1, -1), (1, 0), (1, 1)]
 
@@ -70,28 +71,55 @@ class Paper:
         # lazy drying through the previous step; this step's "- dry" follows (Eq. 24)
         missed = np.maximum(step - 1 - last, 0).astype(np.float32)
         w = np.maximum(wet - drystep * missed, 0.0)
-        dried = np.zeros(w.shape, dtype=bool)
+        # every mark's pixels at once, in the marks' order; a pixel that several marks cover
+        # takes them one after the other (its k-th visit in round k), exactly as in sequence
+        hw, ww = w.shape
+        sizes = [mk.rows.size for mk in marks]
+        loc = np.concatenate(
+            [(mk.rows + (mk.iy0 - y0)) * ww + (mk.cols + (mk.ix0 - x0)) for mk in marks]
+        )
+        full = np.concatenate([(mk.rows + mk.iy0) * self.W + (mk.cols + mk.ix0) for mk in marks])
+        wet_tau = np.concatenate([mk.wet for mk in marks]).astype(np.float32)
+        col = np.concatenate([mk.col for mk in marks]).astype(np.float32)
+        prim = np.repeat([mk.primitive for mk in marks], sizes)
+        # Eq. 27: Cr = 0 with probability min(ren * ab * gamma, 1), else wet_lambda; the draw is
+        # made per hair bundle across the primitive (its marginal probability is exactly Eq.
+        # 27's), so that dry pixels line up into the streaks of "flying white"
+        p0 = np.minimum(q.ren * q.ab * np.asarray(gamma, dtype=float), 1.0)
+        hb = hair_u.shape[1]
+        lateral = np.concatenate([mk.lateral for mk in marks])
+        bundle = np.clip(((lateral + 1.0) * 0.5 * hb).astype(np.int64), 0, hb - 1)
+        skip = hair_u[prim, bundle] < p0[prim]
+        visits = np.bincount(loc, minlength=hw * ww)
+        dried = (visits > 0).reshape(hw, ww)
+        again = np.nonzero(visits[loc] > 1)[0]
+        bounds = [0, loc.size]
+        if again.size:  # the k-th visit of a pixel (marks' order), then all pixels by visit
+            order = again[np.argsort(loc[again], kind="stable")]
+            sl = loc[order]
+            run = np.r_[True, sl[1:] != sl[:-1]]
+            start = np.maximum.accumulate(np.where(run, np.arange(sl.size), 0))
+            rank = np.zeros(loc.size, dtype=np.uint8)  # at most MAX_PRIMITIVES visits
+            rank[order] = np.arange(sl.size) - start
+            perm = np.argsort(rank, kind="stable")
+            bounds = np.r_[0, np.cumsum(np.bincount(rank))].tolist()
+            loc, full, wet_tau, skip = loc[perm], full[perm], wet_tau[perm], skip[perm]
+            col = np.take(col, perm, axis=0)
+        wf = w.reshape(-1)
+        inkv = self.ink.reshape(-1).view(_RGB)  # one 12-byte element per pixel
         ab = np.float32(q.ab)
-        for mk in marks:
-            r = mk.rows + (mk.iy0 - y0)
-            c = mk.cols + (mk.ix0 - x0)
-            lam = w[r, c]
-            first = ~dried[r, c]
-            # Eq. 24: wet' = ab * wet_lambda + (1 - ab) * wet_tau - dry
-            new = ab * lam + (1 - ab) * mk.wet.astype(np.float32)
-            new = np.maximum(new - np.where(first, drystep, 0), 0.0)
-            dried[r, c] = True
-            w[r, c] = new
-            # Eq. 27: Cr = 0 with probability min(ren * ab * gamma, 1), else wet_lambda; the draw
-            # is made per hair bundle across the primitive (its marginal probability is exactly
-            # Eq. 27's), so that dry pixels line up into the streaks of "flying white"
-            p0 = min(q.ren * q.ab * float(gamma[mk.primitive]), 1.0)
-            hb = hair_u.shape[1]
-            b = np.clip(((mk.lateral + 1.0) * 0.5 * hb).astype(np.int64), 0, hb - 1)
-            skip = hair_u[mk.primitive, b] < p0
-            cr = np.where(skip, 0.0, np.minimum(new, 1.0)).astype(np.float32)
-            old = ink[r, c]
-            ink[r, c] = mk.col.astype(np.float32) * cr[:, None] + old * (1 - cr[:, None])  # Eq. 26
+        for k in range(len(bounds) - 1):
+            sel = slice(bounds[k], bounds[k + 1])
+            li, fi = loc[sel], full[sel]
+            lam = np.take(wf, li)
+            # Eq. 24: wet' = ab * wet_lambda + (1 - ab) * wet_tau - dry (once per step)
+            new = ab * lam + (1 - ab) * wet_tau[sel]
+            new = np.maximum(new - np.where(k == 0, drystep, 0), 0.0)
+            np.put(wf, li, new)
+            cr = np.where(skip[sel], 0.0, np.minimum(new, 1.0)).astype(np.float32)
+            old = np.take(inkv, fi).view(np.float32).reshape(-1, 3)
+            out = col[sel] * cr[:, None] + old * (1 - cr[:, None])  # Eq. 26
+            np.put(inkv, fi, np.ascontiguousarray(out, dtype=np.float32).reshape(-1).view(_RGB))
         w = np.where(dried, w, np.maximum(w - drystep, 0.0))
         for _ in range(self.sat_passes):
             over = np.nonzero(w > self.capacity)

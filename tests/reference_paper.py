@@ -1,0 +1,59 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
+"""The first, plain implementation of the paper's deposit (Eq. 24-27), one mark after the
+other, kept as the reference the batched ``sim.paper.Paper.deposit`` must agree with bit for
+bit. Bind it to a Paper: ``types.MethodType(reference_deposit, paper)``."""
+
+import numpy as np
+
+
+def reference_deposit(self, marks, gamma, hair_u, q, dt: float, step: int):
+    """Apply this step's marks (one per touching primitive), Eq. 24-27."""
+    self.step = step
+    marks = [mk for mk in marks if mk.rows.size]
+    if not marks:
+        return
+    margin = self.sat_passes + 1
+    y0 = max(min(mk.iy0 for mk in marks) - margin, 0)
+    x0 = max(min(mk.ix0 for mk in marks) - margin, 0)
+    y1 = min(max(mk.iy0 + mk.shape[0] for mk in marks) + margin, self.H)
+    x1 = min(max(mk.ix0 + mk.shape[1] for mk in marks) + margin, self.W)
+    wet = self.wet[y0:y1, x0:x1]
+    ink = self.ink[y0:y1, x0:x1]
+    last = self.last[y0:y1, x0:x1]
+    drystep = np.float32(self.dry_per_step)
+    # lazy drying through the previous step; this step's "- dry" follows (Eq. 24)
+    missed = np.maximum(step - 1 - last, 0).astype(np.float32)
+    w = np.maximum(wet - drystep * missed, 0.0)
+    dried = np.zeros(w.shape, dtype=bool)
+    ab = np.float32(q.ab)
+    for mk in marks:
+        r = mk.rows + (mk.iy0 - y0)
+        c = mk.cols + (mk.ix0 - x0)
+        lam = w[r, c]
+        first = ~dried[r, c]
+        # Eq. 24: wet' = ab * wet_lambda + (1 - ab) * wet_tau - dry
+        new = ab * lam + (1 - ab) * mk.wet.astype(np.float32)
+        new = np.maximum(new - np.where(first, drystep, 0), 0.0)
+        dried[r, c] = True
+        w[r, c] = new
+        # Eq. 27: Cr = 0 with probability min(ren * ab * gamma, 1), else wet_lambda; the draw
+        # is made per hair bundle across the primitive (its marginal probability is exactly
+        # Eq. 27's), so that dry pixels line up into the streaks of "flying white"
+        p0 = min(q.ren * q.ab * float(gamma[mk.primitive]), 1.0)
+        hb = hair_u.shape[1]
+        b = np.clip(((mk.lateral + 1.0) * 0.5 * hb).astype(np.int64), 0, hb - 1)
+        skip = hair_u[mk.primitive, b] < p0
+        cr = np.where(skip, 0.0, np.minimum(new, 1.0)).astype(np.float32)
+        old = ink[r, c]
+        ink[r, c] = mk.col.astype(np.float32) * cr[:, None] + old * (1 - cr[:, None])  # Eq. 26
+    w = np.where(dried, w, np.maximum(w - drystep, 0.0))
+    for _ in range(self.sat_passes):
+        over = np.nonzero(w > self.capacity)
+        if over[0].size == 0:
+            break
+        # only the neighbourhood of saturated pixels can change
+        sy0, sy1 = max(over[0].min() - 1, 0), over[0].max() + 2
+        sx0, sx1 = max(over[1].min() - 1, 0), over[1].max() + 2
+        self._saturate(w[sy0:sy1, sx0:sx1], ink[sy0:sy1, sx0:sx1], self.capacity)
+    wet[...] = w
+    last[...] = step
