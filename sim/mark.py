@@ -303,7 +303,7 @@ def _marks_ink(prims, win, lo, hi, ppm, c, U, V, T, zmin, ink):
     rise = T0 > 0  # Hd >= 0 on a suffix of the scanline (a prefix when T0 < 0)
     with np.errstate(divide="ignore", invalid="ignore"):
         cstar = np.where(T0 != 0, (-bk / np.where(T0 != 0, T0, 1.0)) * ppm - x0 - 0.5, 0.0)
-    cstar = np.clip(np.nan_to_num(cstar), -1.0, float(np.max(hi, initial=0)) + 1.0)
+    cstar = np.clip(cstar, -1.0, float(np.max(hi, initial=0)) + 1.0)  # inf where T0 is tiny
     t = np.where(rise, np.ceil(cstar), np.floor(cstar) + 1).astype(np.int64)
     t = np.clip(t, sl, sh)
 
@@ -333,32 +333,25 @@ def _marks_ink(prims, win, lo, hi, ppm, c, U, V, T, zmin, ink):
     n = np.where(ok, np.maximum(s1 - s0, 0), 0).ravel()
     if not n.any():
         return empty, no_edge
+    # the crossing intervals, in order of scanline (so of window), slab and part; every pixel of
+    # an interval is an entry, and a pixel is an entry of each slab it crosses (a fold: more)
     iv = np.nonzero(n)[0]
     n = n[iv]
+    E = int(n.sum())
     iv_scan = iv // (2 * (Ns - 1))
     iv_slab = (iv // 2) % (Ns - 1)
-    start = scan_off[iv_scan] + s0.ravel()[iv] - lo[iv_scan]
-    pix = np.repeat(start - (np.cumsum(n) - n), n) + np.arange(int(n.sum()))
-    slab = np.repeat(iv_slab, n)
-    first = np.full(N, Ns, dtype=np.int64)
-    last = np.full(N, -1, dtype=np.int64)
-    np.minimum.at(first, pix, slab)
-    np.maximum.at(last, pix, slab)
-    hit = np.nonzero(last >= 0)[0]
-    first, last = first[hit], last[hit]
-    scan = np.repeat(np.arange(S), lens)[hit]
-    colh = hit - scan_off[scan] + lo[scan]
-    g = scan_win[scan]  # window (primitive slot) of every hit pixel
-    pxh = (scan_x0[scan] + colh + 0.5) / ppm
-    pyh = scan_y[scan]
+    iv_win = scan_win[iv_scan]
+    iv_y = scan_y[iv_scan]
+    step = np.arange(E) - np.repeat(np.cumsum(n) - n, n)  # position in its interval
+    cols = np.repeat(s0.ravel()[iv], n) + step  # window column of every entry
+    x = (np.repeat(scan_x0[iv_scan], n) + cols + 0.5) / ppm
     # Between rows j and j + 1 the section's centre, U and V are linear in lam, so every dot
     # product of the least-squares solve below is a quadratic in lam whose coefficients belong
-    # to the slab: one table column per slab (with the two rows' planes), gathered once per
-    # pixel into contiguous rows.
+    # to the slab, and on a scanline y is fixed too: one table column per interval, repeated
+    # over its pixels into contiguous rows.
     dc, dU, dV = np.diff(cp, axis=1), np.diff(Up, axis=1), np.diff(Vp, axis=1)
     c0, U0, V0 = cp[:, :-1], Up[:, :-1], Vp[:, :-1]
-    T0r, T1r = Tp[..., 0], Tp[..., 1]
-    solve_tab = np.stack(
+    slab_tab = np.stack(
         [
             _dot(U0, U0),
             2 * _dot(U0, dU),
@@ -383,61 +376,85 @@ def _marks_ink(prims, win, lo, hi, ppm, c, U, V, T, zmin, ink):
             dV[..., 1],
             _dot(c0, dV) + _dot(dc, V0),
             _dot(dc, dV),  # (tau - V^).V
-            T0r[:, :-1],
-            T1r[:, :-1],
-            cT[:, :-1],
-            T0r[:, 1:],
-            T1r[:, 1:],
-            cT[:, 1:],  # the planes of rows j and j + 1
         ]
-    ).reshape(29, -1)
-
-    def section(sel, j):
-        """Position (lam, p, f^2) of pixels ``sel`` in the section plane between rows j, j+1:
-        tau - V^ = p U + q V (least squares, tolerant of the flat tip line)."""
-        x, y = pxh[sel], pyh[sel]
-        C = np.take(solve_tab, g[sel] * (Ns - 1) + j, axis=1)
-        h0 = x * C[23] + (y * C[24] - C[25])
-        h1 = x * C[26] + (y * C[27] - C[28])
-        lam = np.clip(h0 / np.where(h0 != h1, h0 - h1, 1.0), 0.0, 1.0)
-        uu = C[0] + lam * (C[1] + lam * C[2]) + 1e-12
-        vv = C[3] + lam * (C[4] + lam * C[5]) + 1e-12
-        uv = C[6] + lam * (C[7] + lam * C[8])
-        du = x * C[9] + y * C[10] - C[11] + lam * (x * C[12] + y * C[13] - C[14] - lam * C[15])
-        dv = x * C[16] + y * C[17] - C[18] + lam * (x * C[19] + y * C[20] - C[21] - lam * C[22])
-        det = uu * vv - uv * uv
-        p = (du * vv - dv * uv) / det
-        q = (dv * uu - du * uv) / det
-        return lam, p, p * p + q * q
-
-    lam, p, f2 = section(np.arange(len(hit)), first)
-    ka = first.copy()
-    fold = np.nonzero(last != first)[0]
-    if fold.size:  # the most inside of the two candidate sections: union of sections
-        lam2, p2, f22 = section(fold, last[fold])
-        better = f22 < f2[fold]
-        bsel = fold[better]
-        lam[bsel], p[bsel], f2[bsel] = lam2[better], p2[better], f22[better]
-        ka[bsel] = last[bsel]
-    ok = np.nonzero(f2 <= 1.0)[0]
-    f, lam, g = np.sqrt(f2[ok]), lam[ok], g[ok]
-    scan = scan[ok]
-    lateral = np.clip(p[ok], -1.0, 1.0)
-    # ink of the rows (Eq. 21 along the axis) and the axis, per slab: value at row j, change to j+1
+    ).reshape(23, -1)
+    S_iv = np.take(slab_tab, iv_win * (Ns - 1) + iv_slab, axis=1)
+    row0 = iv_scan * Ns + iv_slab
+    tab = np.stack(
+        [
+            *S_iv[:9],
+            S_iv[9],
+            iv_y * S_iv[10] - S_iv[11],
+            S_iv[12],
+            iv_y * S_iv[13] - S_iv[14],
+            S_iv[15],
+            S_iv[16],
+            iv_y * S_iv[17] - S_iv[18],
+            S_iv[19],
+            iv_y * S_iv[20] - S_iv[21],
+            S_iv[22],
+            np.take(T0, row0),
+            np.take(bk, row0),
+            np.take(T0, row0 + 1),
+            np.take(bk, row0 + 1),  # the planes of rows j and j + 1 on the scanline
+        ]
+    )
+    C = np.repeat(tab, n, axis=1)
+    h0 = x * C[19] + C[20]  # the rounded Hd of the crossing search
+    h1 = x * C[21] + C[22]
+    lam = np.clip(h0 / np.where(h0 != h1, h0 - h1, 1.0), 0.0, 1.0)
+    # the pixel in the section plane at lam: tau - V^ = p U + q V (least squares, tolerant of the
+    # flat tip line)
+    uu = C[0] + lam * (C[1] + lam * C[2]) + 1e-12
+    vv = C[3] + lam * (C[4] + lam * C[5]) + 1e-12
+    uv = C[6] + lam * (C[7] + lam * C[8])
+    du = x * C[9] + C[10] + lam * (x * C[11] + C[12] - lam * C[13])
+    dv = x * C[14] + C[15] + lam * (x * C[16] + C[17] - lam * C[18])
+    det = uu * vv - uv * uv
+    p = (du * vv - dv * uv) / det
+    q = (dv * uu - du * uv) / det
+    f2 = p * p + q * q
+    # a pixel in several slabs (a fold): of its first and last slab, the more inside section
+    # (union of sections); its other entries drop out
+    scan_e = np.repeat(iv_scan, n)
+    pid = scan_off[scan_e] + cols - lo[scan_e]
+    keep = np.bincount(pid, minlength=N)[pid] == 1
+    multi = np.nonzero(~keep)[0]
+    if multi.size:
+        slab_e = np.repeat(iv_slab, n)[multi]
+        o = multi[np.lexsort((slab_e, pid[multi]))]
+        po = pid[o]
+        head = np.r_[True, po[1:] != po[:-1]]
+        tail = np.r_[po[1:] != po[:-1], True]
+        fi, la = o[head], o[tail]
+        keep[np.where(f2[la] < f2[fi], la, fi)] = True
+    ok = np.nonzero(keep & (f2 <= 1.0))[0]
+    # ink of the axis and the rows (Eq. 21 along the axis) per interval: value at row j and
+    # change to row j + 1, repeated over the interval's inside pixels
     inkp = ink[prims]
+    nf = inkp.shape[-1]
     ink_tab = np.concatenate(
         [
             np.moveaxis(c0, -1, 0).reshape(3, -1),
             np.moveaxis(dc, -1, 0).reshape(3, -1),
-            np.moveaxis(inkp[:, :-1], -1, 0).reshape(inkp.shape[-1], -1),
-            np.moveaxis(np.diff(inkp, axis=1), -1, 0).reshape(inkp.shape[-1], -1),
+            np.moveaxis(inkp[:, :-1], -1, 0).reshape(nf, -1),
+            np.moveaxis(np.diff(inkp, axis=1), -1, 0).reshape(nf, -1),
         ]
     )
-    D = np.take(ink_tab, g * (Ns - 1) + ka[ok], axis=1)
-    nf = inkp.shape[-1]
+    e_iv = np.repeat(np.arange(len(iv)), n)[ok]
+    D = np.repeat(
+        np.take(ink_tab, iv_win * (Ns - 1) + iv_slab, axis=1),
+        np.bincount(e_iv, minlength=len(iv)),
+        axis=1,
+    )
+    f, lam, x = np.sqrt(f2[ok]), lam[ok], x[ok]
+    scan = scan_e[ok]
+    g = scan_win[scan]
+    cols = cols[ok]
+    lateral = np.clip(p[ok], -1.0, 1.0)
     at = D[6 : 6 + nf] + lam * D[6 + nf :]  # Eq. 21: V^'s ink between the two rows around it
-    ox = pxh[ok] - (D[0] + lam * D[3])  # tau - V^
-    oy = pyh[ok] - (D[1] + lam * D[4])
+    ox = x - (D[0] + lam * D[3])  # tau - V^
+    oy = scan_y[scan] - (D[1] + lam * D[4])
     oz = -(D[2] + lam * D[5])
     # V = V^ + (tau - V^) / f lies on the surface; Eq. 22 gives its ink from V^'s texture
     # function and Eq. 23 mixes V^'s and V's by f, which folds into one factor on V^'s ink:
@@ -449,7 +466,6 @@ def _marks_ink(prims, win, lo, hi, ppm, c, U, V, T, zmin, ink):
     wet = np.maximum(at[0] * w_fac, 0.0)
     col = np.clip(at[1:4].T * c_fac[:, None], 0.0, 1.0)
     rows = scan_row[scan]
-    cols = colh[ok]
     s_lo, s_hi = lo[scan], hi[scan]
     at_end = ((cols == s_lo) & (s_lo > 0)) | ((cols == s_hi - 1) & (s_hi < _w[g]))
     edge = np.bincount(g[at_end], minlength=k) > 0

@@ -75,12 +75,11 @@ class Paper:
         # takes them one after the other (its k-th visit in round k), exactly as in sequence
         hw, ww = w.shape
         sizes = [mk.rows.size for mk in marks]
-        loc = np.concatenate(
-            [(mk.rows + (mk.iy0 - y0)) * ww + (mk.cols + (mk.ix0 - x0)) for mk in marks]
-        )
-        full = np.concatenate([(mk.rows + mk.iy0) * self.W + (mk.cols + mk.ix0) for mk in marks])
+        locs = [(mk.rows + (mk.iy0 - y0)) * ww + (mk.cols + (mk.ix0 - x0)) for mk in marks]
+        loc = np.concatenate(locs)
+        full = loc + ((y0 * self.W + x0) - (loc // ww) * (ww - self.W))  # index in the paper
         wet_tau = np.concatenate([mk.wet for mk in marks]).astype(np.float32)
-        col = np.concatenate([mk.col for mk in marks]).astype(np.float32)
+        col = np.concatenate([mk.col for mk in marks]).astype(np.float32).reshape(-1).view(_RGB)
         prim = np.repeat([mk.primitive for mk in marks], sizes)
         # Eq. 27: Cr = 0 with probability min(ren * ab * gamma, 1), else wet_lambda; the draw is
         # made per hair bundle across the primitive (its marginal probability is exactly Eq.
@@ -89,22 +88,25 @@ class Paper:
         hb = hair_u.shape[1]
         lateral = np.concatenate([mk.lateral for mk in marks])
         bundle = np.clip(((lateral + 1.0) * 0.5 * hb).astype(np.int64), 0, hb - 1)
-        skip = hair_u[prim, bundle] < p0[prim]
-        visits = np.bincount(loc, minlength=hw * ww)
+        skip = np.take(hair_u, prim * hb + bundle) < np.take(p0, prim)
+        # a pixel that several marks cover takes them in the marks' order: its k-th visit is
+        # made in round k (visits counted mark by mark)
+        visits = np.zeros(hw * ww, dtype=np.uint16)
+        rank = np.empty(loc.size, dtype=np.uint16)
+        at = 0
+        for li in locs:
+            rank[at : at + li.size] = visits[li]
+            visits[li] += 1  # a mark covers each of its pixels once
+            at += li.size
         dried = (visits > 0).reshape(hw, ww)
-        again = np.nonzero(visits[loc] > 1)[0]
         bounds = [0, loc.size]
-        if again.size:  # the k-th visit of a pixel (marks' order), then all pixels by visit
-            order = again[np.argsort(loc[again], kind="stable")]
-            sl = loc[order]
-            run = np.r_[True, sl[1:] != sl[:-1]]
-            start = np.maximum.accumulate(np.where(run, np.arange(sl.size), 0))
-            rank = np.zeros(loc.size, dtype=np.uint8)  # at most MAX_PRIMITIVES visits
-            rank[order] = np.arange(sl.size) - start
+        top = int(rank.max())
+        if top:
             perm = np.argsort(rank, kind="stable")
-            bounds = np.r_[0, np.cumsum(np.bincount(rank))].tolist()
+            bounds = np.r_[0, np.cumsum(np.bincount(rank, minlength=top + 1))].tolist()
             loc, full, wet_tau, skip = loc[perm], full[perm], wet_tau[perm], skip[perm]
-            col = np.take(col, perm, axis=0)
+            col = np.take(col, perm)
+        col = col.view(np.float32).reshape(-1, 3)
         wf = w.reshape(-1)
         inkv = self.ink.reshape(-1).view(_RGB)  # one 12-byte element per pixel
         ab = np.float32(q.ab)
