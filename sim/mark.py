@@ -42,6 +42,8 @@ _CASES = {
 # contour (measured up to 1.7 mm); a mark whose inside pixels touch the end of a span is then
 # scanned again over the cut's whole bounding box (see compute_marks)
 SPAN_MARGIN_PX = 2.0
+# span pixels evaluated together (all primitives' marks at once, in groups of about this many)
+BATCH_PIXELS = 1 << 17
 
 _SEG_A = np.full((16, 2), -1)
 _SEG_B = np.full((16, 2), -1)
@@ -212,12 +214,12 @@ def compute_marks(brush, sec, ink_rows, ppm: float, paper_shape) -> list[Mark]:
     win = np.stack([iy0, ix0, hh, w], axis=1)
     lo, hi = _scanline_spans(xy_sorted, seg_win, ppm, win, margin)
     rows = (rows_c, rows_U, rows_V, rows_T, Zmin, ink_rows)
-    ink, edge = _marks_ink(prims, win, lo, hi, ppm, *rows)
+    ink, edge = _marks_ink_batched(prims, win, lo, hi, ppm, rows)
     redo = np.nonzero(edge)[0]
     if redo.size:  # the solid reaches past a span: scan those cuts' whole bounding boxes
         wr = win[redo]
         full = np.zeros(int(wr[:, 2].sum()), dtype=np.int64), np.repeat(wr[:, 3], wr[:, 2])
-        again, _ = _marks_ink(prims[redo], wr, *full, ppm, *rows)
+        again, _ = _marks_ink_batched(prims[redo], wr, *full, ppm, rows)
         for field, field2 in zip(ink, again, strict=True):
             for jj, j in enumerate(redo.tolist()):
                 field[j] = field2[jj]
@@ -247,6 +249,43 @@ def compute_marks(brush, sec, ink_rows, ppm: float, paper_shape) -> list[Mark]:
 
 def _norm(v):
     return np.sqrt(np.sum(v * v, axis=-1))
+
+
+def _marks_ink_batched(prims, win, lo, hi, ppm, rows):
+    """``_marks_ink`` over bands of scanlines of at most about BATCH_PIXELS span pixels (one
+    band unless the marks are many and large), so that memory stays bounded; a band may cut a
+    window in two, whose pieces are joined again."""
+    k = len(prims)
+    h = win[:, 2]
+    lens = hi - lo
+    total = int(lens.sum())
+    if total <= BATCH_PIXELS:
+        return _marks_ink(prims, win, lo, hi, ppm, *rows)
+    band = (np.cumsum(lens) - lens) // BATCH_PIXELS  # band of every stacked scanline
+    scan_win = np.repeat(np.arange(k), h)
+    start = np.cumsum(h) - h
+    # pieces: maximal runs of scanlines of one window in one band
+    brk = np.r_[True, (band[1:] != band[:-1]) | (scan_win[1:] != scan_win[:-1])]
+    p0 = np.nonzero(brk)[0]
+    p1 = np.r_[p0[1:], len(band)]
+    pw = scan_win[p0]  # window of each piece
+    out = [[[] for _ in range(k)] for _ in range(5)]
+    edge = np.zeros(k, dtype=bool)
+    for b in np.unique(band[p0]).tolist():
+        sel = np.nonzero(band[p0] == b)[0]
+        js = pw[sel]
+        off = p0[sel] - start[js]  # first row of each piece in its window
+        wp = win[js].copy()
+        wp[:, 0] += off
+        wp[:, 2] = p1[sel] - p0[sel]
+        r = np.concatenate([np.arange(p0[s], p1[s]) for s in sel.tolist()])
+        ink, e = _marks_ink(prims[js], wp, lo[r], hi[r], ppm, *rows)
+        edge[js] |= e
+        for t, j in enumerate(js.tolist()):
+            out[0][j].append(ink[0][t] + off[t])  # rows back in the window's frame
+            for f in range(1, 5):
+                out[f][j].append(ink[f][t])
+    return [[np.concatenate(parts) for parts in field] for field in out], edge
 
 
 def _dot(a, b):
@@ -344,7 +383,30 @@ def _marks_ink(prims, win, lo, hi, ppm, c, U, V, T, zmin, ink):
     iv_y = scan_y[iv_scan]
     step = np.arange(E) - np.repeat(np.cumsum(n) - n, n)  # position in its interval
     cols = np.repeat(s0.ravel()[iv], n) + step  # window column of every entry
-    x = (np.repeat(scan_x0[iv_scan], n) + cols + 0.5) / ppm
+    scan_e = np.repeat(iv_scan, n)
+    e_iv = np.repeat(np.arange(len(iv)), n)  # interval of every entry
+    # a pixel in several slabs (where the axis folds or the rows' planes fan out) keeps only
+    # its entries of the first and the last slab; in interval order a pixel's entries come by
+    # increasing slab
+    pid = scan_off[scan_e] + cols - lo[scan_e]
+    visits = np.bincount(pid, minlength=N)
+    pair = None
+    if visits.max(initial=0) > 1:
+        ent = np.arange(E)
+        multi_px = np.nonzero(visits > 1)[0]
+        fpos = np.full(N, E)
+        lpos = np.full(N, -1)
+        np.minimum.at(fpos, pid, ent)
+        np.maximum.at(lpos, pid, ent)
+        keep = (visits[pid] == 1) | (ent == fpos[pid]) | (ent == lpos[pid])
+        sel = np.nonzero(keep)[0]
+        rank = np.cumsum(keep) - 1  # entry -> position among the kept
+        pair = rank[fpos[multi_px]], rank[lpos[multi_px]]
+        cols, scan_e, e_iv = cols[sel], scan_e[sel], e_iv[sel]
+        per_iv = np.bincount(e_iv, minlength=len(iv))
+    else:
+        per_iv = n
+    x = (scan_x0[scan_e] + cols + 0.5) / ppm
     # Between rows j and j + 1 the section's centre, U and V are linear in lam, so every dot
     # product of the least-squares solve below is a quadratic in lam whose coefficients belong
     # to the slab, and on a scanline y is fixed too: one table column per interval, repeated
@@ -399,7 +461,7 @@ def _marks_ink(prims, win, lo, hi, ppm, c, U, V, T, zmin, ink):
             np.take(bk, row0 + 1),  # the planes of rows j and j + 1 on the scanline
         ]
     )
-    C = np.repeat(tab, n, axis=1)
+    C = np.repeat(tab, per_iv, axis=1)
     h0 = x * C[19] + C[20]  # the rounded Hd of the crossing search
     h1 = x * C[21] + C[22]
     lam = np.clip(h0 / np.where(h0 != h1, h0 - h1, 1.0), 0.0, 1.0)
@@ -414,21 +476,12 @@ def _marks_ink(prims, win, lo, hi, ppm, c, U, V, T, zmin, ink):
     p = (du * vv - dv * uv) / det
     q = (dv * uu - du * uv) / det
     f2 = p * p + q * q
-    # a pixel in several slabs (a fold): of its first and last slab, the more inside section
-    # (union of sections); its other entries drop out
-    scan_e = np.repeat(iv_scan, n)
-    pid = scan_off[scan_e] + cols - lo[scan_e]
-    keep = np.bincount(pid, minlength=N)[pid] == 1
-    multi = np.nonzero(~keep)[0]
-    if multi.size:
-        slab_e = np.repeat(iv_slab, n)[multi]
-        o = multi[np.lexsort((slab_e, pid[multi]))]
-        po = pid[o]
-        head = np.r_[True, po[1:] != po[:-1]]
-        tail = np.r_[po[1:] != po[:-1], True]
-        fi, la = o[head], o[tail]
-        keep[np.where(f2[la] < f2[fi], la, fi)] = True
+    keep = np.ones(len(f2), dtype=bool)
+    if pair is not None:  # of the first and the last slab, the more inside: union of sections
+        fi, la = pair
+        keep[np.where(f2[la] < f2[fi], fi, la)] = False
     ok = np.nonzero(keep & (f2 <= 1.0))[0]
+    e_iv = e_iv[ok]
     # ink of the axis and the rows (Eq. 21 along the axis) per interval: value at row j and
     # change to row j + 1, repeated over the interval's inside pixels
     inkp = ink[prims]
@@ -441,7 +494,6 @@ def _marks_ink(prims, win, lo, hi, ppm, c, U, V, T, zmin, ink):
             np.moveaxis(np.diff(inkp, axis=1), -1, 0).reshape(nf, -1),
         ]
     )
-    e_iv = np.repeat(np.arange(len(iv)), n)[ok]
     D = np.repeat(
         np.take(ink_tab, iv_win * (Ns - 1) + iv_slab, axis=1),
         np.bincount(e_iv, minlength=len(iv)),

@@ -52,6 +52,65 @@ def test_fast_marks_equal_reference(primitives, ppm, every):
     _assert_marks_equal_reference(primitives, ppm, every)
 
 
+def test_fast_marks_equal_reference_on_a_written_character():
+    """The demo character (wolf brush, pressed and split): many pixels lie between several
+    pairs of section planes, of which only the first and the last slab count."""
+    from sim.bench import ROOT
+    from sim.engine import Simulation
+    from sim.hanzi import character_recording
+    from sim.recording import from_dict
+
+    d = character_recording(ROOT / "data" / "hanzi" / "永.json").to_dict()
+    d["paper"]["px_per_mm"] = 6.0
+    sim = Simulation(from_dict(d))
+    checked = 0
+    while not sim.done:
+        sim.step()
+        if sim.index % 31:
+            continue
+        b = sim.brush
+        sec = b.sections()
+        ink = b.rows_ink(sec)
+        fast = [mk for mk in compute_marks(b, sec, ink, 6.0, sim.paper.shape) if mk.rows.size]
+        ref = [mk for mk in reference_marks(b, sec, ink, 6.0, sim.paper.shape) if mk.rows.size]
+        assert [mk.primitive for mk in fast] == [mk.primitive for mk in ref]
+        for a, r in zip(fast, ref, strict=True):
+            ka = (a.rows + a.iy0) * 10**5 + a.cols + a.ix0
+            kr = (r.rows + r.iy0) * 10**5 + r.cols + r.ix0
+            np.testing.assert_array_equal(np.sort(ka), np.sort(kr))
+            oa, orr = np.argsort(ka), np.argsort(kr)
+            np.testing.assert_allclose(a.wet[oa], r.wet[orr], rtol=0, atol=1e-9)
+            np.testing.assert_allclose(a.col[oa], r.col[orr], rtol=0, atol=1e-9)
+            checked += 1
+    assert checked > 20 and sim.brush.splits > 0
+
+
+def test_marks_evaluated_in_bands_are_the_same_marks(monkeypatch):
+    """Many large marks are evaluated in bands of scanlines (bounded memory); a band may cut a
+    mark in two. The marks are the same, bit for bit."""
+    import sim.mark as mark
+
+    compared = 0
+    for sim in _states(16, 6.0, 53):
+        b = sim.brush
+        sec = b.sections()
+        ink = b.rows_ink(sec)
+        whole = compute_marks(b, sec, ink, 6.0, sim.paper.shape)
+        monkeypatch.setattr(mark, "BATCH_PIXELS", 300)
+        banded = compute_marks(b, sec, ink, 6.0, sim.paper.shape)
+        monkeypatch.undo()
+        assert len(whole) == len(banded)
+        for a, c in zip(whole, banded, strict=True):
+            ka = a.rows * 10**5 + a.cols
+            kc = c.rows * 10**5 + c.cols
+            oa, oc = np.argsort(ka), np.argsort(kc)
+            np.testing.assert_array_equal(ka[oa], kc[oc])
+            np.testing.assert_array_equal(a.wet[oa], c.wet[oc])
+            np.testing.assert_array_equal(a.col[oa], c.col[oc])
+            compared += a.rows.size
+    assert compared > 10 * 300
+
+
 def test_a_span_that_cuts_the_solid_short_is_scanned_again(monkeypatch):
     """With no margin past cur_u, the solid often reaches the end of a span (where the surface
     grazes the paper); those marks are scanned again over the whole cut, so they still equal
