@@ -654,7 +654,9 @@ class HairyBrush:
         d2 = np.sum((pts[:, None, :] - pts[None, :, :]) ** 2, axis=2)
         near = (d2 <= eta * eta) & (owner[:, None] != owner[None, :])  # tr(eta - |..|), j != i
         cnt = near.sum(axis=1)
-        mean = np.where(cnt > 0, (near @ wet) / np.maximum(cnt, 1), wet)
+        # summed without BLAS: its threaded matrix-vector product would keep a second core
+        # spinning every step (and its kernels differ between machines)
+        mean = np.where(cnt > 0, np.einsum("ij,j->i", near, wet) / np.maximum(cnt, 1), wet)
         self.wet = (wet * (1.0 - self.q.pw) + mean * self.q.pw).reshape(self.m, self.n)
 
     def capillary(self, dt):
