@@ -9,9 +9,13 @@ import numpy as np
 
 from .brush import HairyBrush
 from .inertia import InertiaPredictor
-from .mark import compute_marks
+from .mark import cut_marks, fill_marks
 from .paper import DRY_RATE, Paper
 from .recording import Recording
+
+# samples whose marks are filled in together by ``run`` (the brush never reads the paper, so its
+# dynamics can run ahead of the paper; each step's deposit still comes in order)
+BATCH_STEPS = 8
 
 
 class Simulation:
@@ -33,6 +37,7 @@ class Simulation:
         self.dips = recording.dips_or_default()
         self.index = 0  # next sample to process
         self.last_marks = []
+        self._pending = []  # samples moved but not yet deposited (see run)
         first = recording.samples[0]
         self.brush.place(
             np.r_[first[:2], max(first[2], self.geometry.hair_length_mm + 5), first[3:]]
@@ -49,7 +54,12 @@ class Simulation:
                 self.predictor.reset()
 
     def step(self):
-        """Process one 6-DOF sample."""
+        """Process one 6-DOF sample: the brush moves and the paper takes its marks."""
+        self._advance()
+        self._deposit_pending()
+
+    def _advance(self):
+        """The brush's part of one sample; its marks wait in ``_pending`` for the paper."""
         self._dip_now()
         i = self.index
         sample = self.rec.samples[i]
@@ -58,35 +68,44 @@ class Simulation:
         b = self.brush
         b.move(s, vel, self.dt)  # Sec. 5.2
         sec = b.sections()
-        ink_rows = b.rows_ink(sec)
-        marks = compute_marks(b, sec, ink_rows, self.paper.ppm, self.paper.shape)
-        area = np.zeros(b.m)
-        height = np.zeros(b.m)
-        for mk in marks:
-            area[mk.primitive] = mk.area_bbox
-            height[mk.primitive] = mk.height
+        cut = cut_marks(b, sec, b.rows_ink(sec), self.paper.ppm, self.paper.shape)
+        area, height = cut.sizes(b.m) if cut is not None else (np.zeros(b.m), np.zeros(b.m))
         speed = float(np.linalg.norm(vel[:3]))
         b.update_stress(area, height, speed, self.dt)  # Eq. 10-12
-        if marks and b.state == "dipping":
+        if cut is not None and b.state == "dipping":
             b.state = "working"
-        self.paper.deposit(marks, b.gamma, b.hair_u, self.q, self.dt, i + 1)  # Eq. 24-27
+        # what the deposit of this sample needs, as it is now (Eq. 24-27)
+        self._pending.append((cut, b.gamma.copy(), b.hair_u.copy(), i + 1))
         b.lose_wetness(self.dt)  # Eq. 15
         b.adjust_ellipse(vel, self.dt)  # Eq. 16, 17
         b.split()  # Eq. 18, 19
         b.ink_flow()  # Eq. 20
         b.capillary(self.dt)
         b.redraw_streaks()
-        self.last_marks = marks
         self.index += 1
+
+    def _deposit_pending(self):
+        """Fill in the waiting samples' marks together, then deposit them in order."""
+        if not self._pending:
+            return
+        marks_per_step = fill_marks([p[0] for p in self._pending], self.paper.ppm)
+        for (_cut, gamma, hair_u, step), marks in zip(self._pending, marks_per_step, strict=True):
+            self.paper.deposit(marks, gamma, hair_u, self.q, self.dt, step)  # Eq. 24-27
+            self.last_marks = marks
+        self._pending = []
 
     def run(self, until: int | None = None, progress=None):
         end = len(self.rec.samples) if until is None else min(until, len(self.rec.samples))
         total = max(end - self.index, 1)
         start = self.index
         while self.index < end:
-            self.step()
-            if progress is not None and (self.index - start) % 64 == 0:
-                progress((self.index - start) / total)
+            self._advance()
+            done = self.index - start
+            if len(self._pending) >= BATCH_STEPS or self.index >= end:
+                self._deposit_pending()
+            if progress is not None and done % 64 == 0:
+                self._deposit_pending()
+                progress(done / total)
         if progress is not None:
             progress(1.0)
         return self
@@ -101,6 +120,7 @@ class Simulation:
 
     # -------------------------------------------------------------- snapshots
     def snapshot(self) -> dict:
+        self._deposit_pending()
         return {
             "index": self.index,
             "brush": self.brush.snapshot(),
@@ -110,6 +130,7 @@ class Simulation:
         }
 
     def restore(self, snap: dict):
+        self._pending = []
         self.index = snap["index"]
         self.brush.restore(snap["brush"])
         self.paper.restore(snap["paper"])

@@ -40,7 +40,7 @@ _CASES = {
 # kept on each side of cur_u's extent on a scanline, besides the grid's chord error. Where the
 # surface grazes the paper a section between two grid rows can reach further past the grid's
 # contour (measured up to 1.7 mm); a mark whose inside pixels touch the end of a span is then
-# scanned again over the cut's whole bounding box (see compute_marks)
+# scanned again over the cut's whole bounding box (see fill_marks)
 SPAN_MARGIN_PX = 2.0
 # span pixels evaluated together (all primitives' marks at once, in groups of about this many)
 BATCH_PIXELS = 1 << 17
@@ -160,8 +160,33 @@ def _scanline_spans(xy, owner, ppm, win, margin_px):
     return lo, np.maximum(hi, lo)
 
 
-def compute_marks(brush, sec, ink_rows, ppm: float, paper_shape) -> list[Mark]:
-    """The current drawing mark of every primitive that reaches the paper."""
+@dataclass
+class Cut:
+    """The first half of one step's marks: where every primitive's solid meets the paper
+    (cur_u, S_i and hei_i for the dynamics, Eq. 10), its pixel window and scanline spans.
+    ``fill_marks`` then finds the inked pixels and their ink, for many steps at once."""
+
+    prims: np.ndarray  # (k,) primitives with a cut
+    win: np.ndarray  # (k, 4) windows (iy0, ix0, rows, cols), rows 0 if there are no columns
+    shape: np.ndarray  # (k, 2) window (h, w)
+    lo: np.ndarray  # spans [lo, hi) of the windows' rows, stacked
+    hi: np.ndarray
+    rows: tuple  # the surface rows (c, U, V, T, zmin, ink) of every primitive
+    segments: list  # (M_i, 2, 2) cur_u of each cut
+    area: np.ndarray  # (k,) S_i
+    height: np.ndarray  # (k,) hei_i
+
+    def sizes(self, m: int):
+        """S_i and hei_i of all m primitives (0 for those off the paper)."""
+        area = np.zeros(m)
+        height = np.zeros(m)
+        area[self.prims] = self.area
+        height[self.prims] = self.height
+        return area, height
+
+
+def cut_marks(brush, sec, ink_rows, ppm: float, paper_shape) -> Cut | None:
+    """Every primitive's cut by the paper (Sec. 6): None when no primitive reaches it."""
     lay = brush.layout
     H, W = paper_shape
     ring = lay.ring
@@ -170,7 +195,7 @@ def compute_marks(brush, sec, ink_rows, ppm: float, paper_shape) -> list[Mark]:
     Zmin = rows_c[..., 2] - np.hypot(rows_U[..., 2], rows_V[..., 2])  # lowest point of each row
     touching = np.nonzero(Zmin.min(axis=1) <= 0.0)[0]
     if touching.size == 0:
-        return []
+        return None
     X = (
         rows_c[touching][:, :, None, :]
         + rows_U[touching][:, :, None, :] * ring[None, None, :, 0, None]
@@ -178,7 +203,7 @@ def compute_marks(brush, sec, ink_rows, ppm: float, paper_shape) -> list[Mark]:
     )
     all_segs, owner = slice_grids(X)
     if owner.size == 0:
-        return []
+        return None
     # each touching primitive's cut: bounding box, S_i and hei_i (Eq. 10), pixel window
     k = len(touching)
     xy_all = all_segs[:, :, :2]
@@ -213,7 +238,36 @@ def compute_marks(brush, sec, ink_rows, ppm: float, paper_shape) -> list[Mark]:
     hh = np.where(w > 0, h, 0)  # a window without columns has no pixels
     win = np.stack([iy0, ix0, hh, w], axis=1)
     lo, hi = _scanline_spans(xy_sorted, seg_win, ppm, win, margin)
-    rows = (rows_c, rows_U, rows_V, rows_T, Zmin, ink_rows)
+    return Cut(
+        prims,
+        win,
+        np.stack([h, w], axis=1),
+        lo,
+        hi,
+        (rows_c, rows_U, rows_V, rows_T, Zmin, ink_rows),
+        np.split(xy_sorted, np.cumsum(cnt[cuts])[:-1]),
+        area,
+        height,
+    )
+
+
+def fill_marks(cuts: list[Cut | None], ppm: float) -> list[list[Mark]]:
+    """The inked pixels of many steps' cuts and their ink (Eq. 21-23), evaluated together:
+    the rows of all steps are stacked and every cut is one more window. Each pixel's values
+    do not depend on what else is evaluated with it, so any grouping gives the same marks,
+    bit for bit."""
+    real = [c for c in cuts if c is not None]
+    if not real:
+        return [[] for _ in cuts]
+    if len(real) == 1:
+        prims, win, lo, hi, rows = real[0].prims, real[0].win, real[0].lo, real[0].hi, real[0].rows
+    else:
+        offs = np.cumsum([0] + [c.rows[0].shape[0] for c in real[:-1]])
+        prims = np.concatenate([c.prims + o for c, o in zip(real, offs, strict=True)])
+        win = np.concatenate([c.win for c in real])
+        lo = np.concatenate([c.lo for c in real])
+        hi = np.concatenate([c.hi for c in real])
+        rows = tuple(np.concatenate(parts) for parts in zip(*(c.rows for c in real), strict=True))
     ink, edge = _marks_ink_batched(prims, win, lo, hi, ppm, rows)
     redo = np.nonzero(edge)[0]
     if redo.size:  # the solid reaches past a span: scan those cuts' whole bounding boxes
@@ -223,28 +277,38 @@ def compute_marks(brush, sec, ink_rows, ppm: float, paper_shape) -> list[Mark]:
         for field, field2 in zip(ink, again, strict=True):
             for jj, j in enumerate(redo.tolist()):
                 field[j] = field2[jj]
-    seg_split = np.cumsum(cnt[cuts])[:-1]
-    xys = np.split(xy_sorted, seg_split)
-    marks = []
-    for j, i in enumerate(prims.tolist()):
-        pr, pc, wet, col, lateral = (a[j] for a in ink)
-        marks.append(
-            Mark(
-                i,
-                int(iy0[j]),
-                int(ix0[j]),
-                pr,
-                pc,
-                wet,
-                col,
-                lateral,
-                (int(h[j]), int(w[j])),
-                xys[j],
-                float(area[j]),
-                float(height[j]),
+    out, at = [], 0
+    for c in cuts:
+        if c is None:
+            out.append([])
+            continue
+        marks = []
+        for j, i in enumerate(c.prims.tolist()):
+            pr, pc, wet, col, lateral = (a[at + j] for a in ink)
+            marks.append(
+                Mark(
+                    i,
+                    int(c.win[j, 0]),
+                    int(c.win[j, 1]),
+                    pr,
+                    pc,
+                    wet,
+                    col,
+                    lateral,
+                    (int(c.shape[j, 0]), int(c.shape[j, 1])),
+                    c.segments[j],
+                    float(c.area[j]),
+                    float(c.height[j]),
+                )
             )
-        )
-    return marks
+        out.append(marks)
+        at += len(c.prims)
+    return out
+
+
+def compute_marks(brush, sec, ink_rows, ppm: float, paper_shape) -> list[Mark]:
+    """The current drawing mark of every primitive that reaches the paper."""
+    return fill_marks([cut_marks(brush, sec, ink_rows, ppm, paper_shape)], ppm)[0]
 
 
 def _norm(v):
