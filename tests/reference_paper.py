@@ -1,13 +1,17 @@
 # SPDX-License-Identifier: GPL-3.0-or-later
-"""The first, plain implementation of the paper's deposit (Eq. 24-27), one mark after the
-other, kept as the reference the batched ``sim.paper.Paper.deposit`` must agree with bit for
-bit. Bind it to a Paper: ``types.MethodType(reference_deposit, paper)``."""
+"""The first, plain implementations of the paper's deposit (Eq. 24-27, one mark after the other)
+and saturation (Eq. 25, neighbour by neighbour), kept as the references the batched
+``sim.paper.Paper.deposit`` and the box-sum ``Paper._saturate`` must agree with. Bind the
+deposit to a Paper: ``types.MethodType(reference_deposit, paper)``."""
 
 import numpy as np
 
+_NEIGHBOURS = [(-1, -1), (-1, 0), (-1, 1), (0, -1), (0, 1), (1, -1), (1, 0), (1, 1)]
 
-def reference_deposit(self, marks, gamma, hair_u, q, dt: float, step: int):
+
+def reference_deposit(self, marks, gamma, hair_u, q, dt: float, step: int, saturate=None):
     """Apply this step's marks (one per touching primitive), Eq. 24-27."""
+    saturate = saturate or reference_saturate
     self.step = step
     marks = [mk for mk in marks if mk.rows.size]
     if not marks:
@@ -54,6 +58,35 @@ def reference_deposit(self, marks, gamma, hair_u, q, dt: float, step: int):
         # only the neighbourhood of saturated pixels can change
         sy0, sy1 = max(over[0].min() - 1, 0), over[0].max() + 2
         sx0, sx1 = max(over[1].min() - 1, 0), over[1].max() + 2
-        self._saturate(w[sy0:sy1, sx0:sx1], ink[sy0:sy1, sx0:sx1], self.capacity)
+        saturate(w[sy0:sy1, sx0:sx1], ink[sy0:sy1, sx0:sx1], self.capacity)
     wet[...] = w
     last[...] = step
+
+
+def reference_saturate(w, ink, cap: float):
+    """Eq. 25: a pixel wetter than the paper's bound gives its excess to its unsaturated
+    neighbours, each in proportion to how unsaturated it is. The ink goes with the water:
+    a neighbour's ink moves toward the giver's by the share of a full load it receives."""
+    excess = np.maximum(w - cap, 0.0)
+    if not np.any(excess > 0):
+        return
+    unsat = np.maximum(cap - w, 0.0)
+    p = np.pad(unsat, 1)
+    H, Wd = w.shape
+    rho = sum(p[1 + dy : 1 + dy + H, 1 + dx : 1 + dx + Wd] for dy, dx in _NEIGHBOURS)
+    give = np.where(rho > 0, excess / np.where(rho > 0, rho, 1.0), 0.0)  # per unit unsat
+    gp = np.pad(give, 1)
+    ip = np.pad(ink, ((1, 1), (1, 1), (0, 0)))
+    inflow = np.zeros_like(w)
+    pigment = np.zeros_like(ink)
+    for dy, dx in _NEIGHBOURS:
+        g = gp[1 + dy : 1 + dy + H, 1 + dx : 1 + dx + Wd] * unsat
+        inflow += g
+        pigment += g[..., None] * ip[1 + dy : 1 + dy + H, 1 + dx : 1 + dx + Wd]
+    gave = rho > 0
+    w -= np.where(gave, excess, 0.0)
+    w += inflow
+    got = inflow > 0
+    mix = pigment / np.where(got, inflow, 1.0)[..., None]
+    share = np.minimum(inflow, 1.0)[..., None]
+    ink += np.where(got[..., None], (mix - ink) * share, 0.0)

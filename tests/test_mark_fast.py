@@ -135,8 +135,7 @@ def test_a_span_that_cuts_the_solid_short_is_scanned_again(monkeypatch):
 def test_batched_deposit_equals_one_mark_after_another():
     """Overlapping primitives visit a pixel several times in one step; the batched deposit
     takes the visits in the marks' order and gives the plain loop's paper bit for bit."""
-    import types
-
+    from sim.paper import Paper
     from tests.reference_paper import reference_deposit
 
     s = _long_stroke()[:260]
@@ -145,7 +144,7 @@ def test_batched_deposit_equals_one_mark_after_another():
     for sim in (a, b):
         sim.paper.dry_per_step = 0.004  # lazy drying on
         sim.q = sim.brush.q = sim.brush.q.with_values({"ren": 1.0, "ab": 0.6})
-    b.paper.deposit = types.MethodType(reference_deposit, b.paper)
+    b.paper.deposit = lambda *args: reference_deposit(b.paper, *args, saturate=Paper._saturate)
     overlap = 0
     while not a.done:
         a.step()
@@ -171,6 +170,26 @@ def test_banded_uint8_image_and_png_equal_the_float_image(tmp_path):
     wide = np.concatenate([img8] * 4, axis=1)  # rows of 8400 bytes: several bands per file
     write_png(tmp_path / "a.png", wide)
     np.testing.assert_array_equal(read_png(tmp_path / "a.png"), wide)
+
+
+def test_box_sum_saturation_equals_neighbour_by_neighbour():
+    """Eq. 25 by 3 x 3 box sums gives the plain neighbour-by-neighbour spreading (to float32
+    rounding) and keeps the water."""
+    from sim.paper import Paper
+    from tests.reference_paper import reference_saturate
+
+    rng = np.random.default_rng(5)
+    w = rng.random((60, 70), dtype=np.float32) * 1.6
+    w[rng.random(w.shape) < 0.5] *= 0.3
+    ink = rng.random((60, 70, 3), dtype=np.float32)
+    a_w, a_ink = w.copy(), ink.copy()
+    b_w, b_ink = w.copy(), ink.copy()
+    Paper._saturate(a_w, a_ink, 1.0)
+    reference_saturate(b_w, b_ink, 1.0)
+    assert np.abs(a_w - w).max() > 0.1  # it did spread
+    np.testing.assert_allclose(a_w, b_w, rtol=0, atol=2e-6)
+    np.testing.assert_allclose(a_ink, b_ink, rtol=0, atol=2e-6)
+    assert a_w.sum(dtype=np.float64) == pytest.approx(w.sum(dtype=np.float64), rel=1e-5)
 
 
 def test_run_fills_marks_for_several_samples_at_once_and_equals_step_by_step():
