@@ -547,9 +547,14 @@ def _marks_ink(prims, win, lo, hi, ppm, c, U, V, T, zmin, ink):
     ok = np.nonzero(keep & (f2 <= 1.0))[0]
     e_iv = e_iv[ok]
     # ink of the axis and the rows (Eq. 21 along the axis) per interval: value at row j and
-    # change to row j + 1, repeated over the interval's inside pixels
+    # change to row j + 1, repeated over the interval's inside pixels. The texture function
+    # (wr, cr, wv, cv, Eq. 22) is usually one ink's everywhere: then it is used as it is
     inkp = ink[prims]
-    nf = inkp.shape[-1]
+    tex = inkp[..., 4:12]
+    tex0 = tex[0, 0]
+    same_tex = bool(np.all(np.abs(tex - tex0) <= 1e-12 * (1.0 + np.abs(tex0))))
+    nf = 4 if same_tex else inkp.shape[-1]
+    inkp = inkp[..., :nf]
     ink_tab = np.concatenate(
         [
             np.moveaxis(c0, -1, 0).reshape(3, -1),
@@ -569,6 +574,7 @@ def _marks_ink(prims, win, lo, hi, ppm, c, U, V, T, zmin, ink):
     cols = cols[ok]
     lateral = np.clip(p[ok], -1.0, 1.0)
     at = D[6 : 6 + nf] + lam * D[6 + nf :]  # Eq. 21: V^'s ink between the two rows around it
+    wr, cr, wvx, wvy, wvz, cvx, cvy, cvz = tex0.tolist() if same_tex else at[4:12]
     ox = x - (D[0] + lam * D[3])  # tau - V^
     oy = scan_y[scan] - (D[1] + lam * D[4])
     oz = -(D[2] + lam * D[5])
@@ -577,8 +583,8 @@ def _marks_ink(prims, win, lo, hi, ppm, c, U, V, T, zmin, ink):
     # (1 - f) a + f a (1 + |V - V^| r + (V - V^).v) = a (1 + |tau - V^| r + (tau - V^).v)
     dist = np.where(f > 1e-9, np.sqrt(ox * ox + oy * oy + oz * oz), 0.0)
     ox, oy, oz = (np.where(f > 1e-9, o, 0.0) for o in (ox, oy, oz))
-    w_fac = 1.0 + dist * at[4] + ox * at[6] + oy * at[7] + oz * at[8]  # Eq. 22, 23
-    c_fac = 1.0 + dist * at[5] + ox * at[9] + oy * at[10] + oz * at[11]
+    w_fac = 1.0 + dist * wr + ox * wvx + oy * wvy + oz * wvz  # Eq. 22, 23
+    c_fac = 1.0 + dist * cr + ox * cvx + oy * cvy + oz * cvz
     wet = np.maximum(at[0] * w_fac, 0.0)
     col = np.clip(at[1:4].T * c_fac[:, None], 0.0, 1.0)
     rows = scan_row[scan]
