@@ -58,6 +58,7 @@ def _sim(samples, size_px, ppm, primitives=1, seed=0):
 
 
 def samples_per_second(samples, size_px, ppm, primitives=1, repeats=3):
+    _sim(samples[:60], size_px, ppm, primitives).run()  # warm-up, untimed (allocator, caches)
     rates, m = [], 0
     for _ in range(repeats):
         sim = _sim(samples, size_px, ppm, primitives)
@@ -145,7 +146,7 @@ def demo_recording(path: Path):
 def main(quick: bool = False, out_dir: Path | None = None) -> dict:
     out_dir = Path(out_dir or ROOT / "out")
     out_dir.mkdir(parents=True, exist_ok=True)
-    rep = 1 if quick else 3
+    rep = 1 if quick else 5
     s = _long_stroke()
     res = {}
     rows = []
