@@ -163,14 +163,15 @@ def _scanline_spans(xy, owner, ppm, win, margin_px):
 @dataclass
 class Cut:
     """The first half of one step's marks: where every primitive's solid meets the paper
-    (cur_u, S_i and hei_i for the dynamics, Eq. 10), its pixel window and scanline spans.
-    ``fill_marks`` then finds the inked pixels and their ink, for many steps at once."""
+    (cur_u, S_i and hei_i for the dynamics, Eq. 10) and its pixel window. ``fill_marks`` then
+    finds the scanline spans, the inked pixels and their ink, for many steps at once."""
 
     prims: np.ndarray  # (k,) primitives with a cut
     win: np.ndarray  # (k, 4) windows (iy0, ix0, rows, cols), rows 0 if there are no columns
     shape: np.ndarray  # (k, 2) window (h, w)
-    lo: np.ndarray  # spans [lo, hi) of the windows' rows, stacked
-    hi: np.ndarray
+    xy: np.ndarray  # (M, 2, 2) all cuts' cur_u, grouped by cut
+    seg_win: np.ndarray  # (M,) the cut of every segment
+    margin: np.ndarray  # (k,) span margin past cur_u, pixels
     rows: tuple  # the surface rows (c, U, V, T, zmin, ink) of every primitive
     segments: list  # (M_i, 2, 2) cur_u of each cut
     area: np.ndarray  # (k,) S_i
@@ -237,13 +238,13 @@ def cut_marks(brush, sec, ink_rows, ppm: float, paper_shape) -> Cut | None:
     seg_win = slot[owner[order]]
     hh = np.where(w > 0, h, 0)  # a window without columns has no pixels
     win = np.stack([iy0, ix0, hh, w], axis=1)
-    lo, hi = _scanline_spans(xy_sorted, seg_win, ppm, win, margin)
     return Cut(
         prims,
         win,
         np.stack([h, w], axis=1),
-        lo,
-        hi,
+        xy_sorted,
+        seg_win,
+        margin,
         (rows_c, rows_U, rows_V, rows_T, Zmin, ink_rows),
         np.split(xy_sorted, np.cumsum(cnt[cuts])[:-1]),
         area,
@@ -260,14 +261,18 @@ def fill_marks(cuts: list[Cut | None], ppm: float) -> list[list[Mark]]:
     if not real:
         return [[] for _ in cuts]
     if len(real) == 1:
-        prims, win, lo, hi, rows = real[0].prims, real[0].win, real[0].lo, real[0].hi, real[0].rows
+        c = real[0]
+        prims, win, xy, seg_win, margin, rows = c.prims, c.win, c.xy, c.seg_win, c.margin, c.rows
     else:
         offs = np.cumsum([0] + [c.rows[0].shape[0] for c in real[:-1]])
         prims = np.concatenate([c.prims + o for c, o in zip(real, offs, strict=True)])
+        woffs = np.cumsum([0] + [len(c.prims) for c in real[:-1]])
+        seg_win = np.concatenate([c.seg_win + o for c, o in zip(real, woffs, strict=True)])
         win = np.concatenate([c.win for c in real])
-        lo = np.concatenate([c.lo for c in real])
-        hi = np.concatenate([c.hi for c in real])
+        xy = np.concatenate([c.xy for c in real])
+        margin = np.concatenate([c.margin for c in real])
         rows = tuple(np.concatenate(parts) for parts in zip(*(c.rows for c in real), strict=True))
+    lo, hi = _scanline_spans(xy, seg_win, ppm, win, margin)
     ink, edge = _marks_ink_batched(prims, win, lo, hi, ppm, rows)
     redo = np.nonzero(edge)[0]
     if redo.size:  # the solid reaches past a span: scan those cuts' whole bounding boxes
