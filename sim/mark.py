@@ -197,10 +197,14 @@ def cut_marks(brush, sec, ink_rows, ppm: float, paper_shape) -> Cut | None:
     touching = np.nonzero(Zmin.min(axis=1) <= 0.0)[0]
     if touching.size == 0:
         return None
+    # only cells next to a row that reaches the paper can be cut (a ring point is never below
+    # its row's lowest point)
+    low = np.nonzero((Zmin[touching] <= 1e-9).any(axis=0))[0]  # (rounding of the ring)
+    r0, r1 = max(int(low[0]) - 1, 0), int(low[-1]) + 2
     X = (
-        rows_c[touching][:, :, None, :]
-        + rows_U[touching][:, :, None, :] * ring[None, None, :, 0, None]
-        + rows_V[touching][:, :, None, :] * ring[None, None, :, 1, None]
+        rows_c[touching, r0:r1][:, :, None, :]
+        + rows_U[touching, r0:r1][:, :, None, :] * ring[None, None, :, 0, None]
+        + rows_V[touching, r0:r1][:, :, None, :] * ring[None, None, :, 1, None]
     )
     all_segs, owner = slice_grids(X)
     if owner.size == 0:
