@@ -6,7 +6,11 @@ paper plane psi (z = 0), and the ink information of every pixel inside the cut.
    (see ``nurbs``). Marching squares on the grid's z values gives the intersection curve cur_u
    as a set of segments in the paper plane (one contour per closed curve).
 2. Within the curve's bounding box, a pixel is inked when some section of the solid contains it
-   (the solid is the union of its sections, also where a bent axis folds the surface).
+   (the solid is the union of its sections, also where a bent axis folds the surface). Only the
+   pixels of each scanline near cur_u are looked at; a mark whose inked pixels reach the end of
+   that span is looked at again over its whole bounding box. ``cut_marks`` does step 1 (the
+   dynamics need the cut's size at once); ``fill_marks`` does steps 2 and 3 for all primitives
+   of several samples in one pass.
 3. Each inside pixel tau is placed on the segment from V^ (on the middle control axis, in the
    section plane through tau) to V (on the surface, in tau's direction): with f = |tau - V^| /
    |V - V^|, V^ takes its ink from the two nearest key points (Eq. 21), V from V^'s texture
@@ -365,6 +369,13 @@ def _dot(a, b):
     return np.einsum("...k,...k->...", a, b)
 
 
+def _no_ink(k):
+    """``_marks_ink``'s answer for k windows without a pixel inside."""
+    none_i, none_f = np.zeros(0, dtype=np.int64), np.zeros(0)
+    fields = [[none_i] * k, [none_i] * k, [none_f] * k, [np.zeros((0, 3))] * k, [none_f] * k]
+    return fields, np.zeros(k, dtype=bool)
+
+
 def _marks_ink(prims, win, lo, hi, ppm, c, U, V, T, zmin, ink):
     """Which pixels of the windows' spans lie inside their primitive's solid, and their ink
     (Eq. 21-23), for all primitives at once.
@@ -384,7 +395,7 @@ def _marks_ink(prims, win, lo, hi, ppm, c, U, V, T, zmin, ink):
     extend (the span may then have cut the solid short)."""
     k = len(prims)
     Ns = c.shape[1]
-    iy0, ix0, h, _w = (win[:, j] for j in range(4))
+    iy0, ix0, h, win_w = (win[:, j] for j in range(4))
     lens = hi - lo
     S = len(lo)
     scan_win = np.repeat(np.arange(k), h)  # window of every scanline
@@ -393,16 +404,8 @@ def _marks_ink(prims, win, lo, hi, ppm, c, U, V, T, zmin, ink):
     scan_y = (iy0[scan_win] + scan_row + 0.5) / ppm
     scan_off = np.cumsum(lens) - lens  # first pixel of every scanline
     N = int(lens.sum())
-    empty = [
-        [np.zeros(0, dtype=np.int64)] * k,
-        [np.zeros(0, dtype=np.int64)] * k,
-        [np.zeros(0)] * k,
-        [np.zeros((0, 3))] * k,
-        [np.zeros(0)] * k,
-    ]
-    no_edge = np.zeros(k, dtype=bool)
     if N == 0:
-        return empty, no_edge
+        return _no_ink(k)
     cp, Up, Vp, Tp = c[prims], U[prims], V[prims], T[prims]
     cT = _dot(cp, Tp)  # (k, Ns)
     reach = zmin[prims] <= 0.0
@@ -444,7 +447,7 @@ def _marks_ink(prims, win, lo, hi, ppm, c, U, V, T, zmin, ink):
     ok = slab_ok[scan_win][..., None]
     n = np.where(ok, np.maximum(s1 - s0, 0), 0).ravel()
     if not n.any():
-        return empty, no_edge
+        return _no_ink(k)
     # the crossing intervals, in order of scanline (so of window), slab and part; every pixel of
     # an interval is an entry, and a pixel is an entry of each slab it crosses (a fold: more)
     iv = np.nonzero(n)[0]
@@ -598,7 +601,7 @@ def _marks_ink(prims, win, lo, hi, ppm, c, U, V, T, zmin, ink):
     col = np.clip(at[1:4].T * c_fac[:, None], 0.0, 1.0)
     rows = scan_row[scan]
     s_lo, s_hi = lo[scan], hi[scan]
-    at_end = ((cols == s_lo) & (s_lo > 0)) | ((cols == s_hi - 1) & (s_hi < _w[g]))
+    at_end = ((cols == s_lo) & (s_lo > 0)) | ((cols == s_hi - 1) & (s_hi < win_w[g]))
     edge = np.bincount(g[at_end], minlength=k) > 0
     cut = np.searchsorted(g, np.arange(1, k))
     return [np.split(a, cut) for a in (rows, cols, wet, col, lateral)], edge

@@ -21,35 +21,35 @@ def _states(primitives, ppm, every=37):
             yield sim
 
 
-def _assert_marks_equal_reference(primitives, ppm, every):
+def _assert_marks_equal_reference(sims, ppm):
+    """At every state of ``sims``: the fast marks have exactly the reference's pixels, and the
+    same ink. Returns (marks compared, pixels compared)."""
     checked = pixels = 0
-    for sim in _states(primitives, ppm, every):
+    for sim in sims:
         b = sim.brush
         sec = b.sections()
         ink = b.rows_ink(sec)
-        fast = compute_marks(b, sec, ink, ppm, sim.paper.shape)
-        ref = reference_marks(b, sec, ink, ppm, sim.paper.shape)
-        ref = [mk for mk in ref if mk.rows.size]
-        fast = [mk for mk in fast if mk.rows.size]
+        fast = [mk for mk in compute_marks(b, sec, ink, ppm, sim.paper.shape) if mk.rows.size]
+        ref = [mk for mk in reference_marks(b, sec, ink, ppm, sim.paper.shape) if mk.rows.size]
         assert [mk.primitive for mk in fast] == [mk.primitive for mk in ref]
         for a, r in zip(fast, ref, strict=True):
-            ga = set(zip((a.rows + a.iy0).tolist(), (a.cols + a.ix0).tolist(), strict=True))
-            gr = set(zip((r.rows + r.iy0).tolist(), (r.cols + r.ix0).tolist(), strict=True))
-            assert ga == gr
-            order_a = np.lexsort((a.cols + a.ix0, a.rows + a.iy0))
-            order_r = np.lexsort((r.cols + r.ix0, r.rows + r.iy0))
-            np.testing.assert_allclose(a.wet[order_a], r.wet[order_r], rtol=0, atol=1e-9)
-            np.testing.assert_allclose(a.col[order_a], r.col[order_r], rtol=0, atol=1e-9)
-            np.testing.assert_allclose(a.lateral[order_a], r.lateral[order_r], atol=1e-9)
+            ka = (a.rows + a.iy0) * 10**5 + a.cols + a.ix0
+            kr = (r.rows + r.iy0) * 10**5 + r.cols + r.ix0
+            oa, orr = np.argsort(ka), np.argsort(kr)
+            np.testing.assert_array_equal(ka[oa], kr[orr])
+            np.testing.assert_allclose(a.wet[oa], r.wet[orr], rtol=0, atol=1e-9)
+            np.testing.assert_allclose(a.col[oa], r.col[orr], rtol=0, atol=1e-9)
+            np.testing.assert_allclose(a.lateral[oa], r.lateral[orr], atol=1e-9)
             assert a.area_bbox == pytest.approx(r.area_bbox)
             checked += 1
             pixels += a.rows.size
-    assert checked >= 5 and pixels > 1000
+    return checked, pixels
 
 
 @pytest.mark.parametrize("primitives, ppm, every", [(1, 10.24, 23), (16, 6.0, 37), (4, 20.48, 29)])
 def test_fast_marks_equal_reference(primitives, ppm, every):
-    _assert_marks_equal_reference(primitives, ppm, every)
+    checked, pixels = _assert_marks_equal_reference(_states(primitives, ppm, every), ppm)
+    assert checked >= 5 and pixels > 1000
 
 
 def test_fast_marks_equal_reference_on_a_written_character():
@@ -63,25 +63,14 @@ def test_fast_marks_equal_reference_on_a_written_character():
     d = character_recording(ROOT / "data" / "hanzi" / "永.json").to_dict()
     d["paper"]["px_per_mm"] = 6.0
     sim = Simulation(from_dict(d))
-    checked = 0
-    while not sim.done:
-        sim.step()
-        if sim.index % 31:
-            continue
-        b = sim.brush
-        sec = b.sections()
-        ink = b.rows_ink(sec)
-        fast = [mk for mk in compute_marks(b, sec, ink, 6.0, sim.paper.shape) if mk.rows.size]
-        ref = [mk for mk in reference_marks(b, sec, ink, 6.0, sim.paper.shape) if mk.rows.size]
-        assert [mk.primitive for mk in fast] == [mk.primitive for mk in ref]
-        for a, r in zip(fast, ref, strict=True):
-            ka = (a.rows + a.iy0) * 10**5 + a.cols + a.ix0
-            kr = (r.rows + r.iy0) * 10**5 + r.cols + r.ix0
-            np.testing.assert_array_equal(np.sort(ka), np.sort(kr))
-            oa, orr = np.argsort(ka), np.argsort(kr)
-            np.testing.assert_allclose(a.wet[oa], r.wet[orr], rtol=0, atol=1e-9)
-            np.testing.assert_allclose(a.col[oa], r.col[orr], rtol=0, atol=1e-9)
-            checked += 1
+
+    def states():
+        while not sim.done:
+            sim.step()
+            if sim.index % 31 == 0:
+                yield sim
+
+    checked, _ = _assert_marks_equal_reference(states(), 6.0)
     assert checked > 20 and sim.brush.splits > 0
 
 
@@ -128,8 +117,8 @@ def test_a_span_that_cuts_the_solid_short_is_scanned_again(monkeypatch):
 
     monkeypatch.setattr(mark, "SPAN_MARGIN_PX", 0.0)
     monkeypatch.setattr(mark, "_marks_ink", counting)
-    _assert_marks_equal_reference(4, 20.48, 41)
-    assert calls["again"] > 0
+    checked, _ = _assert_marks_equal_reference(_states(4, 20.48, 41), 20.48)
+    assert checked >= 5 and calls["again"] > 0
 
 
 def test_batched_deposit_equals_one_mark_after_another():
