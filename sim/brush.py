@@ -102,8 +102,22 @@ def angles_from_matrix(R) -> tuple[float, float, float]:
     return tuple(float(v) for v in np.degrees([d, q, r]))
 
 
+_add = np.add.reduce  # np.sum without its Python wrapper (the same sums)
+
+
 def _norm(v, axis=-1, keepdims=False):
-    return np.sqrt(np.sum(v * v, axis=axis, keepdims=keepdims))
+    return np.sqrt(_add(v * v, axis=axis, keepdims=keepdims))
+
+
+def _cross(a, b):
+    """np.cross of (..., 3) vectors without its Python wrapper (the same products)."""
+    out = np.empty(np.broadcast_shapes(a.shape, b.shape))
+    a0, a1, a2 = a[..., 0], a[..., 1], a[..., 2]
+    b0, b1, b2 = b[..., 0], b[..., 1], b[..., 2]
+    out[..., 0] = a1 * b2 - a2 * b1
+    out[..., 1] = a2 * b0 - a0 * b2
+    out[..., 2] = a0 * b1 - a1 * b0
+    return out
 
 
 def _unit(v, fallback=None):
@@ -257,7 +271,7 @@ class HairyBrush:
         r0 = x0 - np.einsum("ij,j->i", T[:, 0], x0)[:, None] * T[:, 0]
         r0 = _unit(r0, fallback=self.R[:, 1])
         N = rotation_minimising_frames(centres, T, r0)
-        Bn = np.cross(T, N)
+        Bn = _cross(T, N)
         # orientation of the middle control ellipse (Eq. 6): its minor axis eori, projected
         # into the normal plane at loc, fixes the profiles' angle within the swept frames
         ks = np.clip(np.searchsorted(u, self.loc), 0, len(u) - 1)
@@ -476,23 +490,28 @@ class HairyBrush:
             fb = np.tile(-self.travel, (m, 1)) + 0.25 * self.lay
             fb /= np.linalg.norm(fb, axis=1, keepdims=True)
         prev = cc[:, 0]
+        segs = self.sarc[:, 1:] - self.sarc[:, :-1]
         for j in range(1, n):
             p = cc[:, j]
             d = p - prev
-            dist = _norm(d)
-            seg = self.sarc[:, j] - self.sarc[:, j - 1]
+            dist = np.sqrt(_add(d * d, axis=-1))
+            seg = segs[:, j - 1]
             scale = np.minimum(1.0, seg / np.maximum(dist, 1e-12))
             cand = prev + d * scale[:, None]
             on_paper = (p[:, 2] <= CONTACT_EPS) | (cand[:, 2] <= CONTACT_EPS)
             h = np.maximum(prev[:, 2], 0.0)
             reach = on_paper & (seg > h)
-            H = np.sqrt(np.maximum(seg * seg - h * h, 0.0))
-            dxy = d[:, :2]
-            nd = _norm(dxy)
-            dirxy = np.where(nd[:, None] > 1e-9, dxy / np.maximum(nd, 1e-12)[:, None], fb)
-            flat = np.concatenate([prev[:, :2] + H[:, None] * dirxy, np.zeros((m, 1))], axis=1)
-            p = np.where(reach[:, None], flat, cand)
-            p[:, 2] = np.maximum(p[:, 2], 0.0)
+            if reach.any():  # lies flat on the paper at its full arc distance
+                H = np.sqrt(np.maximum(seg * seg - h * h, 0.0))
+                dxy = d[:, :2]
+                nd = np.sqrt(_add(dxy * dxy, axis=-1))
+                dirxy = np.where(nd[:, None] > 1e-9, dxy / np.maximum(nd, 1e-12)[:, None], fb)
+                flat = np.zeros((m, 3))
+                flat[:, :2] = prev[:, :2] + H[:, None] * dirxy
+                p = np.where(reach[:, None], flat, cand)
+            else:
+                p = cand
+            np.maximum(p[:, 2], 0.0, out=p[:, 2])
             cc[:, j] = p
             prev = p
 
@@ -549,7 +568,7 @@ class HairyBrush:
         eo = self.eori
         per = dt * REF_RATE
         rot = q.re * self.gamma * (eo @ vel) * per  # Eq. 16
-        inc = q.ie * self.gamma * _norm(np.cross(eo, vel)) * per  # Eq. 16
+        inc = q.ie * self.gamma * _norm(_cross(eo, vel)) * per  # Eq. 16
         rot = np.where(touching, rot, 0.0)
         inc = np.where(touching, inc, 0.0)
         # rotate the minor axis about the shaft

@@ -78,27 +78,28 @@ class Mark:
 def slice_grids(X):
     """Where the periodic-in-t grids X (k, Ns, Nt, 3) cross z = 0 (marching squares, all
     primitives at once). Returns segments (M, 2, 3) and the grid each belongs to (M,)."""
-    Z = X[..., 2]
-    inside = Z <= 0.0
-    Xn = np.roll(X, -1, axis=2)
-    Zn = np.roll(Z, -1, axis=2)
-    c00, c01 = inside[:, :-1], np.roll(inside, -1, axis=2)[:, :-1]
-    c10, c11 = inside[:, 1:], np.roll(inside, -1, axis=2)[:, 1:]
+    Xw = np.concatenate([X, X[:, :, :1]], axis=2)  # periodic in t: column Nt is column 0
+    inw = Xw[..., 2] <= 0.0
+    c00, c01 = inw[:, :-1, :-1], inw[:, :-1, 1:]
+    c10, c11 = inw[:, 1:, :-1], inw[:, 1:, 1:]
     case = c00 * 1 + c01 * 2 + c11 * 4 + c10 * 8
     gg, ii, jj = np.nonzero((case != 0) & (case != 15))
     if ii.size == 0:
         return np.zeros((0, 2, 3)), np.zeros(0, dtype=np.intp)
     cs = case[gg, ii, jj]
+    p00, p01 = Xw[gg, ii, jj], Xw[gg, ii, jj + 1]
+    p10, p11 = Xw[gg, ii + 1, jj], Xw[gg, ii + 1, jj + 1]
 
-    def crossing(pa, pb, za, zb):
+    def crossing(pa, pb):
+        za, zb = pa[:, 2], pb[:, 2]
         t = za / np.where(za != zb, za - zb, 1.0)
         return pa + t[:, None] * (pb - pa)
 
     # crossing points of the four edges of each cell (computed per edge, so shared edges agree)
-    e0 = crossing(X[gg, ii, jj], Xn[gg, ii, jj], Z[gg, ii, jj], Zn[gg, ii, jj])
-    e1 = crossing(Xn[gg, ii, jj], Xn[gg, ii + 1, jj], Zn[gg, ii, jj], Zn[gg, ii + 1, jj])
-    e2 = crossing(X[gg, ii + 1, jj], Xn[gg, ii + 1, jj], Z[gg, ii + 1, jj], Zn[gg, ii + 1, jj])
-    e3 = crossing(X[gg, ii, jj], X[gg, ii + 1, jj], Z[gg, ii, jj], Z[gg, ii + 1, jj])
+    e0 = crossing(p00, p01)
+    e1 = crossing(p01, p11)
+    e2 = crossing(p10, p11)
+    e3 = crossing(p00, p10)
     E = np.stack([e0, e1, e2, e3], axis=1)  # (C, 4, 3)
     segs, owner = [], []
     for k in range(2):
@@ -556,52 +557,80 @@ def _marks_ink(prims, win, lo, hi, ppm, c, U, V, T, zmin, ink):
     if pair is not None:  # of the first and the last slab, the more inside: union of sections
         fi, la = pair
         keep[np.where(f2[la] < f2[fi], fi, la)] = False
-    ok = np.nonzero(keep & (f2 <= 1.0))[0]
-    e_iv = e_iv[ok]
-    # ink of the axis and the rows (Eq. 21 along the axis) per interval: value at row j and
-    # change to row j + 1, repeated over the interval's inside pixels. The texture function
-    # (wr, cr, wv, cv, Eq. 22) is usually one ink's everywhere: then it is used as it is
+    inside = keep & (f2 <= 1.0)
+    # an inked pixel at the end of a span that the window could extend (the span may have cut
+    # the solid short) is the first or the last kept entry of its interval
+    has = per_iv > 0
+    first = (np.cumsum(per_iv) - per_iv)[has]
+    last = first + per_iv[has] - 1
+    sc, wh = iv_scan[has], iv_win[has]
+    s_lo, s_hi = lo[sc], hi[sc]
+    hit = inside[first] & (cols[first] == s_lo) & (s_lo > 0)
+    hit |= inside[last] & (cols[last] == s_hi - 1) & (s_hi < win_w[wh])
+    edge = np.bincount(wh[hit], minlength=k) > 0
+    ok = np.nonzero(inside)[0]
+    n_ok = np.bincount(e_iv[ok], minlength=len(iv))  # inked pixels of every interval
+    # Ink (Eq. 21-23), in float32 as the paper keeps it. Per interval: V^ and its ink at row j
+    # and their change to row j + 1 (Eq. 21 along the axis), and the pixel's offset from row
+    # j's centre at the interval's first column, all small numbers (millimetres from the
+    # section), repeated over the interval's inked pixels. The texture function (wr, cr, wv,
+    # cv, Eq. 22) is usually one ink's everywhere: then it is used as scalars
     inkp = ink[prims]
     tex = inkp[..., 4:12]
     tex0 = tex[0, 0]
     same_tex = bool(np.all(np.abs(tex - tex0) <= 1e-12 * (1.0 + np.abs(tex0))))
     nf = 4 if same_tex else inkp.shape[-1]
-    inkp = inkp[..., :nf]
-    ink_tab = np.concatenate(
+    slab = iv_win * (Ns - 1) + iv_slab
+    c0s = c0.reshape(-1, 3)[slab]
+    per = np.concatenate(
         [
-            np.moveaxis(c0, -1, 0).reshape(3, -1),
-            np.moveaxis(dc, -1, 0).reshape(3, -1),
-            np.moveaxis(inkp[:, :-1], -1, 0).reshape(nf, -1),
-            np.moveaxis(np.diff(inkp, axis=1), -1, 0).reshape(nf, -1),
+            ((scan_x0[iv_scan] + 0.5) / ppm - c0s[:, 0])[None],
+            (iv_y - c0s[:, 1])[None],
+            -c0s[:, 2][None],
+            dc.reshape(-1, 3)[slab].T,
+            inkp[:, :-1, :nf].reshape(-1, nf)[slab].T,
+            np.diff(inkp[..., :nf], axis=1).reshape(-1, nf)[slab].T,
         ]
-    )
-    D = np.repeat(
-        np.take(ink_tab, iv_win * (Ns - 1) + iv_slab, axis=1),
-        np.bincount(e_iv, minlength=len(iv)),
-        axis=1,
-    )
-    f, lam, x = np.sqrt(f2[ok]), lam[ok], x[ok]
-    scan = scan_e[ok]
-    g = scan_win[scan]
+    ).astype(np.float32)
+    D = np.repeat(per, n_ok, axis=1)
+    lam = lam[ok].astype(np.float32)
     cols = cols[ok]
     lateral = np.clip(p[ok], -1.0, 1.0)
-    at = D[6 : 6 + nf] + lam * D[6 + nf :]  # Eq. 21: V^'s ink between the two rows around it
-    wr, cr, wvx, wvy, wvz, cvx, cvy, cvz = tex0.tolist() if same_tex else at[4:12]
-    ox = x - (D[0] + lam * D[3])  # tau - V^
-    oy = scan_y[scan] - (D[1] + lam * D[4])
-    oz = -(D[2] + lam * D[5])
-    # V = V^ + (tau - V^) / f lies on the surface; Eq. 22 gives its ink from V^'s texture
-    # function and Eq. 23 mixes V^'s and V's by f, which folds into one factor on V^'s ink:
+    rows = scan_row[scan_e[ok]]
+    # tau - V^ (V^ = c0 + lam dc on the axis), then Eq. 22 and 23: V = V^ + (tau - V^) / f lies
+    # on the surface and takes its ink from V^'s texture function, and Eq. 23 mixes V^'s and
+    # V's by f, which folds into one factor on V^'s ink:
     # (1 - f) a + f a (1 + |V - V^| r + (V - V^).v) = a (1 + |tau - V^| r + (tau - V^).v)
-    dist = np.where(f > 1e-9, np.sqrt(ox * ox + oy * oy + oz * oz), 0.0)
-    ox, oy, oz = (np.where(f > 1e-9, o, 0.0) for o in (ox, oy, oz))
-    w_fac = 1.0 + dist * wr + ox * wvx + oy * wvy + oz * wvz  # Eq. 22, 23
-    c_fac = 1.0 + dist * cr + ox * cvx + oy * cvy + oz * cvz
-    wet = np.maximum(at[0] * w_fac, 0.0)
-    col = np.clip(at[1:4].T * c_fac[:, None], 0.0, 1.0)
-    rows = scan_row[scan]
-    s_lo, s_hi = lo[scan], hi[scan]
-    at_end = ((cols == s_lo) & (s_lo > 0)) | ((cols == s_hi - 1) & (s_hi < win_w[g]))
-    edge = np.bincount(g[at_end], minlength=k) > 0
-    cut = np.searchsorted(g, np.arange(1, k))
+    ox = cols.astype(np.float32) * np.float32(1.0 / ppm) + D[0] - lam * D[3]
+    oy = D[1] - lam * D[4]
+    oz = D[2] - lam * D[5]
+    at = D[6 : 6 + nf] + lam * D[6 + nf :]  # Eq. 21: V^'s ink between the two rows around it
+    dist = np.sqrt(ox * ox + oy * oy + oz * oz)
+    o = (dist, ox, oy, oz)
+    if same_tex:
+        wr, cr, wvx, wvy, wvz, cvx, cvy, cvz = (np.float32(v) for v in tex0.tolist())
+    else:
+        wr, cr, wvx, wvy, wvz, cvx, cvy, cvz = at[4:12]
+    w_fac = _factor(o, (wr, wvx, wvy, wvz))  # Eq. 22, 23
+    c_fac = _factor(o, (cr, cvx, cvy, cvz))
+    wet = at[0] * w_fac
+    np.maximum(wet, 0.0, out=wet)
+    col = np.empty((ok.size, 3), dtype=np.float32)
+    for ch in range(3):
+        np.multiply(at[1 + ch], c_fac, out=col[:, ch])
+    np.clip(col, 0.0, 1.0, out=col)
+    cut = np.cumsum(np.bincount(iv_win, weights=n_ok, minlength=k)).astype(np.int64)[:-1]
     return [np.split(a, cut) for a in (rows, cols, wet, col, lateral)], edge
+
+
+def _factor(o, coef):
+    """1 + |tau - V^| r + (tau - V^).v of Eq. 22-23, leaving out terms whose scalar is 0."""
+    out = None
+    for a, c in zip(o, coef, strict=True):
+        if np.ndim(c) == 0 and c == 0:
+            continue
+        out = a * c if out is None else out + a * c
+    if out is None:
+        return np.float32(1.0)
+    out += np.float32(1.0)
+    return out

@@ -85,8 +85,9 @@ class Paper:
         locs = [(mk.rows + (mk.iy0 - y0)) * ww + (mk.cols + (mk.ix0 - x0)) for mk in marks]
         loc = np.concatenate(locs)
         full = loc + ((y0 * self.W + x0) - (loc // ww) * (ww - self.W))  # index in the paper
-        wet_tau = np.concatenate([mk.wet for mk in marks]).astype(np.float32)
-        col = np.concatenate([mk.col for mk in marks]).astype(np.float32).reshape(-1).view(_RGB)
+        wet_tau = np.concatenate([mk.wet for mk in marks]).astype(np.float32, copy=False)
+        col = np.concatenate([mk.col for mk in marks]).astype(np.float32, copy=False)
+        col = col.reshape(-1).view(_RGB)
         prim = np.repeat([mk.primitive for mk in marks], sizes)
         # Eq. 27: Cr = 0 with probability min(ren * ab * gamma, 1), else wet_lambda; the draw is
         # made per hair bundle across the primitive (its marginal probability is exactly Eq.

@@ -37,8 +37,9 @@ def _assert_marks_equal_reference(sims, ppm):
             kr = (r.rows + r.iy0) * 10**5 + r.cols + r.ix0
             oa, orr = np.argsort(ka), np.argsort(kr)
             np.testing.assert_array_equal(ka[oa], kr[orr])
-            np.testing.assert_allclose(a.wet[oa], r.wet[orr], rtol=0, atol=1e-9)
-            np.testing.assert_allclose(a.col[oa], r.col[orr], rtol=0, atol=1e-9)
+            # the ink is float32, as the paper keeps it: equal to its rounding
+            np.testing.assert_allclose(a.wet[oa], r.wet[orr], rtol=0, atol=5e-7)
+            np.testing.assert_allclose(a.col[oa], r.col[orr], rtol=0, atol=5e-7)
             np.testing.assert_allclose(a.lateral[oa], r.lateral[orr], atol=1e-9)
             assert a.area_bbox == pytest.approx(r.area_bbox)
             checked += 1
