@@ -37,7 +37,7 @@ import numpy as np
 from .nurbs import (
     SweepLayout,
     bezier_form,
-    bspline_basis,
+    bspline_bases,
     derivative_ctrl,
     interpolate_cubic,
     rotation_minimising_frames,
@@ -262,10 +262,10 @@ class HairyBrush:
         lay = self.layout
         ctrl, knots, params = interpolate_cubic(self.cc)  # A_i through P_i,1..n (Sec. 3.2.3)
         u = lay.station_u
-        basis = bspline_basis(knots, 3, np.broadcast_to(u, (self.m, len(u))))
-        centres = basis @ ctrl
-        dq, dk = derivative_ctrl(ctrl, knots, 3)
-        T = _unit(bspline_basis(dk, 2, np.broadcast_to(u, (self.m, len(u)))) @ dq)
+        bases = bspline_bases(knots, 3, np.broadcast_to(u, (self.m, len(u))))
+        centres = bases[3] @ ctrl
+        dq, _ = derivative_ctrl(ctrl, knots, 3)
+        T = _unit(bases[2][..., 1:-1] @ dq)  # the derivative's basis is degree 2 on knots[1:-1]
         # initial frame: the bottom control circle's own x axis (cori = shaft direction)
         x0 = self.R[:, 0]
         r0 = x0 - np.einsum("ij,j->i", T[:, 0], x0)[:, None] * T[:, 0]

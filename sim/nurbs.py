@@ -35,6 +35,14 @@ def bspline_basis(knots, degree: int, u) -> np.ndarray:
     knots: (..., K); u: (..., N) broadcastable on the leading axes. Returns (..., N, K-degree-1).
     The last knot is included in the last non-empty span (clamped knot vectors).
     """
+    return bspline_bases(knots, degree, u)[-1]
+
+
+def bspline_bases(knots, degree: int, u) -> list:
+    """The basis matrices of every degree 0..degree of the recursion (see ``bspline_basis``).
+    Degree d's functions 1..K-d-3 on ``knots`` are the degree-d basis on ``knots[..., 1:-1]``,
+    the knot vector of the derivative curve (Piegl & Tiller Eq. 3.8), so one recursion gives a
+    curve's points and tangents."""
     knots = np.asarray(knots, dtype=float)
     u = np.asarray(u, dtype=float)
     k = knots[..., None, :]
@@ -42,22 +50,20 @@ def bspline_basis(knots, degree: int, u) -> np.ndarray:
     K = knots.shape[-1]
     basis = ((k[..., :-1] <= uu) & (uu < k[..., 1:])).astype(float)
     at_end = uu >= k[..., -1:]
-    if np.any(at_end):
+    if at_end.any():
         basis = np.where(at_end, 0.0, basis)
         last = K - degree - 2
         basis[..., last] = np.where(at_end[..., 0], 1.0, basis[..., last])
-    with np.errstate(divide="ignore", invalid="ignore"):
-        for d in range(1, degree + 1):
-            k_lo = k[..., : K - d - 1]
-            k_hi = k[..., d : K - 1]
-            den_l = k_hi - k_lo
-            left = np.where(den_l > 0, (uu - k_lo) / den_l, 0.0) * basis[..., :-1]
-            k_lo1 = k[..., 1 : K - d]
-            k_hi1 = k[..., d + 1 :]
-            den_r = k_hi1 - k_lo1
-            right = np.where(den_r > 0, (k_hi1 - uu) / den_r, 0.0) * basis[..., 1:]
-            basis = left + right
-    return basis
+    out = [basis]
+    for d in range(1, degree + 1):
+        # x / inf = 0 where a knot span is empty (0/0 := 0 in the recursion)
+        den_l = k[..., d : K - 1] - k[..., : K - d - 1]
+        den_r = k[..., d + 1 :] - k[..., 1 : K - d]
+        left = (uu - k[..., : K - d - 1]) / np.where(den_l > 0, den_l, np.inf)
+        right = (k[..., d + 1 :] - uu) / np.where(den_r > 0, den_r, np.inf)
+        basis = left * basis[..., :-1] + right * basis[..., 1:]
+        out.append(basis)
+    return out
 
 
 def averaged_knots(params, degree: int = 3) -> np.ndarray:
@@ -101,18 +107,19 @@ def solve_collocation(A, B):
     Collocation matrices are totally positive, so Gaussian elimination without pivoting is
     stable (de Boor); done here in numpy over the whole stack, it avoids LAPACK, whose threads
     cost more than the work itself on matrices this small (and fight each other in parallel
-    worker processes)."""
-    A = np.array(A, dtype=float)
-    X = np.array(B, dtype=float)
+    worker processes), and whose kernels round differently from machine to machine. The
+    matrix and the right-hand side are eliminated together, as one augmented matrix."""
+    A = np.asarray(A, dtype=float)
     n = A.shape[-1]
+    M = np.concatenate([A, np.asarray(B, dtype=float)], axis=-1)  # (..., n, n + k)
     for k in range(n - 1):
-        f = A[..., k + 1 :, k] / A[..., k, k, None]
-        A[..., k + 1 :, k:] -= f[..., None] * A[..., k, None, k:]
-        X[..., k + 1 :, :] -= f[..., None] * X[..., k, None, :]
+        f = M[..., k + 1 :, k] / M[..., k, k, None]
+        M[..., k + 1 :, k:] -= f[..., None] * M[..., k, None, k:]
+    X = M[..., n:]
     for k in range(n - 1, -1, -1):
-        if k < n - 1:
-            X[..., k, :] -= np.einsum("...j,...jk->...k", A[..., k, k + 1 :], X[..., k + 1 :, :])
-        X[..., k, :] /= A[..., k, k, None]
+        X[..., k, :] /= M[..., k, k, None]
+        if k:
+            X[..., :k, :] -= M[..., :k, k, None] * X[..., k, None, :]
     return X
 
 
@@ -130,8 +137,8 @@ def rotation_minimising_frames(points, tangents, r0):
     r0: (m, 3) initial normal, perpendicular to tangents[:, 0]. Returns normals (m, N, 3).
 
     Each step is two reflections, r_{i+1} = H2_i H1_i r_i, and the reflections depend only on
-    the points and tangents: they are built for all steps at once, and only the 3 x 3 products
-    run in sequence."""
+    the points and tangents: they are built for all steps at once, and so are their running
+    products."""
     m, N, _ = points.shape
     v1 = np.diff(points, axis=1)  # (m, N-1, 3)
     c1 = np.einsum("mik,mik->mi", v1, v1)
@@ -145,12 +152,15 @@ def rotation_minimising_frames(points, tangents, r0):
     H1 = eye - f1[..., None, None] * v1[..., :, None] * v1[..., None, :]
     H2 = eye - f2[..., None, None] * v2[..., :, None] * v2[..., None, :]
     M = H2 @ H1  # (m, N-1, 3, 3)
+    # the running products M_i ... M_0 by doubling: log2(N) batched products, not N - 1 steps
+    P = M.copy()
+    span = 1
+    while span < N - 1:
+        P[:, span:] = P[:, span:] @ P[:, :-span]
+        span *= 2
     out = np.empty_like(points)
-    r = np.asarray(r0, dtype=float)
-    out[:, 0] = r
-    for i in range(N - 1):
-        r = np.einsum("mij,mj->mi", M[:, i], r)
-        out[:, i + 1] = r
+    out[:, 0] = r0
+    out[:, 1:] = np.einsum("mnij,mj->mni", P, np.asarray(r0, dtype=float))
     # against round-off: exactly perpendicular to the tangents and of unit length
     out -= np.einsum("mik,mik->mi", out, tangents)[..., None] * tangents
     out /= np.maximum(np.linalg.norm(out, axis=2), 1e-12)[..., None]
