@@ -57,16 +57,34 @@ def _sim(samples, size_px, ppm, primitives=1, seed=0):
     return sim
 
 
-def samples_per_second(samples, size_px, ppm, primitives=1, repeats=3):
+STAGES = ("brush", "sweep", "cut", "mark pixels", "paper")
+
+
+def samples_per_second(samples, size_px, ppm, primitives=1, repeats=3, stages=None):
+    """Median samples per second of ``repeats`` runs; ``stages`` (a dict), when given, gets the
+    milliseconds per sample of every stage of the engine in the median run."""
     _sim(samples[:60], size_px, ppm, primitives).run()  # warm-up, untimed (allocator, caches)
-    rates, m = [], 0
+    runs, m = [], 0
     for _ in range(repeats):
         sim = _sim(samples, size_px, ppm, primitives)
+        sim.timings = {}
         t0 = time.perf_counter()
         sim.run()
-        rates.append(len(samples) / (time.perf_counter() - t0))
+        total = time.perf_counter() - t0
+        runs.append((len(samples) / total, total, sim.timings))
         m = sim.brush.m
-    return statistics.median(rates), m
+    runs.sort(key=lambda r: r[0])
+    rate, total, timings = runs[len(runs) // 2]
+    if stages is not None:
+        n = len(samples)
+        stages.update({k: round(timings.get(k, 0.0) / n * 1e3, 3) for k in STAGES})
+        stages["other"] = round((total - sum(timings.values())) / n * 1e3, 3)
+    return statistics.median(r[0] for r in runs), m
+
+
+def _stage_row(label, stages):
+    parts = ", ".join(f"{k} {v:.2f}" for k, v in stages.items())
+    return (f"  where the time goes, {label}", "ms a sample:", parts)
 
 
 def nurbs_speedup(repeats=3):
@@ -150,12 +168,15 @@ def main(quick: bool = False, out_dir: Path | None = None) -> dict:
     s = _long_stroke()
     res = {}
     rows = []
-    r1, m1 = samples_per_second(s, 2048, 2048 / PAPER_MM, 1, rep)
+    st1, st16 = {}, {}
+    r1, m1 = samples_per_second(s, 2048, 2048 / PAPER_MM, 1, rep, st1)
     res["samples_per_s_1p_2048"] = round(r1, 1)
     rows.append(("1 primitive, 2048 px paper", f"{r1:8.1f} samples/s", f"m = {m1}"))
-    r16, m16 = samples_per_second(s, 4096, 4096 / PAPER_MM, 16, rep)
+    rows.append(_stage_row("1p", st1))
+    r16, m16 = samples_per_second(s, 4096, 4096 / PAPER_MM, 16, rep, st16)
     res["samples_per_s_16p_4096"] = round(r16, 1)
     rows.append(("16 primitives, 4096 px paper", f"{r16:8.1f} samples/s", f"m = {m16}"))
+    rows.append(_stage_row("16p", st16))
     small, _ = samples_per_second(s, 1024, 5.0, 1, rep)
     large, _ = samples_per_second(s, 4096, 5.0, 1, rep)
     res["size_ratio"] = round(large / small, 3)
@@ -177,6 +198,8 @@ def main(quick: bool = False, out_dir: Path | None = None) -> dict:
         ("peak memory, 4096 px replay", f"{rss:8.1f} MB", f"paper buffers {buffers:.0f} MB")
     )
     res["paper_buffers_mb_4096"] = round(buffers, 1)
+    res["stages_ms_1p_2048"] = st1
+    res["stages_ms_16p_4096"] = st16
     w = max(len(r[0]) for r in rows)
     for a, b, c in rows:
         print(f"{a:<{w}}  {b}  {c}")

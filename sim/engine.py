@@ -5,6 +5,8 @@ bit, and snapshots let a caller jump to any sample and get exactly the same stat
 
 from __future__ import annotations
 
+import time
+
 import numpy as np
 
 from .brush import HairyBrush
@@ -38,6 +40,7 @@ class Simulation:
         self.index = 0  # next sample to process
         self.last_marks = []
         self._pending = []  # samples moved but not yet deposited (see run)
+        self.timings = None  # a dict to keep the seconds spent in every stage (the benchmark)
         first = recording.samples[0]
         self.brush.place(
             np.r_[first[:2], max(first[2], self.geometry.hair_length_mm + 5), first[3:]]
@@ -60,6 +63,7 @@ class Simulation:
 
     def _advance(self):
         """The brush's part of one sample; its marks wait in ``_pending`` for the paper."""
+        t0 = time.perf_counter()
         self._dip_now()
         i = self.index
         sample = self.rec.samples[i]
@@ -67,8 +71,11 @@ class Simulation:
         vel = self.predictor.velocity
         b = self.brush
         b.move(s, vel, self.dt)  # Sec. 5.2
+        t0 = self._tick("brush", t0)
         sec = b.sections()
+        t0 = self._tick("sweep", t0)
         cut = cut_marks(b, sec, b.rows_ink(sec), self.paper.ppm, self.paper.shape)
+        t0 = self._tick("cut", t0)
         area, height = cut.sizes(b.m) if cut is not None else (np.zeros(b.m), np.zeros(b.m))
         speed = float(np.linalg.norm(vel[:3]))
         b.update_stress(area, height, speed, self.dt)  # Eq. 10-12
@@ -83,16 +90,27 @@ class Simulation:
         b.capillary(self.dt)
         b.redraw_streaks()
         self.index += 1
+        self._tick("brush", t0)
+
+    def _tick(self, stage: str, t0: float) -> float:
+        """Add the time since t0 to ``stage`` when timings are kept; returns now."""
+        now = time.perf_counter()
+        if self.timings is not None:
+            self.timings[stage] = self.timings.get(stage, 0.0) + (now - t0)
+        return now
 
     def _deposit_pending(self):
         """Fill in the waiting samples' marks together, then deposit them in order."""
         if not self._pending:
             return
+        t0 = time.perf_counter()
         marks_per_step = fill_marks([p[0] for p in self._pending], self.paper.ppm)
+        t0 = self._tick("mark pixels", t0)
         for (_cut, gamma, hair_u, step), marks in zip(self._pending, marks_per_step, strict=True):
             self.paper.deposit(marks, gamma, hair_u, self.q, self.dt, step)  # Eq. 24-27
             self.last_marks = marks
         self._pending = []
+        self._tick("paper", t0)
 
     def run(self, until: int | None = None, progress=None):
         end = len(self.rec.samples) if until is None else min(until, len(self.rec.samples))

@@ -3,6 +3,8 @@
 candidate section unless the axis folds) gives exactly the marks of the plain reference that
 tests every bounding-box pixel against every row of the surface."""
 
+import time
+
 import numpy as np
 import pytest
 
@@ -210,3 +212,26 @@ def test_run_fills_marks_for_several_samples_at_once_and_equals_step_by_step():
         assert a.paper.wet.tobytes() == other.paper.wet.tobytes()
         assert a.paper.last.tobytes() == other.paper.last.tobytes()
     assert [mk.primitive for mk in a.last_marks] == [mk.primitive for mk in b.last_marks]
+
+
+def test_timings_split_a_run_into_its_stages_without_changing_it():
+    """The benchmark's per-stage figures: every sample's time lands in a named stage, and
+    keeping timings does not change the artwork."""
+    from sim.bench import STAGES, samples_per_second
+
+    s = _long_stroke()[:90]
+    a, b = _sim(s, 400, 2.0, 4), _sim(s, 400, 2.0, 4)
+    a.timings = {}
+    t0 = time.perf_counter()
+    a.run()
+    total = time.perf_counter() - t0
+    b.run()
+    assert a.paper.ink.tobytes() == b.paper.ink.tobytes()
+    assert set(a.timings) == set(STAGES)
+    assert all(v > 0 for v in a.timings.values())
+    assert sum(a.timings.values()) <= total
+    stages = {}
+    rate, m = samples_per_second(s, 400, 2.0, 4, repeats=1, stages=stages)
+    assert rate > 0 and m == 4
+    assert set(stages) == set(STAGES) | {"other"} and stages["other"] >= 0
+    assert 0.5 < sum(stages.values()) * rate / 1e3 <= 1.01  # ms a sample add up to the rate
