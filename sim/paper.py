@@ -128,8 +128,9 @@ class Paper:
             np.put(wf, li, new)
             cr = np.where(skip[sel], 0.0, np.minimum(new, 1.0)).astype(np.float32)
             old = np.take(inkv, fi).view(np.float32).reshape(-1, 3)
-            out = col[sel] * cr[:, None] + old * (1 - cr[:, None])  # Eq. 26
-            np.put(inkv, fi, np.ascontiguousarray(out, dtype=np.float32).reshape(-1).view(_RGB))
+            # Eq. 26: cr col_tau + (1 - cr) col_old, as old + cr (col_tau - old)
+            old += cr[:, None] * (col[sel] - old)
+            np.put(inkv, fi, old.reshape(-1).view(_RGB))
         w = np.where(dried, w, np.maximum(w - drystep, 0.0))
         for _ in range(self.sat_passes):
             over = np.nonzero(w > self.capacity)

@@ -49,7 +49,8 @@ def reference_deposit(self, marks, gamma, hair_u, q, dt: float, step: int, satur
         skip = hair_u[mk.primitive, b] < p0
         cr = np.where(skip, 0.0, np.minimum(new, 1.0)).astype(np.float32)
         old = ink[r, c]
-        ink[r, c] = mk.col.astype(np.float32) * cr[:, None] + old * (1 - cr[:, None])  # Eq. 26
+        # Eq. 26: cr col_tau + (1 - cr) col_old, as old + cr (col_tau - old)
+        ink[r, c] = old + cr[:, None] * (mk.col.astype(np.float32) - old)
     w = np.where(dried, w, np.maximum(w - drystep, 0.0))
     for _ in range(self.sat_passes):
         over = np.nonzero(w > self.capacity)
