@@ -407,9 +407,16 @@ def _marks_ink(prims, win, lo, hi, ppm, c, U, V, T, zmin, ink):
     N = int(lens.sum())
     if N == 0:
         return _no_ink(k)
-    cp, Up, Vp, Tp = c[prims], U[prims], V[prims], T[prims]
-    cT = _dot(cp, Tp)  # (k, Ns)
+    # only the rows next to one that reaches the paper can bound a slab that counts
     reach = zmin[prims] <= 0.0
+    near = np.nonzero(reach.any(axis=0))[0]
+    if near.size == 0:
+        return _no_ink(k)
+    j0, j1 = max(int(near[0]) - 1, 0), min(int(near[-1]) + 2, Ns)
+    Ns = j1 - j0
+    reach = reach[:, j0:j1]
+    cp, Up, Vp, Tp = (a[prims, j0:j1] for a in (c, U, V, T))
+    cT = _dot(cp, Tp)  # (k, Ns)
     slab_ok = reach[:, :-1] | reach[:, 1:]  # (k, Ns - 1)
     # the sign change of every row on every scanline
     T0 = Tp[scan_win, :, 0]  # (S, Ns)
@@ -575,7 +582,7 @@ def _marks_ink(prims, win, lo, hi, ppm, c, U, V, T, zmin, ink):
     # j's centre at the interval's first column, all small numbers (millimetres from the
     # section), repeated over the interval's inked pixels. The texture function (wr, cr, wv,
     # cv, Eq. 22) is usually one ink's everywhere: then it is used as scalars
-    inkp = ink[prims]
+    inkp = ink[prims, j0:j1]
     tex = inkp[..., 4:12]
     tex0 = tex[0, 0]
     same_tex = bool(np.all(np.abs(tex - tex0) <= 1e-12 * (1.0 + np.abs(tex0))))
