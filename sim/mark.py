@@ -46,6 +46,8 @@ _CASES = {
 # contour (measured up to 1.7 mm); a mark whose inside pixels touch the end of a span is then
 # scanned again over the cut's whole bounding box (see fill_marks)
 SPAN_MARGIN_PX = 2.0
+# a segment part this near a scanline (besides the chord error) bounds the scanline's span
+SPAN_NEAR_PX = 0.5
 # span pixels evaluated together (all primitives' marks at once, in groups of about this many)
 BATCH_PIXELS = 1 << 17
 
@@ -117,15 +119,18 @@ def slice_grid(X) -> np.ndarray:
     return slice_grids(X[None])[0]
 
 
-def _scanline_spans(xy, owner, ppm, win, margin_px):
+def _scanline_spans(xy, owner, ppm, win, margin_px, near_px):
     """Pixel columns [lo, hi) of every pixel row of every window that can lie inside a cut.
 
     A section's boundary is its cur_u, so every inside point of a scanline has cur_u on both
     sides of it on that scanline: the pixels outside the x range of the parts of the segments
-    that come near the scanline are outside (the margin covers the grid's chords against the
-    true surface). All windows at once: ``xy`` (M, 2, 2) segments, ``owner`` (M,) their window,
-    ``win`` (k, 4) windows (iy0, ix0, h, w), ``margin_px`` (k,). Returns lo, hi over the
-    windows' rows stacked in window order."""
+    that come near the scanline are outside (the margins cover the grid's chords against the
+    true surface). A segment part is near when it lies within ``near_px`` of the scanline
+    (then it is widened by ``margin_px``); a row that no segment comes that near (the top and
+    bottom of a cut) takes the parts within ``margin_px`` instead. All windows at once: ``xy``
+    (M, 2, 2) segments, ``owner`` (M,) their window, ``win`` (k, 4) windows (iy0, ix0, h, w),
+    ``margin_px`` and ``near_px`` (k,). Returns lo, hi over the windows' rows stacked in
+    window order."""
     m = (margin_px / ppm)[owner]
     x0, y0, x1, y1 = xy[:, 0, 0], xy[:, 0, 1], xy[:, 1, 0], xy[:, 1, 1]
     ylo = np.minimum(y0, y1) - m
@@ -140,20 +145,32 @@ def _scanline_spans(xy, owner, ppm, win, margin_px):
     seg = np.repeat(np.arange(len(owner)), n)
     local = np.arange(int(n.sum())) - np.repeat(np.cumsum(n) - n - r0, n)  # window row
     row = start[owner][seg] + local
-    # the part of the segment within the margin of the scanline, widened by the margin
     yc = (iy0[owner][seg] + local + 0.5) / ppm
     ms = m[seg]
     sx0, sy0, dx, dy = x0[seg], y0[seg], (x1 - x0)[seg], (y1 - y0)[seg]
-    with np.errstate(divide="ignore", invalid="ignore"):
-        ta = np.where(dy != 0, (yc - ms - sy0) / dy, 0.0)
-        tb = np.where(dy != 0, (yc + ms - sy0) / dy, 1.0)
-    ta, tb = np.clip(np.minimum(ta, tb), 0.0, 1.0), np.clip(np.maximum(ta, tb), 0.0, 1.0)
-    xa, xb = sx0 + ta * dx, sx0 + tb * dx
     total = int(h.sum())
-    lo_mm = np.full(total, np.inf)
-    hi_mm = np.full(total, -np.inf)
-    np.minimum.at(lo_mm, row, np.minimum(xa, xb) - ms)
-    np.maximum.at(hi_mm, row, np.maximum(xa, xb) + ms)
+    ends = []
+    for band in (ms, (near_px / ppm)[owner][seg]):
+        # the part of the segment within the band around the scanline, widened by the margin
+        flat = dy == 0
+        ddy = np.where(flat, 1.0, dy)
+        ta = np.where(flat, 0.0, (yc - band - sy0) / ddy)
+        tb = np.where(flat, 1.0, (yc + band - sy0) / ddy)
+        t0, t1 = np.minimum(ta, tb), np.maximum(ta, tb)
+        xa, xb = sx0 + np.clip(t0, 0.0, 1.0) * dx, sx0 + np.clip(t1, 0.0, 1.0) * dx
+        xlo, xhi, rows = np.minimum(xa, xb) - ms, np.maximum(xa, xb) + ms, row
+        if ends:  # the near band: only segments that reach it
+            near = (t0 <= 1.0) & (t1 >= 0.0) & (~flat | (np.abs(sy0 - yc) <= band))
+            xlo, xhi, rows = xlo[near], xhi[near], row[near]
+        lo_mm = np.full(total, np.inf)
+        hi_mm = np.full(total, -np.inf)
+        np.minimum.at(lo_mm, rows, xlo)
+        np.maximum.at(hi_mm, rows, xhi)
+        ends.append((lo_mm, hi_mm))
+    (lo_w, hi_w), (lo_n, hi_n) = ends
+    close = np.isfinite(lo_n)
+    lo_mm = np.where(close, lo_n, lo_w)
+    hi_mm = np.where(close, hi_n, hi_w)
     seen = np.isfinite(lo_mm)
     wx0 = np.repeat(ix0, h)
     ww = np.repeat(w, h)
@@ -176,7 +193,7 @@ class Cut:
     shape: np.ndarray  # (k, 2) window (h, w)
     xy: np.ndarray  # (M, 2, 2) all cuts' cur_u, grouped by cut
     seg_win: np.ndarray  # (M,) the cut of every segment
-    margin: np.ndarray  # (k,) span margin past cur_u, pixels
+    chord: np.ndarray  # (k,) the grid's chord error against the true sections, pixels
     rows: tuple  # the surface rows (c, U, V, T, zmin, ink) of every primitive
     segments: list  # (M_i, 2, 2) cur_u of each cut
     area: np.ndarray  # (k,) S_i
@@ -238,10 +255,10 @@ def cut_marks(brush, sec, ink_rows, ppm: float, paper_shape) -> Cut | None:
     iy1 = np.minimum(np.ceil(ymax * ppm - 0.5).astype(np.int64) + 1, H)
     h = np.maximum(iy1 - iy0, 0)
     w = np.maximum(ix1 - ix0, 0)
-    # chord error of the grid's polygon against the true sections, plus a pixel and a half
+    # chord error of the grid's polygon against the true sections
     sag = 1.0 - np.cos(np.pi / ring.shape[0])
     semi = np.max(np.hypot(_norm(rows_U[prims]), _norm(rows_V[prims])), axis=1)
-    margin = SPAN_MARGIN_PX + sag * semi * ppm
+    chord = sag * semi * ppm
     slot = np.full(k, -1)
     slot[cuts] = np.arange(len(cuts))
     seg_win = slot[owner[order]]
@@ -253,7 +270,7 @@ def cut_marks(brush, sec, ink_rows, ppm: float, paper_shape) -> Cut | None:
         np.stack([h, w], axis=1),
         xy_sorted,
         seg_win,
-        margin,
+        chord,
         (rows_c, rows_U, rows_V, rows_T, Zmin, ink_rows),
         np.split(xy_sorted, np.cumsum(cnt[cuts])[:-1]),
         area,
@@ -271,7 +288,7 @@ def fill_marks(cuts: list[Cut | None], ppm: float) -> list[list[Mark]]:
         return [[] for _ in cuts]
     if len(real) == 1:
         c = real[0]
-        prims, win, xy, seg_win, margin, rows = c.prims, c.win, c.xy, c.seg_win, c.margin, c.rows
+        prims, win, xy, seg_win, chord, rows = c.prims, c.win, c.xy, c.seg_win, c.chord, c.rows
     else:
         offs = np.cumsum([0] + [c.rows[0].shape[0] for c in real[:-1]])
         prims = np.concatenate([c.prims + o for c, o in zip(real, offs, strict=True)])
@@ -279,9 +296,9 @@ def fill_marks(cuts: list[Cut | None], ppm: float) -> list[list[Mark]]:
         seg_win = np.concatenate([c.seg_win + o for c, o in zip(real, woffs, strict=True)])
         win = np.concatenate([c.win for c in real])
         xy = np.concatenate([c.xy for c in real])
-        margin = np.concatenate([c.margin for c in real])
+        chord = np.concatenate([c.chord for c in real])
         rows = tuple(np.concatenate(parts) for parts in zip(*(c.rows for c in real), strict=True))
-    lo, hi = _scanline_spans(xy, seg_win, ppm, win, margin)
+    lo, hi = _scanline_spans(xy, seg_win, ppm, win, SPAN_MARGIN_PX + chord, SPAN_NEAR_PX + chord)
     ink, edge = _marks_ink_batched(prims, win, lo, hi, ppm, rows)
     redo = np.nonzero(edge)[0]
     if redo.size:  # the solid reaches past a span: scan those cuts' whole bounding boxes
