@@ -77,6 +77,26 @@ def test_fast_marks_equal_reference_on_a_written_character():
     assert checked > 20 and sim.brush.splits > 0
 
 
+def test_fast_marks_equal_reference_with_a_texture_function_that_varies():
+    """Eq. 22 with the texture function (radiation and vector modes) changing from key point to
+    key point, not one ink's everywhere: the fast marks' ink still equals the reference."""
+
+    def states():
+        for sim in _states(4, 10.24, 31):
+            b = sim.brush
+            kept = b.wr, b.cr, b.wv, b.cv
+            j = np.linspace(0.0, 1.0, b.n)[None, :]
+            b.wr = -0.05 + 0.04 * j + 0.01 * np.arange(b.m)[:, None]
+            b.cr = 0.08 - 0.1 * j + 0.0 * b.cr
+            b.wv = np.array([0.03, -0.02, 0.01]) * (1 + j[..., None]) + 0.0 * b.wv
+            b.cv = np.array([-0.01, 0.04, 0.02]) * (2 - j[..., None]) + 0.0 * b.cv
+            yield sim
+            b.wr, b.cr, b.wv, b.cv = kept  # the stroke goes on as it was
+
+    checked, pixels = _assert_marks_equal_reference(states(), 10.24)
+    assert checked >= 5 and pixels > 1000
+
+
 def test_marks_evaluated_in_bands_are_the_same_marks(monkeypatch):
     """Many large marks are evaluated in bands of scanlines (bounded memory); a band may cut a
     mark in two. The marks are the same, bit for bit."""
