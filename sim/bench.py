@@ -61,8 +61,8 @@ STAGES = ("brush", "sweep", "cut", "mark pixels", "paper")
 
 
 def samples_per_second(samples, size_px, ppm, primitives=1, repeats=3, stages=None):
-    """Median samples per second of ``repeats`` runs; ``stages`` (a dict), when given, gets the
-    milliseconds per sample of every stage of the engine in the median run."""
+    """Samples per second of the median of ``repeats`` runs; ``stages`` (a dict), when given,
+    gets the milliseconds per sample of every stage of the engine in that same run."""
     _sim(samples[:60], size_px, ppm, primitives).run()  # warm-up, untimed (allocator, caches)
     runs, m = [], 0
     for _ in range(repeats):
@@ -79,7 +79,7 @@ def samples_per_second(samples, size_px, ppm, primitives=1, repeats=3, stages=No
         n = len(samples)
         stages.update({k: round(timings.get(k, 0.0) / n * 1e3, 3) for k in STAGES})
         stages["other"] = round((total - sum(timings.values())) / n * 1e3, 3)
-    return statistics.median(r[0] for r in runs), m
+    return rate, m
 
 
 def _stage_row(label, stages):

@@ -494,7 +494,7 @@ class HairyBrush:
         for j in range(1, n):
             p = cc[:, j]
             d = p - prev
-            dist = np.sqrt(_add(d * d, axis=-1))
+            dist = _norm(d)
             seg = segs[:, j - 1]
             scale = np.minimum(1.0, seg / np.maximum(dist, 1e-12))
             cand = prev + d * scale[:, None]
@@ -504,7 +504,7 @@ class HairyBrush:
             if reach.any():  # lies flat on the paper at its full arc distance
                 H = np.sqrt(np.maximum(seg * seg - h * h, 0.0))
                 dxy = d[:, :2]
-                nd = np.sqrt(_add(dxy * dxy, axis=-1))
+                nd = _norm(dxy)
                 dirxy = np.where(nd[:, None] > 1e-9, dxy / np.maximum(nd, 1e-12)[:, None], fb)
                 flat = np.zeros((m, 3))
                 flat[:, :2] = prev[:, :2] + H[:, None] * dirxy

@@ -149,11 +149,11 @@ def _scanline_spans(xy, owner, ppm, win, margin_px, near_px):
     ms = m[seg]
     sx0, sy0, dx, dy = x0[seg], y0[seg], (x1 - x0)[seg], (y1 - y0)[seg]
     total = int(h.sum())
+    flat = dy == 0
+    ddy = np.where(flat, 1.0, dy)
     ends = []
     for band in (ms, (near_px / ppm)[owner][seg]):
         # the part of the segment within the band around the scanline, widened by the margin
-        flat = dy == 0
-        ddy = np.where(flat, 1.0, dy)
         ta = np.where(flat, 0.0, (yc - band - sy0) / ddy)
         tb = np.where(flat, 1.0, (yc + band - sy0) / ddy)
         t0, t1 = np.minimum(ta, tb), np.maximum(ta, tb)
@@ -390,7 +390,8 @@ def _dot(a, b):
 def _no_ink(k):
     """``_marks_ink``'s answer for k windows without a pixel inside."""
     none_i, none_f = np.zeros(0, dtype=np.int64), np.zeros(0)
-    fields = [[none_i] * k, [none_i] * k, [none_f] * k, [np.zeros((0, 3))] * k, [none_f] * k]
+    wet, col = np.zeros(0, dtype=np.float32), np.zeros((0, 3), dtype=np.float32)
+    fields = [[none_i] * k, [none_i] * k, [wet] * k, [col] * k, [none_f] * k]
     return fields, np.zeros(k, dtype=bool)
 
 
@@ -541,7 +542,8 @@ def _marks_ink(prims, win, lo, hi, ppm, c, U, V, T, zmin, ink):
             _dot(dc, dV),  # (tau - V^).V
         ]
     ).reshape(23, -1)
-    S_iv = np.take(slab_tab, iv_win * (Ns - 1) + iv_slab, axis=1)
+    slab = iv_win * (Ns - 1) + iv_slab  # every interval's slab in the tables
+    S_iv = np.take(slab_tab, slab, axis=1)
     row0 = iv_scan * Ns + iv_slab
     tab = np.stack(
         [
@@ -604,7 +606,6 @@ def _marks_ink(prims, win, lo, hi, ppm, c, U, V, T, zmin, ink):
     tex0 = tex[0, 0]
     same_tex = bool(np.all(np.abs(tex - tex0) <= 1e-12 * (1.0 + np.abs(tex0))))
     nf = 4 if same_tex else inkp.shape[-1]
-    slab = iv_win * (Ns - 1) + iv_slab
     c0s = c0.reshape(-1, 3)[slab]
     per = np.concatenate(
         [
