@@ -20,8 +20,17 @@ paper plane psi (z = 0), and the ink information of every pixel inside the cut.
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import NamedTuple
 
 import numpy as np
+
+from .brush import INK_FIELDS, _norm
+
+# the ink rows' columns (``brush.INK_FIELDS``): the load a pixel takes from V^ (wet, col), and
+# the texture function (Eq. 5)
+LOAD = slice(INK_FIELDS["wet"].start, INK_FIELDS["col"].stop)
+TEX_NAMES = ("wr", "cr", "wv", "cv")
+TEXTURE = slice(INK_FIELDS["wr"].start, INK_FIELDS["cv"].stop)
 
 # marching-squares edges: 0 = (i,j)-(i,j+1), 1 = (i,j+1)-(i+1,j+1), 2 = (i+1,j)-(i+1,j+1),
 # 3 = (i,j)-(i+1,j); case bits: 1 = (i,j), 2 = (i,j+1), 4 = (i+1,j+1), 8 = (i+1,j) inside.
@@ -59,7 +68,7 @@ for _c, _pairs in _CASES.items():
         _SEG_B[_c, _k] = _e1
 
 
-@dataclass
+@dataclass(kw_only=True)
 class Mark:
     """One primitive's current drawing mark, rasterised into a pixel window of the paper."""
 
@@ -182,7 +191,19 @@ def _scanline_spans(xy, owner, ppm, win, margin_px, near_px):
     return lo, np.maximum(hi, lo)
 
 
-@dataclass
+class SurfaceRows(NamedTuple):
+    """The surface's grid rows of the primitives (see ``nurbs``): row s is the ellipse
+    centre(s) + U(s) Cx(t) + V(s) Cy(t) in the plane through centre(s) normal to T(s)."""
+
+    centre: np.ndarray  # (m, Ns, 3) axis points V^
+    U: np.ndarray  # (m, Ns, 3) semi-major axis vectors
+    V: np.ndarray  # (m, Ns, 3) semi-minor axis vectors
+    T: np.ndarray  # (m, Ns, 3) unit tangents
+    zmin: np.ndarray  # (m, Ns) lowest z of each row
+    ink: np.ndarray  # (m, Ns, INK_WIDTH) the ink at V^ (Eq. 21), laid out as INK_FIELDS
+
+
+@dataclass(kw_only=True)
 class Cut:
     """The first half of one step's marks: where every primitive's solid meets the paper
     (cur_u, S_i and hei_i for the dynamics, Eq. 10) and its pixel window. ``fill_marks`` then
@@ -194,7 +215,7 @@ class Cut:
     xy: np.ndarray  # (M, 2, 2) all cuts' cur_u, grouped by cut
     seg_win: np.ndarray  # (M,) the cut of every segment
     chord: np.ndarray  # (k,) the grid's chord error against the true sections, pixels
-    rows: tuple  # the surface rows (c, U, V, T, zmin, ink) of every primitive
+    rows: SurfaceRows  # the surface rows of every primitive
     segments: list  # (M_i, 2, 2) cur_u of each cut
     area: np.ndarray  # (k,) S_i
     height: np.ndarray  # (k,) hei_i
@@ -265,16 +286,16 @@ def cut_marks(brush, sec, ink_rows, ppm: float, paper_shape) -> Cut | None:
     hh = np.where(w > 0, h, 0)  # a window without columns has no pixels
     win = np.stack([iy0, ix0, hh, w], axis=1)
     return Cut(
-        prims,
-        win,
-        np.stack([h, w], axis=1),
-        xy_sorted,
-        seg_win,
-        chord,
-        (rows_c, rows_U, rows_V, rows_T, Zmin, ink_rows),
-        np.split(xy_sorted, np.cumsum(cnt[cuts])[:-1]),
-        area,
-        height,
+        prims=prims,
+        win=win,
+        shape=np.stack([h, w], axis=1),
+        xy=xy_sorted,
+        seg_win=seg_win,
+        chord=chord,
+        rows=SurfaceRows(rows_c, rows_U, rows_V, rows_T, Zmin, ink_rows),
+        segments=np.split(xy_sorted, np.cumsum(cnt[cuts])[:-1]),
+        area=area,
+        height=height,
     )
 
 
@@ -290,24 +311,25 @@ def fill_marks(cuts: list[Cut | None], ppm: float) -> list[list[Mark]]:
         c = real[0]
         prims, win, xy, seg_win, chord, rows = c.prims, c.win, c.xy, c.seg_win, c.chord, c.rows
     else:
-        offs = np.cumsum([0] + [c.rows[0].shape[0] for c in real[:-1]])
+        offs = np.cumsum([0] + [c.rows.centre.shape[0] for c in real[:-1]])
         prims = np.concatenate([c.prims + o for c, o in zip(real, offs, strict=True)])
         woffs = np.cumsum([0] + [len(c.prims) for c in real[:-1]])
         seg_win = np.concatenate([c.seg_win + o for c, o in zip(real, woffs, strict=True)])
         win = np.concatenate([c.win for c in real])
         xy = np.concatenate([c.xy for c in real])
         chord = np.concatenate([c.chord for c in real])
-        rows = tuple(np.concatenate(parts) for parts in zip(*(c.rows for c in real), strict=True))
+        rows = SurfaceRows._make(
+            np.concatenate(parts) for parts in zip(*(c.rows for c in real), strict=True)
+        )
     lo, hi = _scanline_spans(xy, seg_win, ppm, win, SPAN_MARGIN_PX + chord, SPAN_NEAR_PX + chord)
-    ink, edge = _marks_ink_batched(prims, win, lo, hi, ppm, rows)
+    pixels, edge = _marks_ink_batched(prims, win, lo, hi, ppm, rows)
     redo = np.nonzero(edge)[0]
     if redo.size:  # the solid reaches past a span: scan those cuts' whole bounding boxes
         wr = win[redo]
         full = np.zeros(int(wr[:, 2].sum()), dtype=np.int64), np.repeat(wr[:, 3], wr[:, 2])
-        again, _ = _marks_ink_batched(prims[redo], wr, *full, ppm, rows)
-        for field, field2 in zip(ink, again, strict=True):
-            for jj, j in enumerate(redo.tolist()):
-                field[j] = field2[jj]
+        again = _marks_ink_batched(prims[redo], wr, *full, ppm, rows).pixels
+        for jj, j in enumerate(redo.tolist()):
+            pixels[j] = again[jj]
     out, at = [], 0
     for c in cuts:
         if c is None:
@@ -315,21 +337,21 @@ def fill_marks(cuts: list[Cut | None], ppm: float) -> list[list[Mark]]:
             continue
         marks = []
         for j, i in enumerate(c.prims.tolist()):
-            pr, pc, wet, col, lateral = (a[at + j] for a in ink)
+            px = pixels[at + j]
             marks.append(
                 Mark(
-                    i,
-                    int(c.win[j, 0]),
-                    int(c.win[j, 1]),
-                    pr,
-                    pc,
-                    wet,
-                    col,
-                    lateral,
-                    (int(c.shape[j, 0]), int(c.shape[j, 1])),
-                    c.segments[j],
-                    float(c.area[j]),
-                    float(c.height[j]),
+                    primitive=i,
+                    iy0=int(c.win[j, 0]),
+                    ix0=int(c.win[j, 1]),
+                    rows=px.rows,
+                    cols=px.cols,
+                    wet=px.wet,
+                    col=px.col,
+                    lateral=px.lateral,
+                    shape=(int(c.shape[j, 0]), int(c.shape[j, 1])),
+                    segments=c.segments[j],
+                    area_bbox=float(c.area[j]),
+                    height=float(c.height[j]),
                 )
             )
         out.append(marks)
@@ -342,11 +364,30 @@ def compute_marks(brush, sec, ink_rows, ppm: float, paper_shape) -> list[Mark]:
     return fill_marks([cut_marks(brush, sec, ink_rows, ppm, paper_shape)], ppm)[0]
 
 
-def _norm(v):
-    return np.sqrt(np.sum(v * v, axis=-1))
+def _dot(a, b):
+    return np.einsum("...k,...k->...", a, b)
 
 
-def _marks_ink_batched(prims, win, lo, hi, ppm, rows):
+class PixelInk(NamedTuple):
+    """The inked pixels of one window and their ink (Eq. 23)."""
+
+    rows: np.ndarray  # (P,) window rows
+    cols: np.ndarray  # (P,) window columns
+    wet: np.ndarray  # (P,) float32
+    col: np.ndarray  # (P, 3) float32 ink density
+    lateral: np.ndarray  # (P,) position across the major axis, [-1, 1]
+
+
+class WindowsInk(NamedTuple):
+    """``_marks_ink``'s answer: every window's inked pixels, and whether an inked pixel of the
+    window lies at the end of a span that the window could extend (the span may then have cut
+    the solid short)."""
+
+    pixels: list  # [PixelInk] one per window
+    edge: np.ndarray  # (k,) bool
+
+
+def _marks_ink_batched(prims, win, lo, hi, ppm, rows) -> WindowsInk:
     """``_marks_ink`` over bands of scanlines of at most about BATCH_PIXELS span pixels (one
     band unless the marks are many and large), so that memory stays bounded; a band may cut a
     window in two, whose pieces are joined again."""
@@ -355,7 +396,7 @@ def _marks_ink_batched(prims, win, lo, hi, ppm, rows):
     lens = hi - lo
     total = int(lens.sum())
     if total <= BATCH_PIXELS:
-        return _marks_ink(prims, win, lo, hi, ppm, *rows)
+        return _marks_ink(prims, win, lo, hi, ppm, rows)
     band = (np.cumsum(lens) - lens) // BATCH_PIXELS  # band of every stacked scanline
     scan_win = np.repeat(np.arange(k), h)
     start = np.cumsum(h) - h
@@ -364,7 +405,7 @@ def _marks_ink_batched(prims, win, lo, hi, ppm, rows):
     p0 = np.nonzero(brk)[0]
     p1 = np.r_[p0[1:], len(band)]
     pw = scan_win[p0]  # window of each piece
-    out = [[[] for _ in range(k)] for _ in range(5)]
+    pieces = [[] for _ in range(k)]
     edge = np.zeros(k, dtype=bool)
     for b in np.unique(band[p0]).tolist():
         sel = np.nonzero(band[p0] == b)[0]
@@ -374,28 +415,143 @@ def _marks_ink_batched(prims, win, lo, hi, ppm, rows):
         wp[:, 0] += off
         wp[:, 2] = p1[sel] - p0[sel]
         r = np.concatenate([np.arange(p0[s], p1[s]) for s in sel.tolist()])
-        ink, e = _marks_ink(prims[js], wp, lo[r], hi[r], ppm, *rows)
-        edge[js] |= e
+        part = _marks_ink(prims[js], wp, lo[r], hi[r], ppm, rows)
+        edge[js] |= part.edge
         for t, j in enumerate(js.tolist()):
-            out[0][j].append(ink[0][t] + off[t])  # rows back in the window's frame
-            for f in range(1, 5):
-                out[f][j].append(ink[f][t])
-    return [[np.concatenate(parts) for parts in field] for field in out], edge
+            px = part.pixels[t]
+            pieces[j].append(px._replace(rows=px.rows + off[t]))  # rows in the window's frame
+    joined = [PixelInk._make(np.concatenate(f) for f in zip(*p, strict=True)) for p in pieces]
+    return WindowsInk(joined, edge)
 
 
-def _dot(a, b):
-    return np.einsum("...k,...k->...", a, b)
-
-
-def _no_ink(k):
+def _no_ink(k) -> WindowsInk:
     """``_marks_ink``'s answer for k windows without a pixel inside."""
     none_i, none_f = np.zeros(0, dtype=np.int64), np.zeros(0)
     wet, col = np.zeros(0, dtype=np.float32), np.zeros((0, 3), dtype=np.float32)
-    fields = [[none_i] * k, [none_i] * k, [wet] * k, [col] * k, [none_f] * k]
-    return fields, np.zeros(k, dtype=bool)
+    return WindowsInk([PixelInk(none_i, none_i, wet, col, none_f)] * k, np.zeros(k, dtype=bool))
 
 
-def _marks_ink(prims, win, lo, hi, ppm, c, U, V, T, zmin, ink):
+class Scanlines(NamedTuple):
+    """The pixel rows of all windows, stacked in window order, and their spans."""
+
+    win: np.ndarray  # (S,) window of every scanline
+    row: np.ndarray  # (S,) its row in the window
+    x0: np.ndarray  # (S,) the window's first paper column
+    y: np.ndarray  # (S,) y of the pixel centres, mm
+    lo: np.ndarray  # (S,) span [lo, hi) in window columns
+    hi: np.ndarray
+    first: np.ndarray  # (S,) the scanline's first pixel among all span pixels
+
+
+class ContactRows(NamedTuple):
+    """The surface rows of every window's primitive that can bound a slab that counts (the
+    rows next to one that reaches the paper): rows j0..j1 of the surface."""
+
+    c: np.ndarray  # (k, Ns, 3) row centres V^
+    U: np.ndarray  # (k, Ns, 3) semi-axis vectors
+    V: np.ndarray
+    T: np.ndarray  # (k, Ns, 3) unit tangents: the normals of the rows' planes
+    slab_ok: np.ndarray  # (k, Ns - 1) slabs between rows that reach the paper
+    j0: int
+    j1: int
+
+
+class RowPlanes(NamedTuple):
+    """Every row's plane on every scanline: the signed distance of the pixel at x (mm) is
+    Hd = x tx + h; it is >= 0 on window columns [start, stop)."""
+
+    tx: np.ndarray  # (S, Ns)
+    h: np.ndarray  # (S, Ns)
+    start: np.ndarray  # (S, Ns)
+    stop: np.ndarray  # (S, Ns)
+
+
+class Entries(NamedTuple):
+    """The crossing pixels of the slabs, interval by interval: a crossing interval is a run of
+    columns of one scanline in one slab; an entry is one pixel of one interval."""
+
+    scan: np.ndarray  # (I,) scanline of every interval
+    slab: np.ndarray  # (I,) its slab, counted from the window's row j0
+    win: np.ndarray  # (I,) its window
+    count: np.ndarray  # (I,) its entries (after dropping a fold's middle slabs)
+    cols: np.ndarray  # (E,) window column of every entry
+    entry_scan: np.ndarray  # (E,) scanline of every entry
+    interval: np.ndarray  # (E,) interval of every entry
+    pair: tuple | None  # (first, last) entries of the pixels in several slabs, or None
+
+
+class SlabQuadratics(NamedTuple):
+    """The section solve's dot products as quadratics in lam, one column per slab. Between rows
+    j and j + 1 the section's centre V^ = c0 + lam dc, U = U0 + lam dU and V = V0 + lam dV, so
+    with tau = (x, y, 0) on the paper:
+    |U|^2 = uu0 + lam uu1 + lam^2 uu2, |V|^2 likewise (vv), U.V likewise (uv), and
+    (tau - V^).U = x (ux0 + lam ux1) + y (uy0 + lam uy1) - (cu0 + lam cu1 + lam^2 cu2),
+    (tau - V^).V likewise (vx, vy, cv)."""
+
+    uu0: np.ndarray
+    uu1: np.ndarray
+    uu2: np.ndarray
+    vv0: np.ndarray
+    vv1: np.ndarray
+    vv2: np.ndarray
+    uv0: np.ndarray
+    uv1: np.ndarray
+    uv2: np.ndarray
+    ux0: np.ndarray
+    uy0: np.ndarray
+    cu0: np.ndarray
+    ux1: np.ndarray
+    uy1: np.ndarray
+    cu1: np.ndarray
+    cu2: np.ndarray
+    vx0: np.ndarray
+    vy0: np.ndarray
+    cv0: np.ndarray
+    vx1: np.ndarray
+    vy1: np.ndarray
+    cv1: np.ndarray
+    cv2: np.ndarray
+
+
+class IntervalQuadratics(NamedTuple):
+    """``SlabQuadratics`` on one scanline (y fixed), one column per interval or per entry:
+    (tau - V^).U = x ux0 + du0 + lam (x ux1 + du1 - lam cu2), likewise (tau - V^).V, and the
+    planes of rows j and j + 1 on the scanline (Hd = x tx + h)."""
+
+    uu0: np.ndarray
+    uu1: np.ndarray
+    uu2: np.ndarray
+    vv0: np.ndarray
+    vv1: np.ndarray
+    vv2: np.ndarray
+    uv0: np.ndarray
+    uv1: np.ndarray
+    uv2: np.ndarray
+    ux0: np.ndarray
+    du0: np.ndarray
+    ux1: np.ndarray
+    du1: np.ndarray
+    cu2: np.ndarray
+    vx0: np.ndarray
+    dv0: np.ndarray
+    vx1: np.ndarray
+    dv1: np.ndarray
+    cv2: np.ndarray
+    tx0: np.ndarray
+    h0: np.ndarray
+    tx1: np.ndarray
+    h1: np.ndarray
+
+
+class SectionSolve(NamedTuple):
+    """Every entry placed in its slab: tau - V^ = p U + q V in the section plane at lam."""
+
+    lam: np.ndarray  # (E,) position between rows j and j + 1
+    p: np.ndarray  # (E,)
+    f2: np.ndarray  # (E,) p^2 + q^2: inside the section where <= 1
+
+
+def _marks_ink(prims, win, lo, hi, ppm, rows: SurfaceRows) -> WindowsInk:
     """Which pixels of the windows' spans lie inside their primitive's solid, and their ink
     (Eq. 21-23), for all primitives at once.
 
@@ -407,44 +563,83 @@ def _marks_ink(prims, win, lo, hi, ppm, c, U, V, T, zmin, ink):
     from the row's plane and confirmed with the same rounded formula, and every slab's
     crossing pixels on a scanline are at most two column intervals. The work is per scanline
     and row plus per pixel, never per pixel and row. Only slabs between rows that reach the
-    paper count.
-
-    Returns, per primitive, lists of (rows, cols, wet, col, lateral) of its inside pixels, and
-    whether an inside pixel of the primitive lies at the end of a span that the window could
-    extend (the span may then have cut the solid short)."""
+    paper count. The stages: ``_crossing_columns``, ``_slab_intervals``, ``_section_solve``,
+    ``_pixel_ink``."""
     k = len(prims)
-    Ns = c.shape[1]
-    iy0, ix0, h, win_w = (win[:, j] for j in range(4))
-    lens = hi - lo
-    S = len(lo)
-    scan_win = np.repeat(np.arange(k), h)  # window of every scanline
-    scan_row = np.arange(S) - np.repeat(np.cumsum(h) - h, h)
-    scan_x0 = ix0[scan_win]
-    scan_y = (iy0[scan_win] + scan_row + 0.5) / ppm
-    scan_off = np.cumsum(lens) - lens  # first pixel of every scanline
-    N = int(lens.sum())
+    sc = _scanlines(win, lo, hi, ppm)
+    N = int((hi - lo).sum())
     if N == 0:
         return _no_ink(k)
-    # only the rows next to one that reaches the paper can bound a slab that counts
-    reach = zmin[prims] <= 0.0
+    rows_k = _contact_rows(prims, rows)
+    if rows_k is None:
+        return _no_ink(k)
+    planes = _crossing_columns(sc, rows_k, ppm)
+    ent = _slab_intervals(sc, planes, rows_k.slab_ok, N)
+    if ent is None:
+        return _no_ink(k)
+    Ns = rows_k.j1 - rows_k.j0
+    slab = ent.win * (Ns - 1) + ent.slab  # every interval's slab in the tables
+    x = (sc.x0[ent.entry_scan] + ent.cols + 0.5) / ppm
+    iq = _interval_quadratics(rows_k, planes, ent, sc.y[ent.scan], slab)
+    sol = _section_solve(iq, ent.count, x)
+    keep = np.ones(len(sol.f2), dtype=bool)
+    if ent.pair is not None:  # of the first and the last slab, the more inside: union of sections
+        fi, la = ent.pair
+        keep[np.where(sol.f2[la] < sol.f2[fi], fi, la)] = False
+    inside = keep & (sol.f2 <= 1.0)
+    edge = _span_edges(sc, ent, inside, win[:, 3], k)
+    ok = np.nonzero(inside)[0]
+    n_ok = np.bincount(ent.interval[ok], minlength=len(ent.scan))  # inked pixels per interval
+    cols = ent.cols[ok]
+    inkp = rows.ink[prims, rows_k.j0 : rows_k.j1]
+    wet, col = _pixel_ink(inkp, rows_k, sc, ent, slab, n_ok, sol.lam[ok], cols, ppm)
+    lateral = np.clip(sol.p[ok], -1.0, 1.0)
+    rws = sc.row[ent.entry_scan[ok]]
+    cut = np.cumsum(np.bincount(ent.win, weights=n_ok, minlength=k)).astype(np.int64)[:-1]
+    fields = [np.split(a, cut) for a in (rws, cols, wet, col, lateral)]
+    return WindowsInk([PixelInk(*f) for f in zip(*fields, strict=True)], edge)
+
+
+def _scanlines(win, lo, hi, ppm) -> Scanlines:
+    iy0, ix0, h = win[:, 0], win[:, 1], win[:, 2]
+    scan_win = np.repeat(np.arange(len(win)), h)
+    scan_row = np.arange(len(lo)) - np.repeat(np.cumsum(h) - h, h)
+    lens = hi - lo
+    return Scanlines(
+        win=scan_win,
+        row=scan_row,
+        x0=ix0[scan_win],
+        y=(iy0[scan_win] + scan_row + 0.5) / ppm,
+        lo=lo,
+        hi=hi,
+        first=np.cumsum(lens) - lens,
+    )
+
+
+def _contact_rows(prims, rows: SurfaceRows) -> ContactRows | None:
+    """Only the rows next to one that reaches the paper can bound a slab that counts."""
+    reach = rows.zmin[prims] <= 0.0
     near = np.nonzero(reach.any(axis=0))[0]
     if near.size == 0:
-        return _no_ink(k)
-    j0, j1 = max(int(near[0]) - 1, 0), min(int(near[-1]) + 2, Ns)
-    Ns = j1 - j0
+        return None
+    j0, j1 = max(int(near[0]) - 1, 0), min(int(near[-1]) + 2, rows.centre.shape[1])
     reach = reach[:, j0:j1]
-    cp, Up, Vp, Tp = (a[prims, j0:j1] for a in (c, U, V, T))
-    cT = _dot(cp, Tp)  # (k, Ns)
-    slab_ok = reach[:, :-1] | reach[:, 1:]  # (k, Ns - 1)
-    # the sign change of every row on every scanline
-    T0 = Tp[scan_win, :, 0]  # (S, Ns)
-    bk = scan_y[:, None] * Tp[scan_win, :, 1] - cT[scan_win]
-    sl, sh = lo[:, None], hi[:, None]
-    x0 = scan_x0[:, None]
+    c, U, V, T = (a[prims, j0:j1] for a in (rows.centre, rows.U, rows.V, rows.T))
+    return ContactRows(c, U, V, T, reach[:, :-1] | reach[:, 1:], j0, j1)
+
+
+def _crossing_columns(sc: Scanlines, rk: ContactRows, ppm) -> RowPlanes:
+    """The column where every row's Hd changes sign on every scanline: estimated from the
+    row's plane, then confirmed with the rounded formula itself (monotone in the column)."""
+    cT = _dot(rk.c, rk.T)  # (k, Ns)
+    T0 = rk.T[sc.win, :, 0]  # (S, Ns)
+    bk = sc.y[:, None] * rk.T[sc.win, :, 1] - cT[sc.win]
+    sl, sh = sc.lo[:, None], sc.hi[:, None]
+    x0 = sc.x0[:, None]
     rise = T0 > 0  # Hd >= 0 on a suffix of the scanline (a prefix when T0 < 0)
     with np.errstate(divide="ignore", invalid="ignore"):
         cstar = np.where(T0 != 0, (-bk / np.where(T0 != 0, T0, 1.0)) * ppm - x0 - 0.5, 0.0)
-    cstar = np.clip(cstar, -1.0, float(np.max(hi, initial=0)) + 1.0)  # inf where T0 is tiny
+    cstar = np.clip(cstar, -1.0, float(np.max(sc.hi, initial=0)) + 1.0)  # inf where T0 is tiny
     t = np.where(rise, np.ceil(cstar), np.floor(cstar) + 1).astype(np.int64)
     t = np.clip(t, sl, sh)
 
@@ -463,6 +658,14 @@ def _marks_ink(prims, win, lo, hi, ppm, c, U, V, T, zmin, ink):
     B = np.where(rise, sh, t)
     A = np.where(flat, sl, A)
     B = np.where(flat, np.where(bk >= 0, sh, sl), B)
+    return RowPlanes(tx=T0, h=bk, start=A, stop=B)
+
+
+def _slab_intervals(sc: Scanlines, planes: RowPlanes, slab_ok, N: int) -> Entries | None:
+    """The crossing intervals, in order of scanline (so of window), slab and part; every pixel
+    of an interval is an entry, and a pixel is an entry of each slab it crosses (a fold: more)."""
+    A, B = planes.start, planes.stop
+    Ns = A.shape[1]
     # crossing pixels of slab j: [A_j, B_j) xor [A_j+1, B_j+1) = [a0, a1) u [b0, b1)
     a0 = np.minimum(A[:, :-1], A[:, 1:])
     a1 = np.maximum(A[:, :-1], A[:, 1:])
@@ -470,147 +673,163 @@ def _marks_ink(prims, win, lo, hi, ppm, c, U, V, T, zmin, ink):
     b1 = np.maximum(B[:, :-1], B[:, 1:])
     s0 = np.stack([a0, np.maximum(a1, b0)], axis=-1)  # (S, Ns - 1, 2)
     s1 = np.stack([np.minimum(a1, b0), b1], axis=-1)
-    ok = slab_ok[scan_win][..., None]
+    ok = slab_ok[sc.win][..., None]
     n = np.where(ok, np.maximum(s1 - s0, 0), 0).ravel()
     if not n.any():
-        return _no_ink(k)
-    # the crossing intervals, in order of scanline (so of window), slab and part; every pixel of
-    # an interval is an entry, and a pixel is an entry of each slab it crosses (a fold: more)
+        return None
     iv = np.nonzero(n)[0]
     n = n[iv]
     E = int(n.sum())
     iv_scan = iv // (2 * (Ns - 1))
-    iv_slab = (iv // 2) % (Ns - 1)
-    iv_win = scan_win[iv_scan]
-    iv_y = scan_y[iv_scan]
     step = np.arange(E) - np.repeat(np.cumsum(n) - n, n)  # position in its interval
     cols = np.repeat(s0.ravel()[iv], n) + step  # window column of every entry
     scan_e = np.repeat(iv_scan, n)
     e_iv = np.repeat(np.arange(len(iv)), n)  # interval of every entry
-    # a pixel in several slabs (where the axis folds or the rows' planes fan out) keeps only
-    # its entries of the first and the last slab; in interval order a pixel's entries come by
-    # increasing slab
-    pid = scan_off[scan_e] + cols - lo[scan_e]
-    visits = np.bincount(pid, minlength=N)
-    pair = None
-    if visits.max(initial=0) > 1:
-        ent = np.arange(E)
-        multi_px = np.nonzero(visits > 1)[0]
-        fpos = np.full(N, E)
-        lpos = np.full(N, -1)
-        np.minimum.at(fpos, pid, ent)
-        np.maximum.at(lpos, pid, ent)
-        keep = (visits[pid] == 1) | (ent == fpos[pid]) | (ent == lpos[pid])
-        sel = np.nonzero(keep)[0]
-        rank = np.cumsum(keep) - 1  # entry -> position among the kept
-        pair = rank[fpos[multi_px]], rank[lpos[multi_px]]
+    pid = sc.first[scan_e] + cols - sc.lo[scan_e]  # the entry's pixel among all span pixels
+    folds = _first_and_last_slab(pid, N)
+    pair, per_iv = None, n
+    if folds is not None:
+        sel, pair = folds
         cols, scan_e, e_iv = cols[sel], scan_e[sel], e_iv[sel]
         per_iv = np.bincount(e_iv, minlength=len(iv))
-    else:
-        per_iv = n
-    x = (scan_x0[scan_e] + cols + 0.5) / ppm
-    # Between rows j and j + 1 the section's centre, U and V are linear in lam, so every dot
-    # product of the least-squares solve below is a quadratic in lam whose coefficients belong
-    # to the slab, and on a scanline y is fixed too: one table column per interval, repeated
-    # over its pixels into contiguous rows.
-    dc, dU, dV = np.diff(cp, axis=1), np.diff(Up, axis=1), np.diff(Vp, axis=1)
-    c0, U0, V0 = cp[:, :-1], Up[:, :-1], Vp[:, :-1]
-    slab_tab = np.stack(
-        [
-            _dot(U0, U0),
-            2 * _dot(U0, dU),
-            _dot(dU, dU),  # |U|^2
-            _dot(V0, V0),
-            2 * _dot(V0, dV),
-            _dot(dV, dV),  # |V|^2
-            _dot(U0, V0),
-            _dot(U0, dV) + _dot(dU, V0),
-            _dot(dU, dV),  # U.V
-            U0[..., 0],
-            U0[..., 1],
-            _dot(c0, U0),
-            dU[..., 0],
-            dU[..., 1],
-            _dot(c0, dU) + _dot(dc, U0),
-            _dot(dc, dU),  # (tau - V^).U
-            V0[..., 0],
-            V0[..., 1],
-            _dot(c0, V0),
-            dV[..., 0],
-            dV[..., 1],
-            _dot(c0, dV) + _dot(dc, V0),
-            _dot(dc, dV),  # (tau - V^).V
-        ]
-    ).reshape(23, -1)
-    slab = iv_win * (Ns - 1) + iv_slab  # every interval's slab in the tables
-    S_iv = np.take(slab_tab, slab, axis=1)
-    row0 = iv_scan * Ns + iv_slab
-    tab = np.stack(
-        [
-            *S_iv[:9],
-            S_iv[9],
-            iv_y * S_iv[10] - S_iv[11],
-            S_iv[12],
-            iv_y * S_iv[13] - S_iv[14],
-            S_iv[15],
-            S_iv[16],
-            iv_y * S_iv[17] - S_iv[18],
-            S_iv[19],
-            iv_y * S_iv[20] - S_iv[21],
-            S_iv[22],
-            np.take(T0, row0),
-            np.take(bk, row0),
-            np.take(T0, row0 + 1),
-            np.take(bk, row0 + 1),  # the planes of rows j and j + 1 on the scanline
-        ]
+    return Entries(
+        scan=iv_scan,
+        slab=(iv // 2) % (Ns - 1),
+        win=sc.win[iv_scan],
+        count=per_iv,
+        cols=cols,
+        entry_scan=scan_e,
+        interval=e_iv,
+        pair=pair,
     )
-    C = np.repeat(tab, per_iv, axis=1)
-    h0 = x * C[19] + C[20]  # the rounded Hd of the crossing search
-    h1 = x * C[21] + C[22]
+
+
+def _first_and_last_slab(pid, N: int):
+    """A pixel in several slabs (where the axis folds or the rows' planes fan out) keeps only
+    its entries of the first and the last slab; in interval order a pixel's entries come by
+    increasing slab. None when no pixel is in several slabs, else (the entries kept, and the
+    positions among them of every such pixel's first and last entry)."""
+    visits = np.bincount(pid, minlength=N)
+    if visits.max(initial=0) <= 1:
+        return None
+    E = len(pid)
+    ent = np.arange(E)
+    multi_px = np.nonzero(visits > 1)[0]
+    fpos = np.full(N, E)
+    lpos = np.full(N, -1)
+    np.minimum.at(fpos, pid, ent)
+    np.maximum.at(lpos, pid, ent)
+    keep = (visits[pid] == 1) | (ent == fpos[pid]) | (ent == lpos[pid])
+    rank = np.cumsum(keep) - 1  # entry -> position among the kept
+    return np.nonzero(keep)[0], (rank[fpos[multi_px]], rank[lpos[multi_px]])
+
+
+def _slab_quadratics(rk: ContactRows) -> SlabQuadratics:
+    """``SlabQuadratics`` of every slab, (k, Ns - 1) each."""
+    dc, dU, dV = np.diff(rk.c, axis=1), np.diff(rk.U, axis=1), np.diff(rk.V, axis=1)
+    c0, U0, V0 = rk.c[:, :-1], rk.U[:, :-1], rk.V[:, :-1]
+    return SlabQuadratics(
+        uu0=_dot(U0, U0),
+        uu1=2 * _dot(U0, dU),
+        uu2=_dot(dU, dU),
+        vv0=_dot(V0, V0),
+        vv1=2 * _dot(V0, dV),
+        vv2=_dot(dV, dV),
+        uv0=_dot(U0, V0),
+        uv1=_dot(U0, dV) + _dot(dU, V0),
+        uv2=_dot(dU, dV),
+        ux0=U0[..., 0],
+        uy0=U0[..., 1],
+        cu0=_dot(c0, U0),
+        ux1=dU[..., 0],
+        uy1=dU[..., 1],
+        cu1=_dot(c0, dU) + _dot(dc, U0),
+        cu2=_dot(dc, dU),
+        vx0=V0[..., 0],
+        vy0=V0[..., 1],
+        cv0=_dot(c0, V0),
+        vx1=dV[..., 0],
+        vy1=dV[..., 1],
+        cv1=_dot(c0, dV) + _dot(dc, V0),
+        cv2=_dot(dc, dV),
+    )
+
+
+def _interval_quadratics(rk: ContactRows, planes: RowPlanes, ent: Entries, y, slab):
+    """``IntervalQuadratics`` of every interval: its slab's, with the scanline's y folded in."""
+    sq = _slab_quadratics(rk)
+    s = SlabQuadratics._make(np.take(np.stack(sq).reshape(len(sq), -1), slab, axis=1))
+    row0 = ent.scan * rk.c.shape[1] + ent.slab
+    return IntervalQuadratics(
+        *s[:9],
+        ux0=s.ux0,
+        du0=y * s.uy0 - s.cu0,
+        ux1=s.ux1,
+        du1=y * s.uy1 - s.cu1,
+        cu2=s.cu2,
+        vx0=s.vx0,
+        dv0=y * s.vy0 - s.cv0,
+        vx1=s.vx1,
+        dv1=y * s.vy1 - s.cv1,
+        cv2=s.cv2,
+        tx0=np.take(planes.tx, row0),
+        h0=np.take(planes.h, row0),
+        tx1=np.take(planes.tx, row0 + 1),
+        h1=np.take(planes.h, row0 + 1),
+    )
+
+
+def _section_solve(iq: IntervalQuadratics, count, x) -> SectionSolve:
+    """Every entry's section plane (at lam between its slab's rows, where the rounded Hd of the
+    crossing search changes sign) and its place there: tau - V^ = p U + q V (least squares,
+    tolerant of the flat tip line). The intervals' quadratics are repeated over their entries
+    into contiguous rows."""
+    C = IntervalQuadratics._make(np.repeat(np.stack(iq), count, axis=1))
+    h0 = x * C.tx0 + C.h0
+    h1 = x * C.tx1 + C.h1
     lam = np.clip(h0 / np.where(h0 != h1, h0 - h1, 1.0), 0.0, 1.0)
-    # the pixel in the section plane at lam: tau - V^ = p U + q V (least squares, tolerant of the
-    # flat tip line)
-    uu = C[0] + lam * (C[1] + lam * C[2]) + 1e-12
-    vv = C[3] + lam * (C[4] + lam * C[5]) + 1e-12
-    uv = C[6] + lam * (C[7] + lam * C[8])
-    du = x * C[9] + C[10] + lam * (x * C[11] + C[12] - lam * C[13])
-    dv = x * C[14] + C[15] + lam * (x * C[16] + C[17] - lam * C[18])
+    uu = C.uu0 + lam * (C.uu1 + lam * C.uu2) + 1e-12
+    vv = C.vv0 + lam * (C.vv1 + lam * C.vv2) + 1e-12
+    uv = C.uv0 + lam * (C.uv1 + lam * C.uv2)
+    du = x * C.ux0 + C.du0 + lam * (x * C.ux1 + C.du1 - lam * C.cu2)
+    dv = x * C.vx0 + C.dv0 + lam * (x * C.vx1 + C.dv1 - lam * C.cv2)
     det = uu * vv - uv * uv
     p = (du * vv - dv * uv) / det
     q = (dv * uu - du * uv) / det
-    f2 = p * p + q * q
-    keep = np.ones(len(f2), dtype=bool)
-    if pair is not None:  # of the first and the last slab, the more inside: union of sections
-        fi, la = pair
-        keep[np.where(f2[la] < f2[fi], fi, la)] = False
-    inside = keep & (f2 <= 1.0)
-    # an inked pixel at the end of a span that the window could extend (the span may have cut
-    # the solid short) is the first or the last kept entry of its interval
+    return SectionSolve(lam=lam, p=p, f2=p * p + q * q)
+
+
+def _span_edges(sc: Scanlines, ent: Entries, inside, win_w, k: int) -> np.ndarray:
+    """Windows with an inked pixel at the end of a span that the window could extend: the
+    first or the last kept entry of an interval."""
+    per_iv = ent.count
     has = per_iv > 0
     first = (np.cumsum(per_iv) - per_iv)[has]
     last = first + per_iv[has] - 1
-    sc, wh = iv_scan[has], iv_win[has]
-    s_lo, s_hi = lo[sc], hi[sc]
-    hit = inside[first] & (cols[first] == s_lo) & (s_lo > 0)
-    hit |= inside[last] & (cols[last] == s_hi - 1) & (s_hi < win_w[wh])
-    edge = np.bincount(wh[hit], minlength=k) > 0
-    ok = np.nonzero(inside)[0]
-    n_ok = np.bincount(e_iv[ok], minlength=len(iv))  # inked pixels of every interval
-    # Ink (Eq. 21-23), in float32 as the paper keeps it. Per interval: V^ and its ink at row j
-    # and their change to row j + 1 (Eq. 21 along the axis), and the pixel's offset from row
-    # j's centre at the interval's first column, all small numbers (millimetres from the
-    # section), repeated over the interval's inked pixels. The texture function (wr, cr, wv,
-    # cv, Eq. 22) is usually one ink's everywhere: then it is used as scalars
-    inkp = ink[prims, j0:j1]
-    tex = inkp[..., 4:12]
+    scan, wh = ent.scan[has], ent.win[has]
+    s_lo, s_hi = sc.lo[scan], sc.hi[scan]
+    hit = inside[first] & (ent.cols[first] == s_lo) & (s_lo > 0)
+    hit |= inside[last] & (ent.cols[last] == s_hi - 1) & (s_hi < win_w[wh])
+    return np.bincount(wh[hit], minlength=k) > 0
+
+
+def _pixel_ink(inkp, rk: ContactRows, sc: Scanlines, ent: Entries, slab, n_ok, lam, cols, ppm):
+    """The ink of the inked pixels (Eq. 21-23), in float32 as the paper keeps it. Per
+    interval: V^ and its ink at row j and their change to row j + 1 (Eq. 21 along the axis),
+    and the pixel's offset from row j's centre at the interval's first column, all small
+    numbers (millimetres from the section), repeated over the interval's inked pixels. The
+    texture function (wr, cr, wv, cv, Eq. 22) is usually one ink's everywhere: then it is used
+    as scalars. ``inkp`` (k, Ns, INK_WIDTH) is the ink at the contact rows' V^."""
+    tex = inkp[..., TEXTURE]
     tex0 = tex[0, 0]
     same_tex = bool(np.all(np.abs(tex - tex0) <= 1e-12 * (1.0 + np.abs(tex0))))
-    nf = 4 if same_tex else inkp.shape[-1]
-    c0s = c0.reshape(-1, 3)[slab]
+    nf = LOAD.stop if same_tex else inkp.shape[-1]  # ink columns carried per pixel
+    c0s = rk.c[:, :-1].reshape(-1, 3)[slab]
+    dc = np.diff(rk.c, axis=1)
     per = np.concatenate(
         [
-            ((scan_x0[iv_scan] + 0.5) / ppm - c0s[:, 0])[None],
-            (iv_y - c0s[:, 1])[None],
+            ((sc.x0[ent.scan] + 0.5) / ppm - c0s[:, 0])[None],
+            (sc.y[ent.scan] - c0s[:, 1])[None],
             -c0s[:, 2][None],
             dc.reshape(-1, 3)[slab].T,
             inkp[:, :-1, :nf].reshape(-1, nf)[slab].T,
@@ -618,34 +837,31 @@ def _marks_ink(prims, win, lo, hi, ppm, c, U, V, T, zmin, ink):
         ]
     ).astype(np.float32)
     D = np.repeat(per, n_ok, axis=1)
-    lam = lam[ok].astype(np.float32)
-    cols = cols[ok]
-    lateral = np.clip(p[ok], -1.0, 1.0)
-    rows = scan_row[scan_e[ok]]
+    offset, axis_step, ink0, ink_step = D[0:3], D[3:6], D[6 : 6 + nf], D[6 + nf :]
+    lam = lam.astype(np.float32)
     # tau - V^ (V^ = c0 + lam dc on the axis), then Eq. 22 and 23: V = V^ + (tau - V^) / f lies
     # on the surface and takes its ink from V^'s texture function, and Eq. 23 mixes V^'s and
     # V's by f, which folds into one factor on V^'s ink:
     # (1 - f) a + f a (1 + |V - V^| r + (V - V^).v) = a (1 + |tau - V^| r + (tau - V^).v)
-    ox = cols.astype(np.float32) * np.float32(1.0 / ppm) + D[0] - lam * D[3]
-    oy = D[1] - lam * D[4]
-    oz = D[2] - lam * D[5]
-    at = D[6 : 6 + nf] + lam * D[6 + nf :]  # Eq. 21: V^'s ink between the two rows around it
+    ox = cols.astype(np.float32) * np.float32(1.0 / ppm) + offset[0] - lam * axis_step[0]
+    oy = offset[1] - lam * axis_step[1]
+    oz = offset[2] - lam * axis_step[2]
+    at = ink0 + lam * ink_step  # Eq. 21: V^'s ink between the two rows around it
     dist = np.sqrt(ox * ox + oy * oy + oz * oz)
     o = (dist, ox, oy, oz)
     if same_tex:
-        wr, cr, wvx, wvy, wvz, cvx, cvy, cvz = (np.float32(v) for v in tex0.tolist())
+        f = {n: [np.float32(v) for v in inkp[0, 0, INK_FIELDS[n]].tolist()] for n in TEX_NAMES}
     else:
-        wr, cr, wvx, wvy, wvz, cvx, cvy, cvz = at[4:12]
-    w_fac = _factor(o, (wr, wvx, wvy, wvz))  # Eq. 22, 23
-    c_fac = _factor(o, (cr, cvx, cvy, cvz))
-    wet = at[0] * w_fac
+        f = {n: list(at[INK_FIELDS[n]]) for n in TEX_NAMES}
+    w_fac = _factor(o, (*f["wr"], *f["wv"]))  # Eq. 22, 23
+    c_fac = _factor(o, (*f["cr"], *f["cv"]))
+    wet = at[INK_FIELDS["wet"].start] * w_fac
     np.maximum(wet, 0.0, out=wet)
-    col = np.empty((ok.size, 3), dtype=np.float32)
+    col = np.empty((len(lam), 3), dtype=np.float32)
     for ch in range(3):
-        np.multiply(at[1 + ch], c_fac, out=col[:, ch])
+        np.multiply(at[INK_FIELDS["col"].start + ch], c_fac, out=col[:, ch])
     np.clip(col, 0.0, 1.0, out=col)
-    cut = np.cumsum(np.bincount(iv_win, weights=n_ok, minlength=k)).astype(np.int64)[:-1]
-    return [np.split(a, cut) for a in (rows, cols, wet, col, lateral)], edge
+    return wet, col
 
 
 def _factor(o, coef):

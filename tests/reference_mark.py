@@ -37,19 +37,15 @@ def reference_marks(brush, sec, ink_rows, ppm: float, paper_shape) -> list[Mark]
         iy0 = max(int(np.floor(ymin * ppm - 0.5)), 0)
         ix1 = min(int(np.ceil(xmax * ppm - 0.5)) + 1, W)
         iy1 = min(int(np.ceil(ymax * ppm - 0.5)) + 1, H)
+        where = dict(primitive=i, iy0=iy0, ix0=ix0, segments=xy, area_bbox=area, height=height)
         empty = Mark(
-            i,
-            iy0,
-            ix0,
-            np.zeros(0, int),
-            np.zeros(0, int),
-            np.zeros(0),
-            np.zeros((0, 3)),
-            np.zeros(0),
-            (0, 0),
-            xy,
-            area,
-            height,
+            **where,
+            rows=np.zeros(0, int),
+            cols=np.zeros(0, int),
+            wet=np.zeros(0),
+            col=np.zeros((0, 3)),
+            lateral=np.zeros(0),
+            shape=(0, 0),
         )
         if ix1 <= ix0 or iy1 <= iy0:
             marks.append(empty)
@@ -65,7 +61,9 @@ def reference_marks(brush, sec, ink_rows, ppm: float, paper_shape) -> list[Mark]
         )
         inside, wet, col, lateral = _pixel_ink(P, i, rows_c, rows_U, rows_V, rows_T, Zmin, ink_rows)
         pr, pc = gy.ravel()[inside], gx.ravel()[inside]
-        marks.append(Mark(i, iy0, ix0, pr, pc, wet, col, lateral, (h, w), xy, area, height))
+        marks.append(
+            Mark(**where, rows=pr, cols=pc, wet=wet, col=col, lateral=lateral, shape=(h, w))
+        )
     return marks
 
 

@@ -180,18 +180,18 @@ def test_eq21_to_23_pixel_ink_is_the_texture_function_at_the_pixel(brush):
 
 def _one_pixel_mark(wet, col):
     return Mark(
-        0,
-        1,
-        1,
-        np.array([0]),
-        np.array([0]),
-        np.array([wet]),
-        np.array([col]),
-        np.array([0.0]),
-        (1, 1),
-        np.zeros((0, 2, 2)),
-        1.0,
-        1.0,
+        primitive=0,
+        iy0=1,
+        ix0=1,
+        rows=np.array([0]),
+        cols=np.array([0]),
+        wet=np.array([wet]),
+        col=np.array([col]),
+        lateral=np.array([0.0]),
+        shape=(1, 1),
+        segments=np.zeros((0, 2, 2)),
+        area_bbox=1.0,
+        height=1.0,
     )
 
 
