@@ -14,6 +14,7 @@ import json
 import bpy
 import numpy as np
 
+from .sim import display
 from .sim.brush import angles_from_matrix, rotation_matrix
 from .sim.params import (
     MAX_PAPER_PIXELS,
@@ -21,6 +22,7 @@ from .sim.params import (
     QualityParams,
     geometry_from_preset,
     load_preset,
+    paper_from_preset,
 )
 from .sim.recording import Dip, Recording, RecordingError, from_dict
 
@@ -28,6 +30,7 @@ RECORDING_TEXT = "HairyBrush Recording"
 PAPER_IMAGE = "HairyBrush Paper"
 PRIMITIVE_COLLECTION = "HairyBrush Primitives"
 PAPER_TAG = "hairy_brush_paper"
+SHOWN_TAG = "hairy_brush_shown"  # on the paper image: how many samples it shows
 PRIMITIVE_TAG = "hairy_brush_primitive"
 MM = 1000.0
 
@@ -140,8 +143,18 @@ def store_recording(st, rec: Recording) -> bpy.types.Text:
     if text is None:
         text = bpy.data.texts.new(RECORDING_TEXT)
         st.recording = text
-    text.from_string(json.dumps(rec.to_dict(), separators=(",", ":")))
+    text.from_string(recording_text(rec))
     return text
+
+
+def recording_text(rec: Recording) -> str:
+    """The recording's JSON with one sample a line: Blender's text editing is quadratic in a
+    line's length, linear in the number of lines."""
+    d = rec.to_dict()
+    samples = d.pop("samples")
+    head = json.dumps(d, separators=(",", ":"))
+    rows = ",\n".join(json.dumps(row, separators=(",", ":")) for row in samples)
+    return head[:-1] + ("," if d else "") + '"samples":[\n' + rows + "\n]}"
 
 
 def copy_settings_from_recording(st, rec: Recording):
@@ -209,11 +222,12 @@ def first_sample_from_frame(rec: Recording, scene, frame: float) -> int:
 
 # ------------------------------------------------------------------------------ images
 def ensure_paper_image(st, color=(1.0, 1.0, 1.0)) -> bpy.types.Image:
+    """The paper image, made (a float image: see sim.display) or resized to the paper."""
     w, h = check_paper_size(st)
     img = st.paper_image
     if img is None:
-        img = bpy.data.images.new(PAPER_IMAGE, w, h, alpha=True)
-        img.generated_color = (*color, 1.0)
+        img = bpy.data.images.new(PAPER_IMAGE, w, h, alpha=True, float_buffer=True)
+        img.generated_color = (*display.encode(color, linear=True), 1.0)
         img[PAPER_TAG] = 1
         st.paper_image = img
     elif tuple(img.size) != (w, h):
@@ -221,32 +235,71 @@ def ensure_paper_image(st, color=(1.0, 1.0, 1.0)) -> bpy.types.Image:
     return img
 
 
-def write_image(img, rgb_bottom_up: np.ndarray, pack: bool = False):
+_VIEWS: dict[int, display.PaperView] = {}  # paper image (as_pointer) -> the pixels it shows
+
+
+def forget_views():
+    """After undo or loading a file, image buffers may no longer hold what was shown."""
+    _VIEWS.clear()
+
+
+def show_paper(img, paper, index: int):
+    """Show ``paper`` in the image: only the tiles changed since the image was last shown from
+    the same paper are converted, then the kept pixels go to Blender in one call. ``index`` (the
+    samples simulated) is kept on the image, so undo can show exactly what was seen."""
+    key = img.as_pointer()
+    view = _VIEWS.get(key)
+    if view is None or view.linear != img.is_float:
+        view = _VIEWS[key] = display.PaperView(linear=img.is_float)
+    view.refresh(paper)
+    if tuple(img.size) != (paper.W, paper.H):
+        img.scale(paper.W, paper.H)
+    img.pixels.foreach_set(view.flat())
+    img.update()
+    img[SHOWN_TAG] = int(index)
+
+
+def show_blank(st):
+    """The paper image as the blank paper of the scene's paper preset."""
+    color = paper_from_preset(load_preset("paper", st.paper_preset)).color
+    img = ensure_paper_image(st, color)
+    w, h = paper_pixels(st)
+    blank = np.empty((h, w, 3), np.float32)
+    blank[:] = color
+    write_image(img, blank)
+    img[SHOWN_TAG] = 0
+    return img
+
+
+def write_image(img, rgb_bottom_up: np.ndarray):
     """Engine RGB (H, W, 3), bottom row first (Blender's order) -> image pixels."""
+    _VIEWS.pop(img.as_pointer(), None)
     h, w, _ = rgb_bottom_up.shape
     if tuple(img.size) != (w, h):
         img.scale(w, h)
     rgba = np.empty((h, w, 4), np.float32)
-    rgba[..., :3] = rgb_bottom_up
+    rgba[..., :3] = display.encode(rgb_bottom_up, linear=img.is_float)
     rgba[..., 3] = 1.0
     img.pixels.foreach_set(rgba.ravel())
     img.update()
-    if pack:
-        pack_image(img)
+
+
+def image_rgb(img) -> np.ndarray:
+    """The image's visible colour (H, W, 3), bottom row first, as the engine's ``Paper.rgb``."""
+    a = np.empty(len(img.pixels), np.float32)
+    img.pixels.foreach_get(a)
+    rgb = a.reshape(img.size[1], img.size[0], 4)[..., :3]
+    return display.linear_to_srgb(rgb).astype(np.float32) if img.is_float else rgb
 
 
 def pack_image(img):
-    """Keep the pixels inside the .blend (nothing in side files the user can lose)."""
-    if not img.filepath_raw:
-        img.filepath_raw = f"//{img.name}.png"
-    img.file_format = "PNG"
+    """Keep the pixels inside the .blend (nothing in side files the user can lose): float
+    images as OpenEXR (lossless), byte images as PNG. Done when the file is saved."""
+    ext, fmt = (".exr", "OPEN_EXR") if img.is_float else (".png", "PNG")
+    if not img.filepath_raw or not img.filepath_raw.endswith(ext):
+        img.filepath_raw = f"//{img.name}{ext}"
+    img.file_format = fmt
     img.pack()
-
-
-def read_image(img) -> np.ndarray:
-    a = np.empty(len(img.pixels), np.float32)
-    img.pixels.foreach_get(a)
-    return a
 
 
 # ------------------------------------------------------------------------------ NURBS objects

@@ -1,7 +1,7 @@
 # SPDX-License-Identifier: GPL-3.0-or-later
 """Application handlers: the paper and the primitive objects follow the current frame; undo and
-redo bring back the paper image's packed pixels; saving packs the paper; loading a file drops
-the playback caches."""
+redo show the paper as it was at that step; saving packs the paper; loading a file drops the
+playback caches."""
 
 from __future__ import annotations
 
@@ -52,12 +52,22 @@ def on_frame_change(scene, _depsgraph=None):
 
 @persistent
 def on_undo_redo(_scene, _data=None):
-    # Undo restores the image datablock with its packed file but keeps the old pixel buffer;
-    # reloading reads the packed pixels of the restored step.
-    for img in bpy.data.images:
-        if bridge.PAPER_TAG in img and img.packed_file is not None:
-            img.reload()
-    # the playback cache is keyed by the recording and settings: still valid if they are
+    # Undo brings back the recording and the image's record of how many samples it showed, but
+    # not its pixels: show that many samples of the recording again (the playback is kept while
+    # the recording and settings are unchanged, so this costs a seek).
+    bridge.forget_views()
+    for scene in bpy.data.scenes:
+        st = bridge.settings(scene)
+        img = st.paper_image
+        if img is None or bridge.SHOWN_TAG not in img:
+            continue
+        try:
+            if st.recording is None:
+                bridge.show_blank(st)
+            else:
+                playback.show(scene, int(img[bridge.SHOWN_TAG]))
+        except (bridge.UserError, RecordingError) as exc:
+            print(f"Virtual Hairy Brush: undo: {exc}")
 
 
 @persistent
@@ -70,6 +80,7 @@ def on_save_pre(_filepath="", _data=None):
 @persistent
 def on_load_post(_filepath="", _data=None):
     playback.clear()
+    bridge.forget_views()
 
 
 _HANDLERS = (

@@ -1,7 +1,7 @@
 # SPDX-License-Identifier: GPL-3.0-or-later
 """The artwork at any frame: one engine Simulation per scene, moved to the sample a frame asks
-for. Forward moves step on; backward moves restore the nearest snapshot at or before the target
-and step on from there, so frame N always gives exactly the image of simulating straight to N.
+for. A move restores the nearest snapshot at or before the target (backwards or forwards) and
+steps on from there, so frame N always gives exactly the image of simulating straight to N.
 Also the NURBS surface objects that show the writing primitives (Sec. 2, 6)."""
 
 from __future__ import annotations
@@ -14,36 +14,30 @@ import numpy as np
 
 from . import bridge
 from .sim.engine import Simulation
+from .sim.timeline import Timeline
 
 SNAPSHOT_BUDGET_BYTES = 768 * 2**20
 NU_AXIS, NV_RING = 28, 9  # control points of a primitive surface in Bezier form (see sim)
+MAX_SNAPSHOT_EVERY = 64  # samples
 
 
 class Playback:
-    def __init__(self, rec, key: str):
+    """The scene's simulation on a Timeline (delta snapshots, see sim.timeline): a snapshot
+    every frame's worth of samples, so a step of one frame back or forth re-simulates at most
+    one frame."""
+
+    def __init__(self, rec, key: str, samples_per_frame: float = 5.0):
         self.key = key
         self.rec = rec
-        self.sim = Simulation(rec)
-        first = self.sim.snapshot()
-        size = sum(a.nbytes for a in first["paper"].values() if isinstance(a, np.ndarray))
-        max_snaps = max(2, int(SNAPSHOT_BUDGET_BYTES // max(size, 1)))
-        self.every = max(64, int(np.ceil(len(rec.samples) / (max_snaps - 1))))
-        self.snaps = {0: first}
+        every = int(min(max(round(samples_per_frame), 1), MAX_SNAPSHOT_EVERY))
+        self.timeline = Timeline(Simulation(rec), every, SNAPSHOT_BUDGET_BYTES)
 
-    def seek(self, index: int, progress=None):
-        index = int(min(max(index, 0), len(self.rec.samples)))
-        sim = self.sim
-        if index < sim.index:
-            best = max(k for k in self.snaps if k <= index)
-            sim.restore(self.snaps[best])
-        start, total = sim.index, max(index - sim.index, 1)
-        while sim.index < index:
-            sim.step()
-            if sim.index % self.every == 0 and sim.index not in self.snaps:
-                self.snaps[sim.index] = sim.snapshot()
-            if progress is not None and sim.index % 32 == 0:
-                progress((sim.index - start) / total)
-        return sim
+    @property
+    def sim(self) -> Simulation:
+        return self.timeline.sim
+
+    def seek(self, index: int, progress=None, should_stop=None) -> Simulation:
+        return self.timeline.seek(index, progress, should_stop)
 
 
 _PLAYBACKS: dict[str, Playback] = {}
@@ -69,7 +63,9 @@ def playback_for(scene) -> Playback:
     key = cache_key(scene)
     pb = _PLAYBACKS.get(scene.name)
     if pb is None or pb.key != key:
-        pb = Playback(bridge.recording_from_scene(scene), key)
+        rec = bridge.recording_from_scene(scene)
+        per = bridge.timeline(rec, scene)[1]  # frames per sample
+        pb = Playback(rec, key, samples_per_frame=1.0 / per)
         _PLAYBACKS[scene.name] = pb
     return pb
 
@@ -83,11 +79,12 @@ def adopt(scene, sim: Simulation):
     pb.key, pb.rec = cache_key(scene), sim.rec
 
 
-def show(scene, index: int, pack: bool = False, progress=None) -> Simulation:
-    """Put the paper image (and the primitive objects, if built) at sample ``index``."""
+def show(scene, index: int, progress=None, should_stop=None) -> Simulation:
+    """Put the paper image (and the primitive objects, if built) at sample ``index``; only what
+    changed since the image was last shown is converted (see bridge.show_paper)."""
     st = bridge.settings(scene)
-    sim = playback_for(scene).seek(index, progress)
-    bridge.write_image(bridge.ensure_paper_image(st), sim.paper.rgb(), pack=pack)
+    sim = playback_for(scene).seek(index, progress, should_stop)
+    bridge.show_paper(bridge.ensure_paper_image(st), sim.paper, sim.index)
     if primitive_objects(scene):
         sync_primitives(scene, sim, create=False)
     return sim

@@ -2,7 +2,9 @@
 """hairy_brush.paint: live painting on the paper plane in the 3D viewport (Fig. 6(b)).
 
 The event logic is ``sim.live.LiveBrush`` (no bpy, tested with Blender's event sequences);
-this operator only projects the mouse onto the paper, runs a sampling timer, shows the image and
+this operator only projects the mouse onto the paper, stamps each event with the clock
+(``time.perf_counter()``: the live samples follow the wall clock, see sim.live), gives the engine
+a share of each timer tick, refreshes the image from the tiles that changed, moves the brush and
 stores the stroke."""
 
 from __future__ import annotations
@@ -18,7 +20,9 @@ from ..sim.engine import Simulation
 from ..sim.live import HOVER_MM, LiveBrush, LiveEvent
 from ..sim.recording import RecordingError
 
-IMAGE_UPDATE_S = 1.0 / 15.0
+TIMER_S = 1.0 / 120.0  # how often the modal operator gets the UI loop's attention
+ENGINE_BUDGET_S = 0.030  # engine time per timer event while painting (the UI stays responsive)
+REFRESH_HZ = 30.0  # image refreshes a second while painting
 NAVIGATION = {"MIDDLEMOUSE", "TRACKPADPAN", "TRACKPADZOOM", "NDOF_MOTION"}
 NAVIGATION_PREFIX = "NUMPAD_"
 
@@ -77,13 +81,9 @@ class HAIRY_BRUSH_OT_paint(bpy.types.Operator):
         except (bridge.UserError, RecordingError) as exc:
             self.report({"ERROR"}, str(exc))
             return {"CANCELLED"}
-        self._orig_pixels = bridge.read_image(img)
-        self._img = img
-        self._live = LiveBrush(sim, st.paint_press_mm, st.paint_angle_step, xy)
-        self._brush_mw = st.brush_object.matrix_world.copy() if st.brush_object else None
-        self._last_draw = 0.0
+        self.start(context, img, LiveBrush(sim, st.paint_press_mm, st.paint_angle_step, xy))
         wm = context.window_manager
-        self._timer = wm.event_timer_add(1.0 / sim.rec.sample_rate_hz, window=context.window)
+        self._timer = wm.event_timer_add(TIMER_S, window=context.window)
         wm.modal_handler_add(self)
         context.workspace.status_text_set(
             "Hold LMB: press | Wheel: depth | Q/W E/R C/V: d q r | D: dip | "
@@ -91,12 +91,23 @@ class HAIRY_BRUSH_OT_paint(bpy.types.Operator):
         )
         return {"RUNNING_MODAL"}
 
+    def start(self, context, img, live: LiveBrush):
+        """The stroke's state (also used by tests, which have no window to run a modal in)."""
+        st = bridge.settings(context.scene)
+        self._img = img
+        self._live = live
+        self._brush_mw = st.brush_object.matrix_world.copy() if st.brush_object else None
+        self._last_draw = 0.0
+        self._timer = None
+        live.handle(LiveEvent("START", "NOTHING", time=time.perf_counter()))
+
     def modal(self, context, event):
         st = bridge.settings(context.scene)
         if event.type in NAVIGATION or event.type.startswith(NAVIGATION_PREFIX):
             return {"PASS_THROUGH"}
+        now = time.perf_counter()  # the sample clock: when the event is handled
         if event.type == "D" and event.value == "PRESS":
-            self._live.dip(st.dip_depth, st.ink_color, st.dip_wetness)
+            self._live.dip(st.dip_depth, st.ink_color, st.dip_wetness, time=now)
             return {"RUNNING_MODAL"}
         xy = None
         if event.type in ("MOUSEMOVE", "INBETWEEN_MOUSEMOVE", "LEFTMOUSE"):
@@ -109,42 +120,57 @@ class HAIRY_BRUSH_OT_paint(bpy.types.Operator):
             tuple(getattr(event, "tilt", (0.0, 0.0))),
             bool(getattr(event, "is_tablet", False)),
             bool(event.shift),
+            now,
         )
+        return self.step(context, ev)
+
+    def step(self, context, ev: LiveEvent) -> set:
+        """One event: the clock makes the samples due, the engine simulates for a share of the
+        UI loop's time, and the image is refreshed at most REFRESH_HZ times a second."""
         state = self._live.handle(ev)
         if state == "RUNNING":
-            if event.type == "TIMER":
-                self._show(st, final=False)
+            if ev.type == "TIMER":
+                self._live.advance(ENGINE_BUDGET_S)
+                self.show(context, final=False)
             return {"RUNNING_MODAL"}
         self._finish(context)
         if state == "CANCELLED":
-            self._img.pixels.foreach_set(self._orig_pixels)
-            self._img.update()
+            self.show(context, final=True)
             return {"CANCELLED"}
         keep_stroke(context.scene, self._live)
-        self._show(st, final=True)
+        self.show(context, final=True)
         self.report({"INFO"}, f"Stroke of {len(self._live.new_samples)} samples kept")
         return {"FINISHED"}
 
-    def _show(self, st, final: bool):
+    def show(self, context, final: bool):
+        """The paper as simulated so far; the brush empty (and the primitive surfaces, when
+        built) at the live pose."""
         now = time.perf_counter()
-        if not final and now - self._last_draw < IMAGE_UPDATE_S:
+        if not final and now - self._last_draw < 1.0 / REFRESH_HZ:
             return
         self._last_draw = now
-        bridge.write_image(self._img, self._live.sim.paper.rgb(), pack=final)
-        if st.brush_object is not None and not final:
-            mw = bridge.matrix_from_sample(
-                st, st.paper_object.matrix_world, self._live.sim.rec.samples[-1]
-            )
+        scene = context.scene
+        st = bridge.settings(scene)
+        sim = self._live.sim
+        bridge.show_paper(self._img, sim.paper, sim.index)
+        if final:
+            return
+        if st.brush_object is not None:
+            pose = sim.rec.samples[-1]
+            mw = bridge.matrix_from_sample(st, st.paper_object.matrix_world, pose)
             st.brush_object.matrix_world = Matrix(mw.tolist())
+        if playback.primitive_objects(scene):
+            playback.sync_primitives(scene, sim, create=False)
 
     def _finish(self, context):
-        context.window_manager.event_timer_remove(self._timer)
-        context.workspace.status_text_set(None)
+        if self._timer is not None:
+            context.window_manager.event_timer_remove(self._timer)
+            context.workspace.status_text_set(None)
         st = bridge.settings(context.scene)
         if st.brush_object is not None and self._brush_mw is not None:
             st.brush_object.matrix_world = self._brush_mw
 
     def cancel(self, context):
+        self._live.cancel()
         self._finish(context)
-        self._img.pixels.foreach_set(self._orig_pixels)
-        self._img.update()
+        self.show(context, final=True)

@@ -4,7 +4,6 @@
 from __future__ import annotations
 
 import bpy
-import numpy as np
 
 from .. import bridge
 from ..sim.live import HOVER_MM
@@ -86,8 +85,8 @@ class HAIRY_BRUSH_OT_setup(bpy.types.Operator):
         else:
             resize_paper(st)
         img = bridge.ensure_paper_image(st, color)
-        if not img.packed_file:
-            bridge.write_image(img, _blank(st, color), pack=True)
+        if bridge.SHOWN_TAG not in img:
+            img = bridge.show_blank(st)
         mat = paper_material(img)
         if mat.name not in st.paper_object.data.materials:
             st.paper_object.data.materials.append(mat)
@@ -104,10 +103,3 @@ class HAIRY_BRUSH_OT_setup(bpy.types.Operator):
             st.brush_object = brush
         self.report({"INFO"}, f"Paper {st.paper_object.name}, brush {st.brush_object.name}")
         return {"FINISHED"}
-
-
-def _blank(st, color):
-    w, h = bridge.paper_pixels(st)
-    out = np.empty((h, w, 3), np.float32)
-    out[:] = color
-    return out

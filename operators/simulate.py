@@ -1,5 +1,6 @@
 # SPDX-License-Identifier: GPL-3.0-or-later
-"""hairy_brush.simulate: run the recording into the paper image and pack it into the .blend."""
+"""hairy_brush.simulate: run the recording into the paper image (packed into the .blend when
+the file is saved)."""
 
 from __future__ import annotations
 
@@ -32,7 +33,7 @@ class HAIRY_BRUSH_OT_simulate(bpy.types.Operator):
             n = len(rec.samples)
             if self.to_current_frame:
                 n = bridge.samples_at_frame(rec, scene, scene.frame_current)
-            playback.show(scene, n, pack=True, progress=lambda f: wm.progress_update(int(100 * f)))
+            playback.show(scene, n, progress=lambda f: wm.progress_update(int(100 * f)))
         except (bridge.UserError, RecordingError) as exc:
             self.report({"ERROR"}, str(exc))
             return {"CANCELLED"}

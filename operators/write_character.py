@@ -101,9 +101,8 @@ class HAIRY_BRUSH_OT_write_character(bpy.types.Operator, ImportHelper):
         )
         scene.frame_end = math.ceil(last)
         bridge.store_recording(st, rec)
-        img = bridge.ensure_paper_image(st)
-        bridge.write_image(img, sim.paper.rgb(), pack=True)
         playback.clear()
+        bridge.show_paper(bridge.ensure_paper_image(st), sim.paper, len(rec.samples))
         self.report(
             {"INFO"},
             f"{len(char['medians'])} strokes, {len(rec.samples)} samples, "

@@ -147,6 +147,31 @@ class Simulation:
             "predictor": self.predictor.state(),
         }
 
+    def hold(self) -> dict:
+        """The simulation as it is now, to ``take_back`` later; unlike a snapshot it copies no
+        paper up front: the paper keeps each tile as it was before its first change."""
+        self._deposit_pending()
+        return {
+            "index": self.index,
+            "brush": self.brush.snapshot(),
+            "paper": self.paper.hold(),
+            "rng": self.rng.bit_generator.state,
+            "predictor": self.predictor.state(),
+        }
+
+    def take_back(self, hold: dict):
+        """Back exactly to ``hold()``; the hold ends."""
+        self._pending = []
+        self.index = hold["index"]
+        self.brush.restore(hold["brush"])
+        self.paper.give_back(hold["paper"])
+        self.rng.bit_generator.state = hold["rng"]
+        self.predictor.set_state(hold["predictor"])
+
+    def let_go(self, hold: dict):
+        """End a hold without going back."""
+        self.paper.release(hold["paper"])
+
     def restore(self, snap: dict):
         self._pending = []
         self.index = snap["index"]

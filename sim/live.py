@@ -9,15 +9,25 @@ cancelling, so Shift does that here. A tablet's pressure drives z and its tilt d
 
 Event names and values are Blender's (``event.type``/``event.value``), so the Blender operator
 passes its events straight through, and tests drive this class with the same sequences.
+
+The sample clock is the wall clock, not the UI loop: samples are the brush's pose at uniform
+times k / rate from the stroke's start, whatever the display or the engine costs. Every event
+carries the time it was handled (``LiveEvent.time``, seconds on a monotonic clock); when one
+arrives late, all the samples due by then are produced, the pointer's position interpolated in
+time between the positions the brush knows. Producing samples and simulating them are separate:
+``advance(budget)`` simulates what is due, in batches as ``Simulation.run`` does, for at most a
+time budget, so the engine may fall behind the clock while painting and catches up; ``keep()``
+catches up fully, so the kept recording is complete and equals what the paper shows.
 """
 
 from __future__ import annotations
 
+import time as _time
 from dataclasses import dataclass
 
 import numpy as np
 
-from .engine import Simulation
+from .engine import BATCH_STEPS, Simulation
 from .recording import Dip, quantise
 
 HOVER_MM = 5.0  # brush base above the hair length while the button is up
@@ -38,6 +48,12 @@ class LiveEvent:
     tilt: tuple = (0.0, 0.0)
     is_tablet: bool = False
     shift: bool = False
+    time: float | None = None  # when it was handled (s, monotonic); None: a TIMER is one period
+
+
+POINTER_EVENTS = ("MOUSEMOVE", "INBETWEEN_MOUSEMOVE", "LEFTMOUSE")
+STALL_PERIODS = 2  # a gap of more sample periods than this between events is a stalled UI loop
+BURST_S = 0.002  # events handled within this time of each other were queued together
 
 
 class LiveBrush:
@@ -53,7 +69,7 @@ class LiveBrush:
         self.n0 = len(sim.rec.samples)
         if sim.index != self.n0:
             raise ValueError("the simulation must have run to the end of its recording")
-        self._snapshot = sim.snapshot()
+        self._hold = sim.hold()
         self._dips0 = list(sim.rec.dips)
         self._sim_dips0 = list(sim.dips)
         last = sim.rec.samples[-1] if self.n0 else np.zeros(6)
@@ -67,6 +83,11 @@ class LiveBrush:
         self.state = "RUNNING"
         self._buf = np.array(sim.rec.samples, dtype=float, copy=True)
         self._n = self.n0
+        self.period = 1.0 / sim.rec.sample_rate_hz
+        self._t0 = None  # the stroke's start on the clock (the first event's time)
+        self._t = 0.0  # the clock's time of the last event handled
+        self._anchor = (0.0, self.x, self.y)  # the pointer at the last sample: (time, x, y)
+        self._moves = []  # (time, x, y) of the pointer positions received since then
 
     # ------------------------------------------------------------------ the current pose
     def pose(self) -> np.ndarray:
@@ -84,15 +105,83 @@ class LiveBrush:
     def new_samples(self) -> np.ndarray:
         return self._buf[self.n0 : self._n]
 
+    @property
+    def behind(self) -> int:
+        """Samples produced by the clock and not simulated yet."""
+        return self._n - self.sim.index
+
+    # ------------------------------------------------------------------ the clock
+    def _sample_time(self, k: int) -> float:
+        """Clock time of the stroke's k-th sample (k = 0 is one period after the start)."""
+        return self._t0 + (k + 1) * self.period
+
+    def _clock(self, ev: LiveEvent) -> float:
+        if ev.time is not None:
+            t = float(ev.time)
+            if self._t0 is None:
+                self._t0 = self._t = t
+                self._anchor = (t, self.x, self.y)
+            return max(t, self._t)  # a clock never runs backwards
+        if self._t0 is None:
+            self._t0 = 0.0
+        return self._sample_time(self._n - self.n0) if ev.type == "TIMER" else self._t
+
+    def _knots(self, t: float) -> np.ndarray:
+        """(time, x, y) of the pointer from the last sample's time to t."""
+        ta, xa, ya = self._anchor
+        pts = np.array(self._moves, dtype=float).reshape(-1, 3)
+        pts[:, 0] = _spread_bursts(np.r_[ta, pts[:, 0]], STALL_PERIODS * self.period)[1:]
+        pts[:, 0] = np.clip(pts[:, 0], ta, t)
+        last = pts[-1, 1:] if len(pts) else (xa, ya)
+        return np.vstack([[ta, xa, ya], pts, [t, *last]])
+
+    def _produce_until(self, t: float):
+        """Every sample due by clock time t, the pointer interpolated in time along the
+        positions received since the last sample."""
+        knots = self._knots(t)
+        while self._sample_time(self._n - self.n0) <= t + 1e-9:
+            ts = self._sample_time(self._n - self.n0)
+            self.x = float(np.interp(ts, knots[:, 0], knots[:, 1]))
+            self.y = float(np.interp(ts, knots[:, 0], knots[:, 2]))
+            self._append(self.pose())
+        self.x, self.y = float(knots[-1, 1]), float(knots[-1, 2])
+        self._anchor = (t, self.x, self.y)
+        self._moves = []
+        self._t = t
+
+    def _append(self, pose):
+        if self._n == len(self._buf):
+            grown = np.empty((max(64, 2 * len(self._buf)), 6))
+            grown[: self._n] = self._buf[: self._n]
+            self._buf = grown
+        self._buf[self._n] = quantise(pose)  # as stored in recordings
+        self._n += 1
+        self.sim.rec.samples = self._buf[: self._n]
+
+    def advance(self, budget_s: float | None = None) -> int:
+        """Simulate the samples that are due, a batch at a time, for at most ``budget_s``
+        seconds (None: all of them). Returns how many are still waiting."""
+        deadline = None if budget_s is None else _time.perf_counter() + budget_s
+        sim = self.sim
+        while sim.index < self._n:
+            sim.run(min(self._n, sim.index + BATCH_STEPS))
+            if deadline is not None and _time.perf_counter() >= deadline:
+                break
+        return self.behind
+
     # ------------------------------------------------------------------ events
     def handle(self, ev: LiveEvent) -> str:
-        """Process one event; returns 'RUNNING', 'FINISHED' (stroke kept) or 'CANCELLED'."""
+        """Process one event; returns 'RUNNING', 'FINISHED' (stroke kept) or 'CANCELLED'.
+        Samples due by the event's time are produced (not simulated: see ``advance``)."""
         if self.state != "RUNNING":
             return self.state
         t, v = ev.type, ev.value
-        if ev.paper_xy is not None and t in ("MOUSEMOVE", "INBETWEEN_MOUSEMOVE", "LEFTMOUSE"):
-            self.x, self.y = float(ev.paper_xy[0]), float(ev.paper_xy[1])
-        if ev.is_tablet and t in ("MOUSEMOVE", "INBETWEEN_MOUSEMOVE", "LEFTMOUSE"):
+        now = self._clock(ev)
+        if ev.paper_xy is not None and t in POINTER_EVENTS:
+            self._moves.append((now, float(ev.paper_xy[0]), float(ev.paper_xy[1])))
+        if t not in ("MOUSEMOVE", "INBETWEEN_MOUSEMOVE"):  # moves only tell where the pointer is
+            self._produce_until(now)
+        if ev.is_tablet and t in POINTER_EVENTS:
             self.tablet = True
             self.pressure = float(np.clip(ev.pressure, 0.0, 1.0))
             self.tilt = np.clip(np.asarray(ev.tilt, dtype=float), -1.0, 1.0)
@@ -113,23 +202,13 @@ class LiveBrush:
             step = self.step_deg * (2.0 if self.left_held else 1.0) * (4.0 if ev.shift else 1.0)
             limit = ANGLE_LIMIT if axis < 2 else 180.0
             self.angles[axis] = np.clip(self.angles[axis] + sign * step, -limit, limit)
-        elif t == "TIMER":
-            self.tick()
         return self.state
 
-    def tick(self):
-        """Take one sample of the current pose and simulate it."""
-        if self._n == len(self._buf):
-            grown = np.empty((max(64, 2 * len(self._buf)), 6))
-            grown[: self._n] = self._buf[: self._n]
-            self._buf = grown
-        self._buf[self._n] = quantise(self.pose())  # as stored in recordings
-        self._n += 1
-        self.sim.rec.samples = self._buf[: self._n]
-        self.sim.step()
-
-    def dip(self, depth: float, color, wetness: float):
-        """A dip before the next sample, recorded like any other dip event."""
+    def dip(self, depth: float, color, wetness: float, time: float | None = None):
+        """A dip before the next sample, recorded like any other dip event; samples due by
+        ``time`` come before it."""
+        if time is not None:
+            self._produce_until(self._clock(LiveEvent("D", time=time)))
         rec = self.sim.rec
         if not rec.dips:  # keep the implicit default dip at the start
             rec.dips = list(self.sim.dips)
@@ -138,15 +217,31 @@ class LiveBrush:
         self.sim.dips = rec.dips
 
     def keep(self) -> str:
+        """The stroke is kept: the engine catches up with the clock, the recording is final."""
+        self.advance()
         self.sim.rec.samples = self._buf[: self._n].copy()
+        self.sim.let_go(self._hold)
         self.state = "FINISHED"
         return self.state
 
     def cancel(self) -> str:
-        self.sim.restore(self._snapshot)
+        self.sim.take_back(self._hold)
         self.sim.rec.samples = self._buf[: self.n0].copy()
         self.sim.rec.dips = self._dips0
         self.sim.dips = self._sim_dips0
         self._n = self.n0
         self.state = "CANCELLED"
         return self.state
+
+
+def _spread_bursts(times: np.ndarray, stall_s: float) -> np.ndarray:
+    """Blender does not stamp events with the time they happened: positions queued while the UI
+    loop stalled are handled together after it, all at about the same time. Each such burst (a
+    gap longer than ``stall_s`` followed by events within BURST_S of each other) is spread
+    evenly over the gap, as the pointer moved through it."""
+    times = times.copy()
+    for i in np.nonzero(np.diff(times) > stall_s)[0] + 1:
+        end = i + int(np.searchsorted(times[i:], times[i] + BURST_S, side="right"))
+        n = end - i
+        times[i:end] = times[i - 1] + (times[end - 1] - times[i - 1]) * np.arange(1, n + 1) / n
+    return times

@@ -13,6 +13,12 @@ Drying is lazy and exact: every pixel remembers the step it was last brought up 
 when a step touches it again the missed drying is applied at once (drying is linear and clamped
 at zero, so max(max(w - a, 0) - b, 0) = max(w - a - b, 0)). Work per step is bounded by the
 marks' windows, never by the size of the paper.
+
+The paper also remembers *where* it changed, so that whoever copies it (the image an artist sees,
+snapshots for scrubbing, the taking-back of a cancelled stroke) works in proportion to what
+changed: the sheet is cut into square tiles of TILE pixels, every change stamps its tiles with a
+new ``version``, and ``tiles_since(v)`` lists the tiles changed after version v. A *hold* keeps
+the content each tile had before its first change, so a stroke can be taken back exactly.
 """
 
 from __future__ import annotations
@@ -23,6 +29,7 @@ from .png import to_uint8
 
 _RGB = np.dtype((np.void, 12))  # a pixel's three float32 ink densities as one item
 DRY_RATE = 1.0  # capacity units per second at dry = 1
+TILE = 64  # pixels a side of the tiles by which changes are tracked
 
 
 def _ring_sum(a):
@@ -55,6 +62,61 @@ class Paper:
         # saturation spreads one pixel ring per pass: passes scale with resolution so that the
         # halo has the same size in millimetres at any px_per_mm
         self.sat_passes = max(1, int(round(self.ppm / 4.0)))
+        self.version = 0  # bumped by every change; tile_ver holds each tile's last change
+        self.tile_ver = np.zeros((-(-self.H // TILE), -(-self.W // TILE)), dtype=np.int64)
+        self._holds = []
+
+    # ------------------------------------------------------------------ where it changed
+    def _touch(self, y0: int, y1: int, x0: int, x1: int):
+        """Pixels [y0:y1, x0:x1] are about to change: holds save their tiles, versions move."""
+        ty = slice(y0 // TILE, (y1 - 1) // TILE + 1)
+        tx = slice(x0 // TILE, (x1 - 1) // TILE + 1)
+        for hold in self._holds:
+            hold.save(self, ty, tx)
+        self.version += 1
+        self.tile_ver[ty, tx] = self.version
+
+    def tiles_since(self, version: int) -> np.ndarray:
+        """(n, 2) tile indices (row, column) changed after ``version``."""
+        return np.argwhere(self.tile_ver > version)
+
+    def tile_box(self, ty: int, tx: int) -> tuple[slice, slice]:
+        return slice(ty * TILE, min((ty + 1) * TILE, self.H)), slice(
+            tx * TILE, min((tx + 1) * TILE, self.W)
+        )
+
+    def read_tile(self, ty: int, tx: int) -> tuple:
+        """Copies of one tile's (ink, wet, last)."""
+        ys, xs = self.tile_box(ty, tx)
+        return self.ink[ys, xs].copy(), self.wet[ys, xs].copy(), self.last[ys, xs].copy()
+
+    def write_tile(self, ty: int, tx: int, content):
+        """Put a tile's (ink, wet, last) back (None: the blank paper's)."""
+        ys, xs = self.tile_box(ty, tx)
+        self._touch(ys.start, ys.stop, xs.start, xs.stop)
+        if content is None:
+            self.ink[ys, xs] = 0.0
+            self.wet[ys, xs] = 0.0
+            self.last[ys, xs] = 0
+        else:
+            self.ink[ys, xs], self.wet[ys, xs], self.last[ys, xs] = content
+
+    def hold(self) -> PaperHold:
+        """From now on keep every tile as it was before its first change (see give_back)."""
+        h = PaperHold(self.step)
+        self._holds.append(h)
+        return h
+
+    def give_back(self, hold: PaperHold):
+        """Put the paper back exactly as it was at ``hold()``; the hold ends."""
+        self.release(hold)
+        for (ty, tx), content in hold.tiles.items():
+            self.write_tile(ty, tx, content)
+        self.step = hold.step
+
+    def release(self, hold: PaperHold):
+        if hold in self._holds:
+            self._holds.remove(hold)
 
     @property
     def shape(self):
@@ -71,6 +133,7 @@ class Paper:
         x0 = max(min(mk.ix0 for mk in marks) - margin, 0)
         y1 = min(max(mk.iy0 + mk.shape[0] for mk in marks) + margin, self.H)
         x1 = min(max(mk.ix0 + mk.shape[1] for mk in marks) + margin, self.W)
+        self._touch(y0, y1, x0, x1)
         wet = self.wet[y0:y1, x0:x1]
         ink = self.ink[y0:y1, x0:x1]
         last = self.last[y0:y1, x0:x1]
@@ -175,9 +238,9 @@ class Paper:
 
     def rgb(self) -> np.ndarray:
         """Visible colour (H, W, 3) float32 in [0, 1], bottom row first."""
-        return self._visible(self.ink)
+        return self.visible(self.ink)
 
-    def _visible(self, ink) -> np.ndarray:
+    def visible(self, ink) -> np.ndarray:
         return self.color * (1.0 - np.clip(ink, 0.0, 1.0))
 
     def rgb8(self, chunk_rows: int = 256) -> np.ndarray:
@@ -187,7 +250,7 @@ class Paper:
         for y0 in range(0, self.H, chunk_rows):
             y1 = min(y0 + chunk_rows, self.H)
             band = self.ink[self.H - y1 : self.H - y0][::-1]
-            out[y0:y1] = to_uint8(self._visible(band))
+            out[y0:y1] = to_uint8(self.visible(band))
         return out
 
     def snapshot(self) -> dict:
@@ -199,7 +262,25 @@ class Paper:
         }
 
     def restore(self, snap: dict):
+        self._touch(0, self.H, 0, self.W)
         self.wet[...] = snap["wet"]
         self.ink[...] = snap["ink"]
         self.last[...] = snap["last"]
         self.step = snap["step"]
+
+
+class PaperHold:
+    """The tiles of a Paper as they were before their first change since ``Paper.hold()``."""
+
+    def __init__(self, step: int):
+        self.step = step
+        self.tiles: dict[tuple[int, int], tuple] = {}
+        self.nbytes = 0
+
+    def save(self, paper: Paper, ty: slice, tx: slice):
+        for y in range(ty.start, ty.stop):
+            for x in range(tx.start, tx.stop):
+                if (y, x) not in self.tiles:
+                    content = paper.read_tile(y, x)
+                    self.tiles[(y, x)] = content
+                    self.nbytes += sum(a.nbytes for a in content)

@@ -90,6 +90,7 @@ def test_cancel_restores_the_simulation_exactly(key):
     base = sim.snapshot()
     for ev in drag(live, (20.0, 50.0), (70.0, 40.0), 40)[1:]:
         live.handle(ev)
+    live.advance()
     assert np.abs(sim.paper.rgb() - Simulation(sim.rec).run(1).paper.rgb()).max() > 0.1
     assert live.handle(LiveEvent(key, "PRESS")) == "CANCELLED"
     assert len(sim.rec.samples) == 1 and sim.index == 1 and len(sim.rec.dips) == 0
