@@ -8,8 +8,8 @@ import os
 import sys
 import time
 
-from .params import ParameterError
-from .recording import RecordingError
+from .params import MAX_PAPER_SIDE_PX, ParameterError, number_within, short_repr
+from .recording import MAX_SEED, PAPER_MM_RANGE, PX_PER_MM_RANGE, RecordingError
 
 
 def _progress(frac: float) -> None:
@@ -20,11 +20,19 @@ def _progress(frac: float) -> None:
     sys.stderr.flush()
 
 
+def _writable(path) -> None:
+    """Refuse an output path whose folder does not exist before any long work."""
+    folder = os.path.dirname(os.path.abspath(path))
+    if os.path.isdir(path) or not os.path.isdir(folder):
+        raise ParameterError(f"cannot write {path}: no such folder, or it is a folder")
+
+
 def cmd_render(args) -> int:
     from .engine import Simulation
     from .png import write_png
     from .recording import load
 
+    _writable(args.output)
     rec = load(args.recording)
     if args.px_per_mm is not None:
         from .recording import from_dict
@@ -57,7 +65,7 @@ def _template(args):
         from .fit import load_quality
 
         quality = load_quality(args.quality)
-    return Recording(
+    rec = Recording(
         np.zeros((1, 6)),
         seed=args.seed,
         brush={"preset": args.brush},
@@ -65,24 +73,23 @@ def _template(args):
         ink={"preset": args.ink},
         quality=quality,
     )
+    rec.resolve()  # the presets exist and are sound
+    return rec
 
 
 def _chars(specs, data):
     from .hanzi import find_char
 
-    out = []
-    for spec in specs:
-        try:
-            out.append(find_char(spec, data))
-        except ValueError as exc:
-            raise SystemExit(f"error: {exc}") from None
-    return out
+    return [find_char(spec, data) for spec in specs]
 
 
 def cmd_write(args) -> int:
     from .imitate import write_character
     from .png import write_png
 
+    _writable(args.output)
+    if args.recording:
+        _writable(args.recording)
     (char,) = _chars([args.char], args.data)
     t0 = time.perf_counter()
     rec, resp, sim = write_character(
@@ -157,20 +164,12 @@ def cmd_fit(args) -> int:
     from .params import load_preset, quality_from_presets
     from .recording import load
 
-    template = _template(args)
-    if not args.quiet:
-        sys.stderr.write("writing the training samples...\n")
-    samples = (
-        character_samples(_chars(args.chars, args.data), args.size, template, names=args.chars)
-        if args.chars
-        else []
-    )
-    for png, rec in zip(args.image or [], args.image_recording or [], strict=False):
-        samples.append(image_sample(load(rec), png))
+    _writable(args.output)
     if len(args.image or []) != len(args.image_recording or []):
-        raise SystemExit("error: every --image needs its --image-recording")
-    if not samples:
-        raise SystemExit("error: give training characters (--chars) or --image/--image-recording")
+        raise ParameterError("every --image needs its --image-recording")
+    if not args.chars and not args.image:
+        raise ParameterError("give training characters (--chars) or --image/--image-recording")
+    template = _template(args)
     # the seed: a quality file, a brush preset's values, or (none given) the values the training
     # recordings already use - the chosen brush and paper presets and --quality
     seed_q = None
@@ -186,9 +185,18 @@ def cmd_fit(args) -> int:
         iterations=args.iterations,
         workers=args.workers,
         max_grid=args.max_grid,
-        stages=tuple(args.stages.split(",")),
+        stages=args.stages,
         seed=args.seed,
     )
+    chars = _chars(args.chars, args.data)
+    image_recs = [load(rec) for rec in args.image_recording or []]
+    if not args.quiet:
+        sys.stderr.write("writing the training samples...\n")
+    samples = [
+        image_sample(rec, png) for png, rec in zip(args.image or [], image_recs, strict=True)
+    ]
+    if chars:
+        samples = character_samples(chars, args.size, template, names=args.chars) + samples
     t0 = time.perf_counter()
 
     def progress(frac, stage, rnd, best):
@@ -213,14 +221,60 @@ def cmd_bench(args) -> int:
     return 0
 
 
-def main(argv=None) -> int:
+def _whole(lo: int, hi: int):
+    """An argparse type: a whole number in [lo, hi]."""
+
+    def parse(text: str) -> int:
+        try:
+            v = int(text)
+        except ValueError:
+            raise argparse.ArgumentTypeError(
+                f"must be a whole number, got {short_repr(text)}"
+            ) from None
+        if not lo <= v <= hi:
+            raise argparse.ArgumentTypeError(f"must lie in [{lo}, {hi}], got {short_repr(v)}")
+        return v
+
+    return parse
+
+
+def _real(lo: float, hi: float):
+    """An argparse type: a finite number in [lo, hi]."""
+
+    def parse(text: str) -> float:
+        try:
+            v = float(text)
+        except ValueError:
+            raise argparse.ArgumentTypeError(f"must be a number, got {short_repr(text)}") from None
+        if not number_within(v, lo, hi):
+            raise argparse.ArgumentTypeError(f"must lie in [{lo:g}, {hi:g}], got {text}")
+        return v
+
+    return parse
+
+
+def _stages(text: str) -> tuple:
+    stages = tuple(s.strip() for s in text.split(","))
+    if not all(s in ("qp1", "qp2") for s in stages):
+        raise argparse.ArgumentTypeError(f"must be qp1, qp2 or qp1,qp2, got {short_repr(text)}")
+    return stages
+
+
+def _parser() -> argparse.ArgumentParser:
+    from .fit import SETTING_RANGES
+    from .imitate import MAX_PASSES, MIN_SHEET_PX
+
+    seed = _whole(0, MAX_SEED)
+    size = _whole(MIN_SHEET_PX, MAX_PAPER_SIDE_PX)
     ap = argparse.ArgumentParser(prog="python -m sim", description="Virtual Hairy Brush engine")
     sub = ap.add_subparsers(dest="cmd", required=True)
     r = sub.add_parser("render", help="render a recording to a PNG")
     r.add_argument("recording")
     r.add_argument("-o", "--output", required=True)
-    r.add_argument("--px-per-mm", type=float, default=None, help="override the resolution")
-    r.add_argument("--seed", type=int, default=None, help="override the seed")
+    r.add_argument(
+        "--px-per-mm", type=_real(*PX_PER_MM_RANGE), default=None, help="override the resolution"
+    )
+    r.add_argument("--seed", type=seed, default=None, help="override the seed")
     r.add_argument("-q", "--quiet", action="store_true")
     r.set_defaults(func=cmd_render)
 
@@ -230,21 +284,25 @@ def main(argv=None) -> int:
         p.add_argument("--paper", default="smooth", help="paper preset")
         p.add_argument("--ink", default="sumi_black", help="ink preset")
         p.add_argument("--quality", default=None, help="quality JSON (e.g. from sim fit)")
-        p.add_argument("--seed", type=int, default=0)
-        p.add_argument("--size-mm", type=float, default=None, help="character size (auto)")
-        p.add_argument("--passes", type=int, default=4, help="practice passes per stroke")
+        p.add_argument("--seed", type=seed, default=0)
+        p.add_argument(
+            "--size-mm", type=_real(*PAPER_MM_RANGE), default=None, help="character size (auto)"
+        )
+        p.add_argument(
+            "--passes", type=_whole(1, MAX_PASSES), default=4, help="practice passes per stroke"
+        )
 
     w = sub.add_parser("write", help="write a character from stroke data with the brush")
     w.add_argument("char", help="hanzi-writer JSON file, or one character (with --data)")
     w.add_argument("-o", "--output", required=True)
-    w.add_argument("--size", type=int, default=512, help="image size N (the em box)")
+    w.add_argument("--size", type=size, default=512, help="image size N (the em box)")
     w.add_argument("--recording", default=None, help="also save the recording it made")
     w.add_argument("-q", "--quiet", action="store_true")
     common(w)
     w.set_defaults(func=cmd_write)
     m = sub.add_parser("iou", help="IoU of written characters against the font outlines")
     m.add_argument("chars", nargs="+")
-    m.add_argument("--size", type=int, default=512)
+    m.add_argument("--size", type=size, default=512)
     common(m)
     m.set_defaults(func=cmd_iou)
     f = sub.add_parser("fit", help="fit the quality parameters (Sec. 7.2, Eq. 28)")
@@ -252,21 +310,30 @@ def main(argv=None) -> int:
     f.add_argument("--image", nargs="*", help="training images (PNG) ...")
     f.add_argument("--image-recording", nargs="*", help="... and their recordings")
     f.add_argument("-o", "--output", required=True, help="preset JSON to write")
-    f.add_argument("--size", type=int, default=96, help="training image size")
+    f.add_argument("--size", type=size, default=96, help="training image size")
     f.add_argument("--seed-preset", default=None, help="brush preset name or quality JSON")
-    f.add_argument("--divisions", type=int, default=1)
-    f.add_argument("--rounds", type=int, default=2)
-    f.add_argument("--iterations", type=int, default=6)
-    f.add_argument("--workers", type=int, default=0, help="processes (0: all cores)")
-    f.add_argument("--max-grid", type=int, default=64)
-    f.add_argument("--stages", default="qp1,qp2")
+    for name, default, help_ in (
+        ("divisions", 1, None),
+        ("rounds", 2, None),
+        ("iterations", 6, None),
+        ("workers", 0, "processes (0: all cores)"),
+        ("max_grid", 64, None),
+    ):
+        opt = "--" + name.replace("_", "-")
+        f.add_argument(opt, type=_whole(*SETTING_RANGES[name]), default=default, help=help_)
+    f.add_argument("--stages", type=_stages, default=("qp1", "qp2"))
     f.add_argument("-q", "--quiet", action="store_true")
     common(f)
     f.set_defaults(func=cmd_fit)
     b = sub.add_parser("bench", help="speed benchmark: a table, then one JSON line")
     b.add_argument("--quick", action="store_true", help="one repetition instead of three")
     b.set_defaults(func=cmd_bench)
-    args = ap.parse_args(argv)
+    return ap
+
+
+def main(argv=None) -> int:
+    """Run a command; any bad input ends in one 'error:' line and exit code 2."""
+    args = _parser().parse_args(argv)
     try:
         return args.func(args)
     except (RecordingError, ParameterError, ValueError) as exc:

@@ -20,7 +20,6 @@ simulation and the parallel results are gathered in a fixed order, so a fit is d
 
 from __future__ import annotations
 
-import itertools
 import json
 import os
 from concurrent.futures import ProcessPoolExecutor
@@ -30,8 +29,9 @@ from pathlib import Path
 import numpy as np
 
 from .engine import Simulation
-from .params import QP1, QP2, ParameterError, QualityParams
-from .recording import Recording, from_dict
+from .jsonio import read_json
+from .params import QP1, QP2, ParameterError, QualityParams, number_within, short_repr
+from .recording import MAX_SEED, Recording, from_dict
 
 
 @dataclass
@@ -76,6 +76,42 @@ class FitSettings:
     seed: int = 0  # draws the grid subset
     stages: tuple = ("qp1", "qp2")
     only: tuple = ()  # fit just these parameters (the others keep the seed's values)
+
+    def __post_init__(self):
+        for name, (lo, hi) in SETTING_RANGES.items():
+            v = getattr(self, name)
+            whole = name not in ("step", "error_bound", "grad_bound")
+            if (whole and (isinstance(v, bool) or not isinstance(v, int))) or not number_within(
+                v, lo, hi
+            ):
+                kind = "a whole number" if whole else "a number"
+                raise ParameterError(
+                    f"fit setting '{name}' must be {kind} in [{lo}, {hi}], got {short_repr(v)}"
+                )
+        stages, only = tuple(self.stages), tuple(self.only)
+        if not stages or any(st not in ("qp1", "qp2") for st in stages):
+            raise ParameterError(
+                f"fit setting 'stages' must name qp1 and/or qp2, got {list(stages)!r}"
+            )
+        if any(n not in QP1 + QP2 for n in only):
+            raise ParameterError(f"fit setting 'only' names unknown parameters: {list(only)!r}")
+        self.stages, self.only = stages, only
+
+
+# the fit's settings: [lowest, highest] (a grid of (divisions + 1)^6 points is drawn from)
+SETTING_RANGES = {
+    "divisions": (1, 8),
+    "starts": (0, 256),
+    "rounds": (1, 100),
+    "iterations": (0, 1000),
+    "step": (1e-6, 1.0),
+    "line_steps": (1, 64),
+    "error_bound": (0.0, 3.0),
+    "grad_bound": (0.0, 1e6),
+    "workers": (0, 256),
+    "max_grid": (1, 10_000),
+    "seed": (0, MAX_SEED),
+}
 
 
 @dataclass
@@ -227,10 +263,13 @@ def _grid(lo, hi, d: int, limit: int, rng: np.random.Generator):
     """Grid points of the box [lo, hi] with d divisions per edge (corners of the subcubes); when
     there are more than ``limit``, a subset drawn by the fit's seeded generator."""
     axes = [np.linspace(a, b, d + 1) for a, b in zip(lo, hi, strict=True)]
-    pts = np.array(list(itertools.product(*axes)))
-    if len(pts) > limit:
-        pts = pts[np.sort(rng.choice(len(pts), size=limit, replace=False))]
-    return pts
+    total = (d + 1) ** len(axes)
+    which = np.arange(total)
+    if total > limit:
+        which = np.sort(rng.choice(total, size=limit, replace=False))
+    # the points in itertools.product's order (the last axis fastest), only the drawn ones
+    idx = np.unravel_index(which, (d + 1,) * len(axes))
+    return np.stack([ax[i] for ax, i in zip(axes, idx, strict=True)], axis=1)
 
 
 def fit(
@@ -346,31 +385,34 @@ def character_samples(chars: list[dict], n_px: int, template: Recording, names=N
 
 
 def image_sample(recording: Recording, png_path, name: str = "") -> TrainingSample:
-    """A training sample from the user's own image and the recording that goes with it."""
-    from .png import read_png
+    """A training sample from the user's own image and the recording that goes with it; the
+    image's size is checked against the recording's paper before it is decoded."""
+    from .png import png_header, read_png
 
+    w, h, _ = png_header(png_path)
+    if (w, h) != (recording.width_px, recording.height_px):
+        raise ParameterError(
+            f"image {png_path} is {w} x {h} px but its recording's paper is "
+            f"{recording.width_px} x {recording.height_px} px"
+        )
     a = read_png(png_path).astype(np.float32) / 255.0
-    if a.shape[2] == 1:
-        a = np.repeat(a, 3, axis=2)
+    if a.shape[2] <= 2:  # grey, grey + alpha
+        a = np.repeat(a[..., :1], 3, axis=2)
     return TrainingSample(recording, a[..., :3], name or str(png_path))
 
 
 def load_quality(path) -> dict:
     """Quality values from a JSON file with a "quality" object (a fitted preset, a brush or
     paper preset, or a bare object of values); every value is checked."""
-    p = Path(path)
-    try:
-        d = json.loads(p.read_text(encoding="utf-8"))
-    except (OSError, json.JSONDecodeError) as exc:
-        raise ParameterError(f"cannot read quality file {p}: {exc}") from None
+    d = read_json(path, "quality file", ParameterError, max_bytes=2**20)
     q = d.get("quality", d) if isinstance(d, dict) else None
     if not isinstance(q, dict):
-        raise ParameterError(f"{p}: needs a 'quality' object of parameter values")
-    return (
-        QualityParams().with_values(q).to_dict() | {}
-        if False
-        else {k: v for k, v in QualityParams().with_values(q).to_dict().items() if k in q}
-    )
+        raise ParameterError(f"quality file {path}: needs a 'quality' object of parameter values")
+    try:
+        checked = QualityParams().with_values(q).to_dict()
+    except ParameterError as exc:
+        raise ParameterError(f"quality file {path}: {exc}") from None
+    return {k: v for k, v in checked.items() if k in q}
 
 
 def save_preset(result: FitResult, path, name: str | None = None) -> Path:

@@ -6,26 +6,110 @@ Coordinates in the data: a 1024-unit em box, y up, with image y = 900 - y_data. 
 
 from __future__ import annotations
 
-import json
 from pathlib import Path
 
 import numpy as np
 
+from .jsonio import decode_text, parse_json, read_json
+from .outline import EM, TOP, parse_path
+from .params import number_within
 from .strokes import stroke, travel
 
-EM = 1024.0
-TOP = 900.0
+MAX_CHAR_BYTES = 4 * 2**20  # a character file, or a line of graphics.txt
+MAX_STROKES = 64
+MAX_OUTLINE_CHARS = 20_000  # a stroke's SVG path (the bundled ones: under 500)
+MAX_OUTLINE_POINTS = 2_000  # a stroke's outline with its curves flattened (bundled: under 200)
+MAX_MEDIAN_POINTS = 256  # (bundled: under 20)
+MAX_MEDIAN_LENGTH = 4 * EM  # data units along one median (bundled: under 1.4 EM)
+MAX_TOTAL_LENGTH = 32 * EM  # along all the medians of a character
+COORD_MARGIN = EM / 2  # how far outside the em box a point may lie
+_X_RANGE = (-COORD_MARGIN, EM + COORD_MARGIN)
+_Y_RANGE = (TOP - EM - COORD_MARGIN, TOP + COORD_MARGIN)
+
+
+class CharacterError(ValueError):
+    """Character data is unreadable or malformed; the message names the file and the field."""
+
+
+def _check_points(pts, where: str) -> None:
+    """Every point finite and near the em box (far-off points would ask for endless writing)."""
+    (xlo, xhi), (ylo, yhi) = _X_RANGE, _Y_RANGE
+    bad = ~((pts[:, 0] >= xlo) & (pts[:, 0] <= xhi) & (pts[:, 1] >= ylo) & (pts[:, 1] <= yhi))
+    if bad.any():
+        x, y = pts[int(np.argmax(bad))]
+        raise CharacterError(
+            f"{where}: point ({x:.6g}, {y:.6g}) lies far outside the 1024-unit em box "
+            f"(x in [{xlo:g}, {xhi:g}], y in [{ylo:g}, {yhi:g}])"
+        )
+
+
+def _check_outline(path, where: str) -> None:
+    if not isinstance(path, str):
+        raise CharacterError(f"{where} must be an SVG path (a string)")
+    if len(path) > MAX_OUTLINE_CHARS:
+        raise CharacterError(f"{where} is {len(path)} characters long; at most {MAX_OUTLINE_CHARS}")
+    try:
+        polys = parse_path(path)
+    except ValueError as exc:
+        raise CharacterError(f"{where}: {exc}") from None
+    if not polys:
+        raise CharacterError(f"{where} has no closed outline of three points or more")
+    pts = np.concatenate(polys)
+    if len(pts) > MAX_OUTLINE_POINTS:
+        raise CharacterError(f"{where} has {len(pts)} outline points; at most {MAX_OUTLINE_POINTS}")
+    _check_points(pts, where)
+
+
+def _check_median(med, src: str, i: int) -> float:
+    """Median i: 2 or more [x, y] points near the em box; returns its length."""
+    where = f"{src}: 'medians[{i}]'"
+    if not isinstance(med, list) or not 2 <= len(med) <= MAX_MEDIAN_POINTS:
+        raise CharacterError(f"{where} must be a list of 2 to {MAX_MEDIAN_POINTS} points [x, y]")
+    for k, p in enumerate(med):
+        if not (isinstance(p, list) and len(p) == 2 and all(number_within(v) for v in p)):
+            raise CharacterError(
+                f"{src}: 'medians[{i}][{k}]' must be a point [x, y] of two finite numbers"
+            )
+    pts = np.array(med, dtype=float)
+    _check_points(pts, where)
+    length = float(np.linalg.norm(np.diff(pts, axis=0), axis=1).sum())
+    if length > MAX_MEDIAN_LENGTH:
+        raise CharacterError(
+            f"{where} is {length:.0f} units long; at most {MAX_MEDIAN_LENGTH:.0f} (4 em boxes)"
+        )
+    return length
+
+
+def check_char(d, where: str) -> dict:
+    """Character data as the writer needs it, checked: 'strokes' (SVG outlines) and 'medians'
+    (the brush's paths), one of each per stroke, bounded in size. Raises CharacterError."""
+    if not isinstance(d, dict) or "medians" not in d or "strokes" not in d:
+        raise CharacterError(f"{where}: not hanzi-writer data (needs 'strokes' and 'medians')")
+    strokes, medians = d["strokes"], d["medians"]
+    for key, v in (("strokes", strokes), ("medians", medians)):
+        if not isinstance(v, list) or not v:
+            raise CharacterError(f"{where}: '{key}' must be a non-empty list")
+    if len(strokes) > MAX_STROKES:
+        raise CharacterError(f"{where}: {len(strokes)} strokes; at most {MAX_STROKES}")
+    if len(medians) != len(strokes):
+        raise CharacterError(
+            f"{where}: {len(strokes)} 'strokes' but {len(medians)} 'medians' (one per stroke)"
+        )
+    for i, path in enumerate(strokes):
+        _check_outline(path, f"{where}: 'strokes[{i}]'")
+    total = sum(_check_median(m, where, i) for i, m in enumerate(medians))
+    if total > MAX_TOTAL_LENGTH:
+        raise CharacterError(
+            f"{where}: the medians are {total:.0f} units long together; "
+            f"at most {MAX_TOTAL_LENGTH:.0f}"
+        )
+    return d
 
 
 def load_char(path) -> dict:
+    """Checked character data from a hanzi-writer JSON file."""
     p = Path(path)
-    try:
-        d = json.loads(p.read_text(encoding="utf-8"))
-    except (OSError, json.JSONDecodeError) as exc:
-        raise ValueError(f"cannot read character data {p}: {exc}") from None
-    if not isinstance(d, dict) or "medians" not in d or "strokes" not in d:
-        raise ValueError(f"{p}: not hanzi-writer data (needs 'strokes' and 'medians')")
-    return d
+    return check_char(read_json(p, "character data", CharacterError, MAX_CHAR_BYTES), str(p))
 
 
 DATA_DIR = Path(__file__).resolve().parent.parent / "data" / "hanzi"
@@ -35,31 +119,43 @@ def find_char(spec: str, data=None) -> dict:
     """Character data from a path to a hanzi-writer JSON file, or from a character looked up in
     ``data``: a folder of hanzi-writer-data files (``<char>.json``) or Make Me a Hanzi's
     ``graphics.txt`` (one JSON object per line with a "character" key). Without ``data`` the
-    characters bundled with the add-on are searched."""
+    characters bundled with the add-on are searched. Raises CharacterError."""
+    if not isinstance(spec, str) or not spec:
+        raise CharacterError("give a character, or a character data file")
     p = Path(spec)
     if p.suffix == ".json" and p.is_file():
         return load_char(p)
     if len(spec) != 1:
-        raise ValueError(f"{spec!r} is neither a character data file nor a single character")
+        raise CharacterError(f"{spec!r} is neither a character data file nor a single character")
     src = Path(data) if data else DATA_DIR
     if src.is_dir():
         f = src / f"{spec}.json"
         if not f.is_file():
-            raise ValueError(f"no data for {spec!r} in {src} (looked for {f.name})")
+            raise CharacterError(f"no data for {spec!r} in {src} (looked for {f.name})")
         return load_char(f)
     if src.is_file():
-        key = f'"character":"{spec}"'
-        with open(src, encoding="utf-8") as fh:
-            for line in fh:
-                if key in line.replace(" ", ""):
-                    try:
-                        d = json.loads(line)
-                    except json.JSONDecodeError as exc:
-                        raise ValueError(f"{src}: bad line for {spec!r}: {exc}") from None
-                    if d.get("character") == spec and "strokes" in d and "medians" in d:
-                        return d
-        raise ValueError(f"no data for {spec!r} in {src}")
-    raise ValueError(f"character data {src} does not exist")
+        return _graphics_line(src, spec)
+    raise CharacterError(f"character data {src} does not exist")
+
+
+def _graphics_line(src: Path, spec: str) -> dict:
+    """The checked data of ``spec`` from Make Me a Hanzi's graphics.txt (a JSON object a line),
+    read a bounded line at a time."""
+    key = f'"character":"{spec}"'.encode()
+    try:
+        with open(src, "rb") as fh:
+            for n, line in enumerate(iter(lambda: fh.readline(MAX_CHAR_BYTES + 1), b""), 1):
+                where = f"{src} line {n}"
+                if len(line) > MAX_CHAR_BYTES:
+                    raise CharacterError(f"{where} is longer than {MAX_CHAR_BYTES} bytes")
+                if key not in line.replace(b" ", b""):
+                    continue
+                d = parse_json(decode_text(line, where, CharacterError), where, CharacterError)
+                if isinstance(d, dict) and d.get("character") == spec:
+                    return check_char(d, where)
+    except OSError as exc:
+        raise CharacterError(f"cannot read character data {src}: {exc.strerror or exc}") from None
+    raise CharacterError(f"no data for {spec!r} in {src}")
 
 
 def to_paper(points, size_mm: float, origin=(0.0, 0.0)) -> np.ndarray:

@@ -18,8 +18,10 @@ from dataclasses import dataclass, replace
 import numpy as np
 
 from .engine import Simulation
+from .hanzi import check_char
 from .outline import EM, TOP, median_bands, median_radii, rasterise
-from .recording import Dip, Recording, quantise
+from .params import MAX_PAPER_SIDE_PX, ParameterError, number_within, short_repr
+from .recording import PAPER_MM_RANGE, PX_PER_MM_RANGE, Dip, Recording, quantise
 from .strokes import stroke
 
 CAL_PPM = 5.0  # px/mm of the calibration strokes
@@ -27,6 +29,8 @@ CAL_LENGTH_MM = 45.0
 ENTRY_SAMPLES = 8
 EXIT_SAMPLES = 8
 HOVER_MM = 4.0
+MAX_PASSES = 50
+MIN_SHEET_PX = 8
 
 
 @dataclass
@@ -370,6 +374,48 @@ def _practise(sim, a, b, body, want, step_mm, pl, reach):
     return before
 
 
+def _check_writing(n_px, size_mm, passes, dip_every_mm, px_per_mm) -> None:
+    """The writer's arguments in range (the sheet's size and resolution are checked once the
+    size is known)."""
+    if isinstance(passes, bool) or not isinstance(passes, int) or not 1 <= passes <= MAX_PASSES:
+        raise ParameterError(
+            f"practice passes must be a whole number in [1, {MAX_PASSES}], got {short_repr(passes)}"
+        )
+    if px_per_mm is None and (
+        isinstance(n_px, bool)
+        or not isinstance(n_px, int)
+        or not MIN_SHEET_PX <= n_px <= MAX_PAPER_SIDE_PX
+    ):
+        raise ParameterError(
+            f"image size must be a whole number of pixels in [{MIN_SHEET_PX}, "
+            f"{MAX_PAPER_SIDE_PX}], got {short_repr(n_px)}"
+        )
+    if size_mm is not None and not number_within(size_mm, *PAPER_MM_RANGE):
+        raise ParameterError(
+            f"character size must be a number of mm in [{PAPER_MM_RANGE[0]:g}, "
+            f"{PAPER_MM_RANGE[1]:g}], got {short_repr(size_mm)}"
+        )
+    if dip_every_mm is not None and not number_within(dip_every_mm, 1e-3, 1e6):
+        raise ParameterError(
+            f"dip_every_mm must be a positive number, got {short_repr(dip_every_mm)}"
+        )
+
+
+def _check_sheet(size_mm: float, ppm: float) -> None:
+    """The em box's sheet: a resolution and a pixel size a recording can hold."""
+    lo, hi = PX_PER_MM_RANGE
+    if not number_within(ppm, lo, hi):
+        raise ParameterError(
+            f"a {size_mm:.4g} mm character at this image size is {ppm:.4g} px/mm; the paper "
+            f"takes {lo:g} to {hi:g} px/mm (change the size in mm or in pixels)"
+        )
+    if round(size_mm * ppm) > MAX_PAPER_SIDE_PX:
+        raise ParameterError(
+            f"a {size_mm:.4g} mm character at {ppm:.4g} px/mm is {round(size_mm * ppm)} px "
+            f"wide; at most {MAX_PAPER_SIDE_PX} px"
+        )
+
+
 def write_character(
     char: dict,
     n_px: int,
@@ -390,7 +436,12 @@ def write_character(
     forward). With ``passes`` > 1 the writer practises each stroke as a student of MiaoHong
     does (Sec. 7.2): it writes the stroke, reads the band it left across the median against the
     outline's width, corrects the press (through the response's slope) and the sideways
-    placement, takes the stroke back (a snapshot) and writes it again; the best pass stays."""
+    placement, takes the stroke back (a snapshot) and writes it again; the best pass stays.
+
+    Bad arguments raise ParameterError (CharacterError for bad character data) before any
+    work."""
+    check_char(char, "character data")
+    _check_writing(n_px, size_mm, passes, dip_every_mm, px_per_mm)
     if response is None:
         response = calibrate(template)
     size = auto_size_mm(char, response) if size_mm is None else float(size_mm)
@@ -402,6 +453,7 @@ def write_character(
     samples = np.zeros((N, 6))
     dips = [Dip(i, ink.depth, tuple(ink.color), ink.wetness) for i in pl.dips]
     ppm = n_px / size if px_per_mm is None else float(px_per_mm)
+    _check_sheet(size, ppm)
     rec = _settings(
         template, samples=samples, width_mm=size, height_mm=size, px_per_mm=ppm, dips=dips
     )

@@ -16,6 +16,14 @@ TOP = 900.0
 _TOKEN = re.compile(r"[A-Za-z]|[-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?")
 _ARGS = {"M": 2, "L": 2, "Q": 4, "C": 6, "Z": 0}
 _CURVE_STEPS = 8
+BLOCK_ELEMENTS = 1 << 20  # points x edges worked on at once (bounds the memory)
+
+
+def _blocks(n: int, edges: int):
+    """Slices of n rows, each of at most BLOCK_ELEMENTS rows x edges."""
+    step = max(BLOCK_ELEMENTS // max(edges, 1), 1)
+    for i in range(0, n, step):
+        yield slice(i, min(i + step, n))
 
 
 def parse_path(d: str) -> list[np.ndarray]:
@@ -52,6 +60,8 @@ def parse_path(d: str) -> list[np.ndarray]:
         elif cmd == "L":
             cur.append(v)
         else:
+            if not cur and pos is None:
+                raise ValueError(f"SVG path draws a curve before any point: {d[:40]!r}")
             p0 = np.array(cur[-1] if cur else pos)
             t = np.linspace(0, 1, _CURVE_STEPS + 1)[1:, None]
             c = np.array(v).reshape(-1, 2)
@@ -94,19 +104,25 @@ def fill(polys_img, n: int) -> np.ndarray:
     if not polys_img:
         return out[:, :n] > 0
     a, b = _edges(polys_img)
-    yc = np.arange(n) + 0.5
+    for rows in _blocks(n, len(a)):
+        _fill_rows(out, rows, a, b, n)
+    return np.cumsum(out, axis=1)[:, :n] > 0
+
+
+def _fill_rows(out, rows: slice, a, b, n: int) -> None:
+    """The even-odd crossings of the given rows, as +1 / -1 at their columns in ``out``."""
+    yc = np.arange(rows.start, rows.stop) + 0.5
     y0, y1 = a[:, 1], b[:, 1]
-    crosses = (y0[None, :] <= yc[:, None]) != (y1[None, :] <= yc[:, None])  # (n, E)
+    crosses = (y0[None, :] <= yc[:, None]) != (y1[None, :] <= yc[:, None])  # (rows, E)
     dy = np.where(y1 != y0, y1 - y0, 1.0)
     x = a[None, :, 0] + (yc[:, None] - y0[None, :]) * ((b[:, 0] - a[:, 0]) / dy)[None, :]
     x = np.where(crosses, x, np.inf)
     x.sort(axis=1)
     k = crosses.sum(axis=1)
-    rows, idx = np.nonzero(np.arange(x.shape[1])[None, :] < k[:, None])
-    col = np.clip(np.ceil(x[rows, idx] - 0.5), 0, n).astype(np.int64)
+    r, idx = np.nonzero(np.arange(x.shape[1])[None, :] < k[:, None])
+    col = np.clip(np.ceil(x[r, idx] - 0.5), 0, n).astype(np.int64)
     sign = np.where(idx % 2 == 0, 1, -1)
-    np.add.at(out, (rows, col), sign)
-    return np.cumsum(out, axis=1)[:, :n] > 0
+    np.add.at(out, (r + rows.start, col), sign)
 
 
 def rasterise(char: dict, n: int) -> np.ndarray:
@@ -121,11 +137,14 @@ def rasterise(char: dict, n: int) -> np.ndarray:
 def _inside(points, polys) -> np.ndarray:
     """Even-odd point-in-polygon for points (K, 2) against polygons (data units)."""
     a, b = _edges(polys)
-    px, py = points[:, 0:1], points[:, 1:2]
-    cond = (a[None, :, 1] > py) != (b[None, :, 1] > py)
     dy = np.where(b[:, 1] != a[:, 1], b[:, 1] - a[:, 1], 1.0)
-    xc = a[None, :, 0] + (py - a[None, :, 1]) * ((b[:, 0] - a[:, 0]) / dy)[None, :]
-    return (np.sum(cond & (px < xc), axis=1) % 2) == 1
+    out = np.zeros(len(points), dtype=bool)
+    for sl in _blocks(len(points), len(a)):
+        px, py = points[sl, 0:1], points[sl, 1:2]
+        cond = (a[None, :, 1] > py) != (b[None, :, 1] > py)
+        xc = a[None, :, 0] + (py - a[None, :, 1]) * ((b[:, 0] - a[:, 0]) / dy)[None, :]
+        out[sl] = (np.sum(cond & (px < xc), axis=1) % 2) == 1
+    return out
 
 
 def distance_to_outline(points, polys) -> np.ndarray:
@@ -134,9 +153,11 @@ def distance_to_outline(points, polys) -> np.ndarray:
     a, b = _edges(polys)
     ab = b - a
     L2 = np.maximum(np.sum(ab * ab, axis=1), 1e-12)
-    ap = pts[:, None, :] - a[None, :, :]
-    t = np.clip(np.sum(ap * ab[None], axis=2) / L2[None], 0.0, 1.0)
-    d = np.sqrt(np.min(np.sum((ap - t[..., None] * ab[None]) ** 2, axis=2), axis=1))
+    d = np.empty(len(pts))
+    for sl in _blocks(len(pts), len(a)):
+        ap = pts[sl, None, :] - a[None, :, :]
+        t = np.clip(np.sum(ap * ab[None], axis=2) / L2[None], 0.0, 1.0)
+        d[sl] = np.sqrt(np.min(np.sum((ap - t[..., None] * ab[None]) ** 2, axis=2), axis=1))
     return np.where(_inside(pts, polys), d, -d)
 
 
@@ -165,14 +186,18 @@ def _ray_hits(points, dirs, polys) -> np.ndarray:
     """Distance from each point along its direction to the first outline edge (inf: none)."""
     a, b = _edges(polys)
     e = b - a  # (E, 2)
-    ap = a[None, :, :] - points[:, None, :]  # (P, E, 2)
-    den = dirs[:, None, 0] * e[None, :, 1] - dirs[:, None, 1] * e[None, :, 0]
-    ok = np.abs(den) > 1e-12
-    den = np.where(ok, den, 1.0)
-    t = (ap[..., 0] * e[None, :, 1] - ap[..., 1] * e[None, :, 0]) / den
-    u = (ap[..., 0] * dirs[:, None, 1] - ap[..., 1] * dirs[:, None, 0]) / den
-    hit = ok & (t > 1e-9) & (u >= 0.0) & (u <= 1.0)
-    return np.where(hit, t, np.inf).min(axis=1)
+    out = np.empty(len(points))
+    for sl in _blocks(len(points), len(a)):
+        p, dr = points[sl], dirs[sl]
+        ap = a[None, :, :] - p[:, None, :]  # (P, E, 2)
+        den = dr[:, None, 0] * e[None, :, 1] - dr[:, None, 1] * e[None, :, 0]
+        ok = np.abs(den) > 1e-12
+        den = np.where(ok, den, 1.0)
+        t = (ap[..., 0] * e[None, :, 1] - ap[..., 1] * e[None, :, 0]) / den
+        u = (ap[..., 0] * dr[:, None, 1] - ap[..., 1] * dr[:, None, 0]) / den
+        hit = ok & (t > 1e-9) & (u >= 0.0) & (u <= 1.0)
+        out[sl] = np.where(hit, t, np.inf).min(axis=1)
+    return out
 
 
 def median_bands(char: dict, step: float = 4.0) -> list[tuple[np.ndarray, np.ndarray]]:

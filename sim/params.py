@@ -7,10 +7,13 @@ add-on) root, loaded by plain Python so that they are testable without Blender.
 
 from __future__ import annotations
 
-import json
 import math
+import numbers
+import sys
 from dataclasses import asdict, dataclass, field, fields, replace
 from pathlib import Path
+
+from .jsonio import read_json
 
 PRESET_DIR = Path(__file__).resolve().parent.parent / "presets"
 PRESET_KINDS = {"brush": "brushes", "paper": "papers", "ink": "inks", "quality": "qualities"}
@@ -77,22 +80,48 @@ PAPER_QUALITY = ("sm", "ab", "pw", "dry")
 
 MAX_PAPER_SIDE_PX = 8192
 MAX_PAPER_PIXELS = 8192 * 8192
+PAPER_CAPACITY_RANGE = (1e-3, 1e6)  # a preset's wetness capacity
+INK_FACTOR_RANGE = (-1.0, 1.0)  # an ink preset's per-mm factors of Eq. 5
 
 
 class ParameterError(ValueError):
     """A parameter or preset is missing or out of range; the message names the field."""
 
 
+def is_number(value) -> bool:
+    """A real number, not a bool (True is an int in Python) and not a string."""
+    return isinstance(value, numbers.Real) and not isinstance(value, bool)
+
+
+def number_within(value, lo=-math.inf, hi=math.inf) -> bool:
+    """A finite number in [lo, hi] (whole numbers are compared exactly, and must fit a float)."""
+    if not is_number(value):
+        return False
+    if isinstance(value, numbers.Integral):
+        v = int(value)
+        return -sys.float_info.max <= v <= sys.float_info.max and lo <= v <= hi
+    v = float(value)
+    return math.isfinite(v) and lo <= v <= hi
+
+
+def short_repr(value) -> str:
+    """A value for a message: huge integers by their size, long reprs cut."""
+    if isinstance(value, int) and not isinstance(value, bool) and value.bit_length() > 80:
+        return f"an integer of {value.bit_length()} bits"
+    r = repr(value)
+    return r if len(r) <= 60 else r[:57] + "..."
+
+
 def _check_unit(name: str, value) -> float:
-    try:
-        v = float(value)
-    except (TypeError, ValueError):
+    if not is_number(value):
         raise ParameterError(
-            f"quality parameter '{name}' must be a number, got {value!r}"
-        ) from None
-    if not math.isfinite(v) or v < 0.0 or v > 1.0:
-        raise ParameterError(f"quality parameter '{name}' must lie in [0, 1], got {value!r}")
-    return v
+            f"quality parameter '{name}' must be a number, got {short_repr(value)}"
+        )
+    if not number_within(value, 0.0, 1.0):
+        raise ParameterError(
+            f"quality parameter '{name}' must lie in [0, 1], got {short_repr(value)}"
+        )
+    return float(value)
 
 
 @dataclass(frozen=True)
@@ -154,12 +183,14 @@ class BrushGeometry:
         }
         for name, (lo, hi) in checks.items():
             v = getattr(self, name)
-            if not isinstance(v, (int, float)) or not math.isfinite(v) or not lo <= v <= hi:
-                raise ParameterError(f"brush geometry '{name}' must lie in [{lo}, {hi}], got {v!r}")
-        if not isinstance(self.key_points, int) or not 5 <= self.key_points <= 32:
+            if not number_within(v, lo, hi):
+                raise ParameterError(
+                    f"brush geometry '{name}' must lie in [{lo}, {hi}], got {short_repr(v)}"
+                )
+        k = self.key_points
+        if isinstance(k, bool) or not isinstance(k, int) or not 5 <= k <= 32:
             raise ParameterError(
-                f"brush geometry 'key_points' must be an integer in [5, 32], "
-                f"got {self.key_points!r}"
+                f"brush geometry 'key_points' must be an integer in [5, 32], got {short_repr(k)}"
             )
 
 
@@ -197,20 +228,24 @@ def preset_names(kind: str, directory: Path | None = None) -> list[str]:
     return sorted(p.stem for p in d.glob("*.json"))
 
 
+_BAD_NAME_CHARS = ("/", "\\", "\x00")
+
+
 def load_preset(kind: str, name: str, directory: Path | None = None) -> Preset:
     if kind not in PRESET_KINDS:
         raise ParameterError(f"unknown preset kind {kind!r}; known: {sorted(PRESET_KINDS)}")
+    ok_name = isinstance(name, str) and name and not any(c in name for c in _BAD_NAME_CHARS)
     path = (directory or PRESET_DIR) / PRESET_KINDS[kind] / f"{name}.json"
-    if not isinstance(name, str) or "/" in name or "\\" in name or not path.is_file():
+    if not ok_name or not path.is_file():
         raise ParameterError(
-            f"unknown {kind} preset {name!r}; available: {preset_names(kind, directory)}"
+            f"unknown {kind} preset {short_repr(name)}; available: {preset_names(kind, directory)}"
         )
-    try:
-        data = json.loads(path.read_text(encoding="utf-8"))
-    except json.JSONDecodeError as exc:
-        raise ParameterError(f"{kind} preset file {path.name} is not valid JSON: {exc}") from None
-    if data.get("kind") != kind:
-        raise ParameterError(f"{path.name}: 'kind' must be {kind!r}")
+    data = read_json(path, f"{kind} preset file", ParameterError, max_bytes=2**20)
+    if not isinstance(data, dict) or data.get("kind") != kind:
+        raise ParameterError(f"{path.name}: must be a JSON object whose 'kind' is {kind!r}")
+    for key, typ in (("label", str), ("description", str), ("quality", dict)):
+        if key in data and not isinstance(data[key], typ):
+            raise ParameterError(f"{kind} preset {path.name}: '{key}' has the wrong type")
     return Preset(kind, name, data.get("label", name), data.get("description", ""), data)
 
 
@@ -230,14 +265,47 @@ def quality_from_presets(brush: Preset | None, paper: Preset | None) -> dict:
     return values
 
 
+def _section(preset: Preset, key: str) -> dict:
+    v = preset.data.get(key, {})
+    if not isinstance(v, dict):
+        raise ParameterError(f"{preset.kind} preset {preset.name!r}: '{key}' must be an object")
+    return v
+
+
+def _preset_num(preset: Preset, d: dict, key: str, default, lo: float, hi: float) -> float:
+    """A number of a preset, checked: finite and within [lo, hi]."""
+    v = d.get(key, default)
+    if not number_within(v, lo, hi):
+        raise ParameterError(
+            f"{preset.kind} preset {preset.name!r}: '{key}' must be a number in [{lo}, {hi}], "
+            f"got {short_repr(v)}"
+        )
+    return float(v)
+
+
+def _preset_vec(preset: Preset, d: dict, key: str, default, lo: float, hi: float) -> tuple:
+    """Three numbers of a preset (a colour or a vector), each within [lo, hi]."""
+    v = d.get(key, default)
+    if not isinstance(v, (list, tuple)) or len(v) != 3:
+        raise ParameterError(
+            f"{preset.kind} preset {preset.name!r}: '{key}' must be a list of 3 numbers"
+        )
+    return tuple(_preset_num(preset, {key: c}, key, 0.0, lo, hi) for c in v)
+
+
 def geometry_from_preset(preset: Preset | None) -> BrushGeometry:
     if preset is None:
         return BrushGeometry()
-    g = dict(preset.data.get("geometry", {}))
+    g = _section(preset, "geometry")
+    known = {f.name for f in fields(BrushGeometry)}
+    if set(g) - known:
+        raise ParameterError(
+            f"brush preset {preset.name!r}: unknown geometry field(s) {sorted(set(g) - known)}"
+        )
     try:
         return BrushGeometry(**g)
-    except TypeError as exc:
-        raise ParameterError(f"brush preset {preset.name!r}: bad geometry: {exc}") from None
+    except ParameterError as exc:
+        raise ParameterError(f"brush preset {preset.name!r}: {exc}") from None
 
 
 def paper_from_preset(preset: Preset | None) -> PaperSpec:
@@ -245,8 +313,8 @@ def paper_from_preset(preset: Preset | None) -> PaperSpec:
         return PaperSpec()
     d = preset.data
     return PaperSpec(
-        color=tuple(float(c) for c in d.get("color", (1, 1, 1))),
-        capacity=float(d.get("capacity", 1.0)),
+        color=_preset_vec(preset, d, "color", PaperSpec.color, 0.0, 1.0),
+        capacity=_preset_num(preset, d, "capacity", PaperSpec.capacity, *PAPER_CAPACITY_RANGE),
     )
 
 
@@ -254,14 +322,14 @@ def ink_from_preset(preset: Preset | None) -> InkSpec:
     if preset is None:
         return InkSpec()
     d = preset.data
-    rad = d.get("radiation", {})
-    vec = d.get("vector", {})
+    rad, vec = _section(preset, "radiation"), _section(preset, "vector")
+    lo, hi = INK_FACTOR_RANGE
     return InkSpec(
-        color=tuple(float(c) for c in d.get("color", InkSpec.color)),
-        wetness=float(d.get("wetness", InkSpec.wetness)),
-        depth=float(d.get("depth", InkSpec.depth)),
-        wr=float(rad.get("wr", InkSpec.wr)),
-        cr=float(rad.get("cr", InkSpec.cr)),
-        wv=tuple(float(c) for c in vec.get("wv", InkSpec.wv)),
-        cv=tuple(float(c) for c in vec.get("cv", InkSpec.cv)),
+        color=_preset_vec(preset, d, "color", InkSpec.color, 0.0, 1.0),
+        wetness=_preset_num(preset, d, "wetness", InkSpec.wetness, 0.0, 1.0),
+        depth=_preset_num(preset, d, "depth", InkSpec.depth, 0.0, 1.0),
+        wr=_preset_num(preset, rad, "wr", InkSpec.wr, lo, hi),
+        cr=_preset_num(preset, rad, "cr", InkSpec.cr, lo, hi),
+        wv=_preset_vec(preset, vec, "wv", InkSpec.wv, lo, hi),
+        cv=_preset_vec(preset, vec, "cv", InkSpec.cv, lo, hi),
     )

@@ -1,12 +1,28 @@
 # SPDX-License-Identifier: GPL-3.0-or-later
-"""Minimal PNG writer and reader (8-bit grey/RGB/RGBA, no interlace): standard library only."""
+"""Minimal PNG writer and reader (8-bit grey/RGB/RGBA/palette, no interlace), numpy only, so
+that it runs inside Blender too.
+
+Reading is bounded: the size in the header is checked before anything is decompressed, the
+decompressed data is capped at exactly what that size needs, every chunk's length and CRC are
+checked, and every fault ends in ``PNGError`` naming the file."""
 
 from __future__ import annotations
 
+import os
 import struct
 import zlib
 
 import numpy as np
+
+from .params import MAX_PAPER_PIXELS, MAX_PAPER_SIDE_PX
+
+SIGNATURE = b"\x89PNG\r\n\x1a\n"
+CHANNELS = {0: 1, 2: 3, 3: 1, 4: 2, 6: 4}  # colour type -> samples a pixel
+METADATA_BYTES = 16 * 2**20  # room for chunks other than the image data
+
+
+class PNGError(ValueError):
+    """A PNG file is unreadable, damaged, too large, or of a kind this reader does not take."""
 
 
 def _chunk(tag: bytes, data: bytes) -> bytes:
@@ -45,57 +61,129 @@ def write_png(path, img, level: int = 6) -> None:
         f.write(_chunk(b"IEND", b""))
 
 
-def read_png(path) -> np.ndarray:
-    """Read an 8-bit, non-interlaced PNG into (H, W, C) uint8, top row first."""
-    with open(path, "rb") as f:
-        data = f.read()
-    if data[:8] != b"\x89PNG\r\n\x1a\n":
-        raise ValueError(f"{path}: not a PNG file")
-    pos, idat, hdr, palette = 8, [], None, None
-    while pos < len(data):
+def png_header(path, max_side: int = MAX_PAPER_SIDE_PX, max_pixels: int = MAX_PAPER_PIXELS):
+    """(width, height, colour type) from a PNG's header, checked, without reading the rest."""
+    try:
+        with open(path, "rb") as f:
+            head = f.read(33)
+    except OSError as exc:
+        raise PNGError(f"cannot read image {path}: {exc.strerror or exc}") from None
+    return _ihdr(head, path, max_side, max_pixels)
+
+
+def _ihdr(head: bytes, path, max_side: int, max_pixels: int):
+    if head[:8] != SIGNATURE:
+        raise PNGError(f"{path}: not a PNG file")
+    if len(head) < 33 or head[8:16] != b"\x00\x00\x00\rIHDR":
+        raise PNGError(f"{path}: the PNG header (IHDR) is missing or truncated")
+    if zlib.crc32(head[12:29]) != struct.unpack(">I", head[29:33])[0]:
+        raise PNGError(f"{path}: the PNG header (IHDR) is damaged (CRC mismatch)")
+    w, h, depth, ctype, comp, filt, interlace = struct.unpack(">IIBBBBB", head[16:29])
+    if ctype not in CHANNELS:
+        raise PNGError(f"{path}: PNG colour type {ctype} does not exist")
+    if depth != 8 or interlace or comp or filt:
+        raise PNGError(
+            f"{path}: only 8-bit non-interlaced PNG is supported (this one: {depth}-bit"
+            f"{', interlaced' if interlace else ''})"
+        )
+    if not (1 <= w <= max_side and 1 <= h <= max_side and w * h <= max_pixels):
+        raise PNGError(
+            f"{path}: image of {w} x {h} px is empty or too large (at most {max_side} px a side)"
+        )
+    return w, h, ctype
+
+
+def _chunks(data: bytes, path):
+    """(tag, body) of every chunk after the header, lengths and CRCs checked, up to IEND."""
+    pos = 33
+    while True:
+        if pos + 12 > len(data):
+            raise PNGError(f"{path}: the PNG file is truncated (no IEND chunk)")
         (n,) = struct.unpack(">I", data[pos : pos + 4])
         tag = data[pos + 4 : pos + 8]
+        if pos + 12 + n > len(data):
+            raise PNGError(f"{path}: the PNG file is truncated (in chunk {tag!r})")
         body = data[pos + 8 : pos + 8 + n]
+        (crc,) = struct.unpack(">I", data[pos + 8 + n : pos + 12 + n])
+        if zlib.crc32(tag + body) != crc:
+            raise PNGError(f"{path}: PNG chunk {tag!r} is damaged (CRC mismatch)")
+        if tag == b"IEND":
+            return
+        yield tag, body
         pos += 12 + n
-        if tag == b"IHDR":
-            hdr = struct.unpack(">IIBBBBB", body)
-        elif tag == b"PLTE":
-            palette = np.frombuffer(body, dtype=np.uint8).reshape(-1, 3)
-        elif tag == b"IDAT":
+
+
+def _inflate(idat, size: int, path) -> np.ndarray:
+    """The image data, decompressed chunk by chunk to exactly ``size`` bytes and no more."""
+    z = zlib.decompressobj()
+    out = bytearray()
+    try:
+        for body in idat:
+            out += z.decompress(body, size + 1 - len(out))
+            if len(out) > size or z.unconsumed_tail:
+                raise PNGError(f"{path}: the PNG holds more image data than its size needs")
+    except zlib.error as exc:
+        raise PNGError(f"{path}: the PNG's image data is damaged ({exc})") from None
+    if len(out) < size:
+        raise PNGError(f"{path}: the PNG's image data is truncated")
+    return np.frombuffer(bytes(out), dtype=np.uint8)
+
+
+def read_png(path, max_side: int = MAX_PAPER_SIDE_PX, max_pixels: int = MAX_PAPER_PIXELS):
+    """Read an 8-bit, non-interlaced PNG into (H, W, C) uint8, top row first (a palette image
+    as RGB). Raises PNGError on anything else, before any large work."""
+    try:
+        with open(path, "rb") as f:
+            w, h, ctype = _ihdr(f.read(33), path, max_side, max_pixels)
+            c = CHANNELS[ctype]
+            size = h * (1 + w * c)
+            if os.fstat(f.fileno()).st_size > 2 * size + METADATA_BYTES:
+                raise PNGError(f"{path}: the PNG file is far larger than its image needs")
+            f.seek(0)
+            data = f.read()
+    except OSError as exc:
+        raise PNGError(f"cannot read image {path}: {exc.strerror or exc}") from None
+    idat, palette = [], None
+    for tag, body in _chunks(data, path):
+        if tag == b"IDAT":
             idat.append(body)
-        elif tag == b"IEND":
-            break
-    w, h, depth, ctype, _, _, interlace = hdr
-    if depth != 8 or interlace:
-        raise ValueError(f"{path}: only 8-bit non-interlaced PNG is supported")
-    c = {0: 1, 2: 3, 3: 1, 4: 2, 6: 4}[ctype]
-    raw = np.frombuffer(zlib.decompress(b"".join(idat)), dtype=np.uint8).reshape(h, 1 + w * c)
-    out = np.zeros((h, w * c), dtype=np.int32)
-    prev = np.zeros(w * c, dtype=np.int32)
-    for y in range(h):
-        ft, line = raw[y, 0], raw[y, 1:].astype(np.int32)
-        if ft == 0:
-            cur = line
-        elif ft == 2:
-            cur = (line + prev) & 255
-        else:
-            cur = np.zeros_like(line)
-            for x in range(w * c):
-                a = cur[x - c] if x >= c else 0
-                b = prev[x]
-                cc = prev[x - c] if x >= c else 0
-                if ft == 1:
-                    pred = a
-                elif ft == 3:
-                    pred = (a + b) >> 1
-                else:
-                    p = a + b - cc
-                    pa, pb, pc = abs(p - a), abs(p - b), abs(p - cc)
-                    pred = a if pa <= pb and pa <= pc else (b if pb <= pc else cc)
-                cur[x] = (line[x] + pred) & 255
-        out[y] = cur
-        prev = cur
-    img = out.astype(np.uint8).reshape(h, w, c)
+        elif tag == b"PLTE":
+            if len(body) % 3 or not 3 <= len(body) <= 768:
+                raise PNGError(f"{path}: the PNG's palette (PLTE) is malformed")
+            palette = np.frombuffer(body, dtype=np.uint8).reshape(-1, 3)
+    if ctype == 3 and palette is None:
+        raise PNGError(f"{path}: a palette PNG without its palette (PLTE)")
+    raw = _inflate(idat, size, path).reshape(h, 1 + w * c)
+    if raw[:, 0].max() > 4:
+        raise PNGError(f"{path}: the PNG has an unknown row filter {int(raw[:, 0].max())}")
+    img = _unfilter(raw, h, w, c)
     if ctype == 3:
+        if img.max() >= len(palette):
+            raise PNGError(f"{path}: a pixel's palette index lies beyond the palette")
         img = palette[img[..., 0]]
     return img
+
+
+def _unfilter(raw: np.ndarray, h: int, w: int, c: int) -> np.ndarray:
+    """Undo the rows' filters (None, Sub, Up, Average, Paeth): (H, W, C) uint8.
+
+    A pixel depends on its left, upper and upper-left neighbours, so the pixels of one
+    anti-diagonal (x + y constant) are independent: the image is decoded a diagonal at a time
+    (h + w - 1 vector steps instead of h x w x c scalar ones)."""
+    ft = raw[:, 0]
+    data = raw[:, 1:].reshape(h, w, c)
+    if not ft.any():
+        return data.copy()
+    out = np.zeros((h + 1, w + 1, c), dtype=np.uint8)  # a row and a column of zeros before
+    for s in range(h + w - 1):
+        ys = np.arange(max(0, s - w + 1), min(h, s + 1))
+        xs = s - ys
+        a = out[ys + 1, xs].astype(np.int16)  # left
+        b = out[ys, xs + 1].astype(np.int16)  # up
+        cc = out[ys, xs].astype(np.int16)  # up-left
+        pa, pb, pc = np.abs(b - cc), np.abs(a - cc), np.abs(a + b - 2 * cc)
+        paeth = np.where((pa <= pb) & (pa <= pc), a, np.where(pb <= pc, b, cc))
+        f = ft[ys][:, None]
+        pred = np.select([f == 1, f == 2, f == 3, f == 4], [a, b, (a + b) >> 1, paeth], default=0)
+        out[ys + 1, xs + 1] = (data[ys, xs] + pred) & 255
+    return out[1:, 1:]

@@ -10,22 +10,27 @@ from __future__ import annotations
 
 import json
 import math
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, fields
 from pathlib import Path
 
 import numpy as np
 
+from .jsonio import decode_text, parse_json, read_json
 from .params import (
     MAX_PAPER_PIXELS,
     MAX_PAPER_SIDE_PX,
+    BrushGeometry,
     InkSpec,
     ParameterError,
     QualityParams,
     geometry_from_preset,
     ink_from_preset,
+    is_number,
     load_preset,
+    number_within,
     paper_from_preset,
     quality_from_presets,
+    short_repr,
 )
 
 FORMAT = "hairy-brush-recording"
@@ -34,6 +39,10 @@ DEFAULT_BRUSH = "mixed"
 DEFAULT_PAPER = "raw_xuan"
 DEFAULT_INK = "sumi_black"
 MAX_SAMPLES = 2_000_000
+PAPER_MM_RANGE = (1.0, 5000.0)  # a side of the paper
+PX_PER_MM_RANGE = (0.1, 200.0)
+MAX_DIPS = 10_000  # the engine looks every dip up at every sample
+MAX_SEED = 2**64 - 1  # PCG64 takes any non-negative integer; a recording keeps 64 bits
 Z_LIMIT_MM = 1000.0
 ANGLE_LIMIT_DEG = 89.0
 
@@ -102,13 +111,9 @@ class Recording:
             values = quality_from_presets(bp, pp)
             values.update(self.quality)
             q = QualityParams().with_values(values)
-            geom = geometry_from_preset(bp)
-            if "geometry" in self.brush:
-                from dataclasses import replace
-
-                geom = replace(geom, **self.brush["geometry"])
+            geom = _geometry_override(geometry_from_preset(bp), self.brush.get("geometry"))
             return q, geom, paper_from_preset(pp), ink_from_preset(ip)
-        except (ParameterError, TypeError) as exc:
+        except ParameterError as exc:
             raise RecordingError(str(exc)) from None
 
     def dips_or_default(self) -> list:
@@ -143,15 +148,37 @@ class Recording:
 
 
 # ------------------------------------------------------------------------- validation
+def _geometry_override(geom: BrushGeometry, override) -> BrushGeometry:
+    """The preset's brush geometry with the recording's 'brush.geometry' values."""
+    if override is None:
+        return geom
+    if not isinstance(override, dict):
+        raise RecordingError("'brush.geometry' must be an object")
+    known = [f.name for f in fields(BrushGeometry)]
+    unknown = sorted(str(k) for k in override if k not in known)
+    if unknown:
+        raise RecordingError(f"unknown field(s) {unknown} in 'brush.geometry' (known: {known})")
+    from dataclasses import replace
+
+    try:
+        return replace(geom, **override)
+    except ParameterError as exc:
+        raise RecordingError(f"'brush.geometry': {exc}") from None
+
+
 def _num(value, where: str, lo=-math.inf, hi=math.inf, integer=False):
-    if isinstance(value, bool) or not isinstance(value, (int, float)):
-        raise RecordingError(f"{where} must be a number, got {type(value).__name__} {value!r}")
-    if not math.isfinite(value):
-        raise RecordingError(f"{where} must be finite, got {value!r}")
-    if integer and int(value) != value:
-        raise RecordingError(f"{where} must be a whole number, got {value!r}")
+    if not is_number(value):
+        raise RecordingError(
+            f"{where} must be a number, got {type(value).__name__} {short_repr(value)}"
+        )
+    if not number_within(value):  # NaN, infinities, whole numbers beyond any float
+        raise RecordingError(f"{where} must be finite, got {short_repr(value)}")
+    if not isinstance(value, int):
+        value = float(value)
+        if integer and not value.is_integer():
+            raise RecordingError(f"{where} must be a whole number, got {value!r}")
     if not lo <= value <= hi:
-        raise RecordingError(f"{where} must lie in [{lo}, {hi}], got {value!r}")
+        raise RecordingError(f"{where} must lie in [{lo}, {hi}], got {short_repr(value)}")
     return int(value) if integer else float(value)
 
 
@@ -182,9 +209,9 @@ def from_dict(d) -> Recording:
     for k in ("width_mm", "height_mm", "px_per_mm"):
         if k not in paper:
             raise RecordingError(f"missing field 'paper.{k}'")
-    width = _num(paper["width_mm"], "'paper.width_mm'", 1.0, 5000.0)
-    height = _num(paper["height_mm"], "'paper.height_mm'", 1.0, 5000.0)
-    ppm = _num(paper["px_per_mm"], "'paper.px_per_mm'", 0.1, 200.0)
+    width = _num(paper["width_mm"], "'paper.width_mm'", *PAPER_MM_RANGE)
+    height = _num(paper["height_mm"], "'paper.height_mm'", *PAPER_MM_RANGE)
+    ppm = _num(paper["px_per_mm"], "'paper.px_per_mm'", *PX_PER_MM_RANGE)
     wpx, hpx = round(width * ppm), round(height * ppm)
     if wpx > MAX_PAPER_SIDE_PX or hpx > MAX_PAPER_SIDE_PX or wpx * hpx > MAX_PAPER_PIXELS:
         raise RecordingError(
@@ -208,7 +235,7 @@ def from_dict(d) -> Recording:
     if "sample_rate_hz" not in d:
         raise RecordingError("missing field 'sample_rate_hz'")
     rate = _num(d["sample_rate_hz"], "'sample_rate_hz'", 1.0, 10000.0)
-    seed = _num(d.get("seed", 0), "'seed'", 0, 2**63 - 1, integer=True)
+    seed = _num(d.get("seed", 0), "'seed'", 0, MAX_SEED, integer=True)
     if "samples" not in d:
         raise RecordingError("missing field 'samples'")
     samples = d["samples"]
@@ -220,8 +247,10 @@ def from_dict(d) -> Recording:
         if not isinstance(s, list) or len(s) != 6:
             raise RecordingError(f"'samples[{i}]' must be a list of 6 numbers [x, y, z, d, q, r]")
         for k, v in enumerate(s):
-            if isinstance(v, bool) or not isinstance(v, (int, float)) or not math.isfinite(v):
-                raise RecordingError(f"'samples[{i}][{k}]' must be a finite number, got {v!r}")
+            if not (math.isfinite(v) if type(v) is float else number_within(v)):
+                raise RecordingError(
+                    f"'samples[{i}][{k}]' must be a finite number, got {short_repr(v)}"
+                )
     arr = np.asarray(samples, dtype=float)
     if np.any(np.abs(arr[:, :2]) > 10 * max(width, height)):
         i = int(np.argmax(np.any(np.abs(arr[:, :2]) > 10 * max(width, height), axis=1)))
@@ -237,6 +266,8 @@ def from_dict(d) -> Recording:
     dips_raw = d.get("dips", [])
     if not isinstance(dips_raw, list):
         raise RecordingError("'dips' must be a list")
+    if len(dips_raw) > MAX_DIPS:
+        raise RecordingError(f"'dips' has {len(dips_raw)} entries; at most {MAX_DIPS}")
     dips = []
     for i, dp in enumerate(dips_raw):
         where = f"dips[{i}]"
@@ -283,16 +314,19 @@ def from_dict(d) -> Recording:
     return rec
 
 
-def loads(text: str) -> Recording:
-    try:
-        d = json.loads(text, parse_constant=lambda c: float(c))
-    except json.JSONDecodeError as exc:
-        raise RecordingError(f"not valid JSON: {exc}") from None
-    return from_dict(d)
+def loads(text) -> Recording:
+    """A recording from its JSON text (str, or bytes of UTF-8)."""
+    if isinstance(text, (bytes, bytearray)):
+        text = decode_text(bytes(text), "the recording", RecordingError)
+    return from_dict(parse_json(text, "the recording", RecordingError))
 
 
 def load(path) -> Recording:
     p = Path(path)
     if not p.is_file():
         raise RecordingError(f"no recording file at {p}")
-    return loads(p.read_text(encoding="utf-8"))
+    d = read_json(p, "recording", RecordingError)
+    try:
+        return from_dict(d)
+    except RecordingError as exc:
+        raise RecordingError(f"recording {p}: {exc}") from None
