@@ -22,7 +22,8 @@ from ..sim.recording import RecordingError
 
 TIMER_S = 1.0 / 120.0  # how often the modal operator gets the UI loop's attention
 ENGINE_BUDGET_S = 0.030  # engine time per timer event while painting (the UI stays responsive)
-REFRESH_HZ = 30.0  # image refreshes a second while painting
+REFRESH_HZ = 30.0  # image refreshes a second while painting, at most
+REFRESH_SHARE = 0.15  # of the wall clock, at most, goes to refreshing (large papers refresh less)
 NAVIGATION = {"MIDDLEMOUSE", "TRACKPADPAN", "TRACKPADZOOM", "NDOF_MOTION"}
 NAVIGATION_PREFIX = "NUMPAD_"
 
@@ -98,7 +99,9 @@ class HAIRY_BRUSH_OT_paint(bpy.types.Operator):
         self._live = live
         self._brush_mw = st.brush_object.matrix_world.copy() if st.brush_object else None
         self._last_draw = 0.0
+        self._refresh_s = 0.0  # what the last refresh cost
         self._timer = None
+        bridge.show_paper(img, live.sim.paper, live.sim.index)  # later refreshes: what changed
         live.handle(LiveEvent("START", "NOTHING", time=time.perf_counter()))
 
     def modal(self, context, event):
@@ -126,7 +129,8 @@ class HAIRY_BRUSH_OT_paint(bpy.types.Operator):
 
     def step(self, context, ev: LiveEvent) -> set:
         """One event: the clock makes the samples due, the engine simulates for a share of the
-        UI loop's time, and the image is refreshed at most REFRESH_HZ times a second."""
+        UI loop's time, and the image is refreshed at most REFRESH_HZ times a second and with
+        at most REFRESH_SHARE of the time, so the engine keeps up on a large paper."""
         state = self._live.handle(ev)
         if state == "RUNNING":
             if ev.type == "TIMER":
@@ -146,13 +150,15 @@ class HAIRY_BRUSH_OT_paint(bpy.types.Operator):
         """The paper as simulated so far; the brush empty (and the primitive surfaces, when
         built) at the live pose."""
         now = time.perf_counter()
-        if not final and now - self._last_draw < 1.0 / REFRESH_HZ:
+        wait = max(1.0 / REFRESH_HZ, self._refresh_s / REFRESH_SHARE)
+        if not final and now - self._last_draw < wait:
             return
-        self._last_draw = now
         scene = context.scene
         st = bridge.settings(scene)
         sim = self._live.sim
         bridge.show_paper(self._img, sim.paper, sim.index)
+        self._last_draw = time.perf_counter()
+        self._refresh_s = self._last_draw - now
         if final:
             return
         if st.brush_object is not None:

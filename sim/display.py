@@ -53,12 +53,13 @@ class PaperView:
     def refresh(self, paper: Paper) -> int:
         """Bring the pixels up to ``paper``; returns the number of pixels rewritten."""
         if self._paper is not paper or self.pixels is None or self.pixels.shape[:2] != paper.shape:
-            self.pixels = np.empty(paper.shape + (4,), dtype=np.float32)
+            # a whole refresh: the blank paper's colour, then every tile that ever changed
+            if self.pixels is None or self.pixels.shape[:2] != paper.shape:
+                self.pixels = np.empty(paper.shape + (4,), dtype=np.float32)
+            self.pixels[..., :3] = encode(paper.visible(np.zeros(3, np.float32)), self.linear)
             self.pixels[..., 3] = 1.0
-            self._paper, self._version = paper, -1
-            rows = [(y, 0, paper.tile_ver.shape[1] - 1) for y in range(paper.tile_ver.shape[0])]
-        else:
-            rows = _row_runs(paper.tiles_since(self._version))
+            self._paper, self._version = paper, 0
+        rows = _row_runs(paper.tiles_since(self._version))
         done = 0
         for ty, tx0, tx1 in rows:
             ys = paper.tile_box(ty, tx0)[0]
