@@ -24,13 +24,9 @@ from typing import NamedTuple
 
 import numpy as np
 
-from .brush import INK_FIELDS, _norm
-
-# the ink rows' columns (``brush.INK_FIELDS``): the load a pixel takes from V^ (wet, col), and
-# the texture function (Eq. 5)
-LOAD = slice(INK_FIELDS["wet"].start, INK_FIELDS["col"].stop)
-TEX_NAMES = ("wr", "cr", "wv", "cv")
-TEXTURE = slice(INK_FIELDS["wr"].start, INK_FIELDS["cv"].stop)
+from .brush_ink import LOAD, TEXTURE, TEXTURE_NAMES
+from .brush_state import INK_FIELDS
+from .frames import dot, norm
 
 # marching-squares edges: 0 = (i,j)-(i,j+1), 1 = (i,j+1)-(i+1,j+1), 2 = (i+1,j)-(i+1,j+1),
 # 3 = (i,j)-(i+1,j); case bits: 1 = (i,j), 2 = (i,j+1), 4 = (i+1,j+1), 8 = (i+1,j) inside.
@@ -269,7 +265,7 @@ def cut_marks(brush, sec, ink_rows, ppm: float, paper_shape) -> Cut | None:
     prims = touching[cuts]
     area = (xmax - xmin) * (ymax - ymin)
     centroid = np.stack([(xmin + xmax) / 2, (ymin + ymax) / 2, np.zeros(len(cuts))], axis=1)
-    height = _norm(brush.cc[prims, -1] - centroid)
+    height = norm(brush.cc[prims, -1] - centroid)
     ix0 = np.maximum(np.floor(xmin * ppm - 0.5).astype(np.int64), 0)
     iy0 = np.maximum(np.floor(ymin * ppm - 0.5).astype(np.int64), 0)
     ix1 = np.minimum(np.ceil(xmax * ppm - 0.5).astype(np.int64) + 1, W)
@@ -278,7 +274,7 @@ def cut_marks(brush, sec, ink_rows, ppm: float, paper_shape) -> Cut | None:
     w = np.maximum(ix1 - ix0, 0)
     # chord error of the grid's polygon against the true sections
     sag = 1.0 - np.cos(np.pi / ring.shape[0])
-    semi = np.max(np.hypot(_norm(rows_U[prims]), _norm(rows_V[prims])), axis=1)
+    semi = np.max(np.hypot(norm(rows_U[prims]), norm(rows_V[prims])), axis=1)
     chord = sag * semi * ppm
     slot = np.full(k, -1)
     slot[cuts] = np.arange(len(cuts))
@@ -362,10 +358,6 @@ def fill_marks(cuts: list[Cut | None], ppm: float) -> list[list[Mark]]:
 def compute_marks(brush, sec, ink_rows, ppm: float, paper_shape) -> list[Mark]:
     """The current drawing mark of every primitive that reaches the paper."""
     return fill_marks([cut_marks(brush, sec, ink_rows, ppm, paper_shape)], ppm)[0]
-
-
-def _dot(a, b):
-    return np.einsum("...k,...k->...", a, b)
 
 
 class PixelInk(NamedTuple):
@@ -631,7 +623,7 @@ def _contact_rows(prims, rows: SurfaceRows) -> ContactRows | None:
 def _crossing_columns(sc: Scanlines, rk: ContactRows, ppm) -> RowPlanes:
     """The column where every row's Hd changes sign on every scanline: estimated from the
     row's plane, then confirmed with the rounded formula itself (monotone in the column)."""
-    cT = _dot(rk.c, rk.T)  # (k, Ns)
+    cT = dot(rk.c, rk.T)  # (k, Ns)
     T0 = rk.T[sc.win, :, 0]  # (S, Ns)
     bk = sc.y[:, None] * rk.T[sc.win, :, 1] - cT[sc.win]
     sl, sh = sc.lo[:, None], sc.hi[:, None]
@@ -729,29 +721,29 @@ def _slab_quadratics(rk: ContactRows) -> SlabQuadratics:
     dc, dU, dV = np.diff(rk.c, axis=1), np.diff(rk.U, axis=1), np.diff(rk.V, axis=1)
     c0, U0, V0 = rk.c[:, :-1], rk.U[:, :-1], rk.V[:, :-1]
     return SlabQuadratics(
-        uu0=_dot(U0, U0),
-        uu1=2 * _dot(U0, dU),
-        uu2=_dot(dU, dU),
-        vv0=_dot(V0, V0),
-        vv1=2 * _dot(V0, dV),
-        vv2=_dot(dV, dV),
-        uv0=_dot(U0, V0),
-        uv1=_dot(U0, dV) + _dot(dU, V0),
-        uv2=_dot(dU, dV),
+        uu0=dot(U0, U0),
+        uu1=2 * dot(U0, dU),
+        uu2=dot(dU, dU),
+        vv0=dot(V0, V0),
+        vv1=2 * dot(V0, dV),
+        vv2=dot(dV, dV),
+        uv0=dot(U0, V0),
+        uv1=dot(U0, dV) + dot(dU, V0),
+        uv2=dot(dU, dV),
         ux0=U0[..., 0],
         uy0=U0[..., 1],
-        cu0=_dot(c0, U0),
+        cu0=dot(c0, U0),
         ux1=dU[..., 0],
         uy1=dU[..., 1],
-        cu1=_dot(c0, dU) + _dot(dc, U0),
-        cu2=_dot(dc, dU),
+        cu1=dot(c0, dU) + dot(dc, U0),
+        cu2=dot(dc, dU),
         vx0=V0[..., 0],
         vy0=V0[..., 1],
-        cv0=_dot(c0, V0),
+        cv0=dot(c0, V0),
         vx1=dV[..., 0],
         vy1=dV[..., 1],
-        cv1=_dot(c0, dV) + _dot(dc, V0),
-        cv2=_dot(dc, dV),
+        cv1=dot(c0, dV) + dot(dc, V0),
+        cv2=dot(dc, dV),
     )
 
 
@@ -850,9 +842,9 @@ def _pixel_ink(inkp, rk: ContactRows, sc: Scanlines, ent: Entries, slab, n_ok, l
     dist = np.sqrt(ox * ox + oy * oy + oz * oz)
     o = (dist, ox, oy, oz)
     if same_tex:
-        f = {n: [np.float32(v) for v in inkp[0, 0, INK_FIELDS[n]].tolist()] for n in TEX_NAMES}
+        f = {n: [np.float32(v) for v in inkp[0, 0, INK_FIELDS[n]].tolist()] for n in TEXTURE_NAMES}
     else:
-        f = {n: list(at[INK_FIELDS[n]]) for n in TEX_NAMES}
+        f = {n: list(at[INK_FIELDS[n]]) for n in TEXTURE_NAMES}
     w_fac = _factor(o, (*f["wr"], *f["wv"]))  # Eq. 22, 23
     c_fac = _factor(o, (*f["cr"], *f["cv"]))
     wet = at[INK_FIELDS["wet"].start] * w_fac

@@ -4,7 +4,7 @@ every row of the surface), kept as the reference the fast ``sim.mark`` must agre
 
 import numpy as np
 
-from sim.brush import ink_field
+from sim.brush_state import ink_field
 from sim.mark import Mark, slice_grid
 
 

@@ -6,7 +6,8 @@ import math
 import numpy as np
 import pytest
 
-from sim.brush import REF_RATE, V_REF, HairyBrush
+from sim.brush import HairyBrush
+from sim.dynamics import REF_RATE, V_REF
 from sim.inertia import InertiaPredictor
 from sim.mark import Mark, compute_marks
 from sim.paper import Paper

@@ -1,0 +1,358 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
+"""The brush's dynamic adjustments (Sec. 5): every time slice, the bottom control circle moves
+to the virtual position and the writing primitives follow - the active point (Eq. 13),
+deformation and recovery (Sec. 5.2, Eq. 14), inner stress and pressure (Eq. 10-12), wetness
+loss (Eq. 15), the middle control ellipse's rotation, elongation and relocation (Eq. 16-17),
+splitting (Sec. 5.5, Eq. 18-19) and ink flow between primitives (Eq. 20).
+
+Each function takes the ``HairyBrush`` and changes its fields (``brush_state`` has their
+glossary); all m primitives and n key points at once. Gaps in the paper, filled as a real
+brush behaves, are listed in ``brush``'s module doc and noted where they are implemented.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from .brush_state import HAIR_BINS, key_point_fields, take_primitives
+from .frames import cross, norm, rotation_matrix, unit
+
+# Calibration scales: the paper's formulas are dimensionless in spirit; these map millimetres and
+# seconds onto them so that every quality parameter in [0, 1] spans a useful range.
+V_REF = 50.0  # mm/s, speed scale in Eq. 12 and 16
+REC_RATE = 14.0  # 1/s, elastic recovery of free hair at e = 1
+CAP_RATE = 3.0  # 1/s, capillary flow of ink along a primitive's axis
+MAX_FLATNESS = 5.0  # bound on a/b of the middle control ellipse
+WET_FACTOR_MAX = 20.0  # bound on n / sum(wet) in Eq. 10 (a dry brush would give infinity)
+STREAK_REDRAW = 0.03  # share of hair bundles whose dryness is redrawn each step
+CONTACT_EPS = 1e-6  # mm: a key point this close to psi is on the paper
+# The paper's per-time-slice updates (Sec. 5.2.2, Eq. 15, 16) are applied at this reference rate
+# and scaled by dt * REF_RATE otherwise, so a gesture leaves the same artwork at any sample rate.
+REF_RATE = 30.0  # time slices per second
+SLIP = 0.3  # share of the way hair held on the paper slides after the brush each step
+
+
+def move(brush, pose6, vel6, dt: float):
+    """Move the bottom control circle to the virtual position S^t and adjust the middle
+    control axes (Sec. 5.2): the current active point (Eq. 13), deformation under the paper
+    (Sec. 5.2.2), recovery (Eq. 14)."""
+    q = brush.q
+    B0, R0 = brush.B, brush.R
+    x, y, z, d, qq, rr = (float(v) for v in pose6)
+    B1 = np.array([x, y, max(z, 0.0)])
+    R1 = rotation_matrix(d, qq, rr)
+    lift = B1[2] - B0[2]
+    cc = brush.cc
+    contact = cc[..., 2] <= CONTACT_EPS
+    contact[:, 0] = False
+    local = (cc - B0) @ R0
+    rest = np.zeros_like(local)
+    rest[..., 2] = -brush.sarc
+    krec = min(1.0, q.e * REC_RATE * dt)  # elastic return of free hair (gap, see module doc)
+    local = np.where(contact[..., None], local, local + krec * (rest - local))
+    carried = B1 + local @ R1.T
+    vxy = np.asarray(vel6[:2], dtype=float)
+    speed = float(np.hypot(*vxy))
+    lag = -vxy / speed if speed > 1e-9 else np.zeros(2)
+    # Sec. 5.2.2: hair under the paper travels with the active point (held by friction, sliding
+    # a little after the brush), plus dis = e * gamma (in units of r) along the drag
+    dis = q.e * brush.gamma * brush.r * (dt * REF_RATE)
+    held = cc.copy()
+    held[..., :2] += SLIP * (carried[..., :2] - cc[..., :2]) + dis[:, None, None] * lag
+    new = np.where(contact[..., None], held, carried)
+    if speed > 1.0:
+        brush.travel = vxy / speed
+    if lift > 0:  # Eq. 14: cz += gamma * |dsz| * tr(dsz)
+        new[:, 1:, 2] += brush.gamma[:, None] * lift
+    new[:, 0] = B1
+    brush.B, brush.R = B1, R1
+    insert_active_point(brush, new)
+    constrain(brush, vel6)
+
+
+def insert_active_point(brush, new):
+    """Eq. 13: the axis's intersection with psi becomes a key point; its ink comes from its
+    neighbours by distance-weighted linear interpolation. n stays constant (module doc)."""
+    m, n = brush.m, brush.n
+    z = new[..., 2]
+    below = z <= CONTACT_EPS
+    below[:, 0] = False
+    has = below.any(axis=1)
+    j = np.where(has, np.argmax(below, axis=1), n)  # first key point on/under the paper
+    jj = np.clip(j, 1, n - 1)
+    idx = np.arange(m)
+    p0, p1 = new[idx, jj - 1], new[idx, jj]
+    z0, z1 = p0[:, 2], p1[:, 2]
+    lam = np.clip(z0 / np.maximum(z0 - z1, 1e-12), 0.0, 1.0)
+    seg = norm(p1 - p0)
+    snap = 0.15 * brush.L / (n - 1)
+    near_prev = lam * seg < snap
+    near_next = (1.0 - lam) * seg < snap
+    insert = has & ~near_prev & ~near_next & (z0 > CONTACT_EPS)
+    active = np.where(has, np.where(near_prev & (z0 > CONTACT_EPS), jj - 1, jj), -1)
+    # snapping to an existing key point: it becomes the active point, on the paper
+    snapped = has & ~insert
+    new[idx[snapped], active[snapped], 2] = 0.0
+    brush.cc = new
+    if not insert.any():
+        brush.active = active
+        return
+    point = p0 + lam[:, None] * (p1 - p0)
+    point[:, 2] = 0.0
+    # Eq. 13: x_j = (|cc_{j+1} - cc_j| x_{j-1} + |cc_j - cc_{j-1}| x_{j+1})
+    #             / |cc_{j+1} - cc_{j-1}|
+    w_prev, w_next = 1.0 - lam, lam
+    pos = np.where(insert, jj, n)  # rows without insertion append a dummy, dropped again
+    ar = np.arange(n + 1)
+    src = np.where(ar[None, :] < pos[:, None], ar[None, :], ar[None, :] - 1)
+    src = np.clip(src, 0, n - 1)
+
+    def extend(field, value):
+        if field.ndim == 2:
+            out = np.take_along_axis(field, src, 1)
+            out[idx, pos] = value
+        else:
+            out = np.take_along_axis(field, src[..., None], 1)
+            out[idx, pos] = value
+        return out
+
+    def interp(field):
+        a = field[idx, jj - 1]
+        b = field[idx, jj]
+        if field.ndim == 2:
+            return w_prev * a + w_next * b
+        return w_prev[:, None] * a + w_next[:, None] * b
+
+    sarc = extend(brush.sarc, interp(brush.sarc))
+    # drop the interior key point with the smallest arc gap (not first, last or active)
+    gap = np.full((m, n + 1), np.inf)
+    gap[:, 1:-1] = sarc[:, 2:] - sarc[:, :-2]
+    gap[idx, pos] = np.inf
+    drop = np.where(insert, np.argmin(gap, axis=1), n)
+    keep = ar[None, :] != drop[:, None]
+
+    def shrink(arr):
+        return arr[keep].reshape((m, n) + arr.shape[2:])
+
+    brush.sarc = shrink(sarc)
+    brush.cc = shrink(extend(new, point))
+    for name in key_point_fields(exclude=("sarc", "cc")):  # the ink, Eq. 13
+        field = getattr(brush, name)
+        setattr(brush, name, shrink(extend(field, interp(field))))
+    brush.active = np.where(insert, np.where(drop < pos, pos - 1, pos), active)
+
+
+def constrain(brush, vel6):
+    """Hair is inextensible and cannot pass through the paper. Walking from the bottom
+    control circle to the tip: a key point too far from its predecessor is pulled after it
+    (sliding on the paper); a key point on the paper lies flat at its full arc distance."""
+    cc = brush.cc
+    m, n = brush.m, brush.n
+    shaft = -brush.R[:, 2]
+    vxy = np.asarray(vel6[:2], dtype=float)
+    sp = float(np.hypot(*vxy))
+    if np.hypot(shaft[0], shaft[1]) > 0.05:
+        fb = np.tile(shaft[:2] / np.hypot(shaft[0], shaft[1]), (m, 1))
+    elif sp > 1.0:
+        fb = np.tile(-vxy / sp, (m, 1))
+    else:  # a vertical brush at rest lays its hair back along the way it came
+        fb = np.tile(-brush.travel, (m, 1)) + 0.25 * brush.lay
+        fb /= np.linalg.norm(fb, axis=1, keepdims=True)
+    prev = cc[:, 0]
+    segs = brush.sarc[:, 1:] - brush.sarc[:, :-1]
+    for j in range(1, n):
+        p = cc[:, j]
+        d = p - prev
+        dist = norm(d)
+        seg = segs[:, j - 1]
+        scale = np.minimum(1.0, seg / np.maximum(dist, 1e-12))
+        cand = prev + d * scale[:, None]
+        on_paper = (p[:, 2] <= CONTACT_EPS) | (cand[:, 2] <= CONTACT_EPS)
+        h = np.maximum(prev[:, 2], 0.0)
+        reach = on_paper & (seg > h)
+        if reach.any():  # lies flat on the paper at its full arc distance
+            H = np.sqrt(np.maximum(seg * seg - h * h, 0.0))
+            dxy = d[:, :2]
+            nd = norm(dxy)
+            dirxy = np.where(nd[:, None] > 1e-9, dxy / np.maximum(nd, 1e-12)[:, None], fb)
+            flat = np.zeros((m, 3))
+            flat[:, :2] = prev[:, :2] + H[:, None] * dirxy
+            p = np.where(reach[:, None], flat, cand)
+        else:
+            p = cand
+        np.maximum(p[:, 2], 0.0, out=p[:, 2])
+        cc[:, j] = p
+        prev = p
+
+
+def update_stress(brush, section_area, section_height, speed, dt):
+    """Inner stress (Eq. 10, 11) and pressure (Eq. 12) of every primitive.
+
+    section_area: S_i, bounding-box area of the drawing mark (mm^2); section_height: hei_i,
+    distance from the mark to the tip control line's midpoint (mm); speed: |Vel| (mm/s).
+    Lengths are made dimensionless by the brush's own size (r, L) so that the quality
+    parameters in [0, 1] keep their meaning for any brush."""
+    q, r, L, n = brush.q, brush.r, brush.L, brush.n
+    wet_factor = np.minimum(n / np.maximum(brush.wet.sum(axis=1), 1e-9), WET_FACTOR_MAX)
+    cone = (section_area / (np.pi * r * r)) * (section_height / L)  # (S*hei/3) / (pi r^2 L/3)
+    # Eq. 11: his = hsd + hdd; 1/len is bounded by len >= r/2 (the tip starts as a point)
+    hsd = (brush.a / brush.b) * (0.5 * r) / np.maximum(brush.tiplen, 0.5 * r)
+    local = (brush.cc - brush.B) @ brush.R
+    rest = np.zeros_like(local)
+    rest[..., 2] = -brush.sarc
+    # mc = cc0_1 - cc_1 is zero in the brush frame: its origin is the circle's centre
+    disp = norm(rest[:, 1:] - local[:, 1:])
+    seglen = norm(np.diff(local, axis=1))
+    hdd = np.sum(disp * seglen, axis=1) / np.maximum(seglen.sum(axis=1), 1e-12) / L
+    his = hsd + hdd
+    area = (np.pi * brush.a * brush.b / 4.0) / (np.pi * r * r)
+    brush.touching = section_area > 0
+    brush.stress = (1.0 - q.e) * wet_factor * cone * his * area  # Eq. 10
+    brush.gamma = (speed / V_REF) * brush.stress * q.sm * q.e  # Eq. 12
+    return brush.stress, brush.gamma
+
+
+def lose_wetness(brush, dt):
+    """Eq. 15: wet_{j+-s} -= ab * gamma / 2^(s+d), d = 1 for s = 0 and 2 otherwise. A
+    primitive whose section touches the paper without a key point on it loses from its
+    lowest key point."""
+    touching = brush.touching
+    if not touching.any():
+        return
+    act = np.where(brush.active >= 0, brush.active, np.argmin(brush.cc[..., 2], axis=1))
+    j = np.arange(brush.n)[None, :]
+    s = np.abs(j - act[:, None])
+    d = np.where(s == 0, 1, 2)
+    loss = brush.q.ab * brush.gamma[:, None] / np.power(2.0, s + d) * (dt * REF_RATE)
+    loss = np.where(touching[:, None], loss, 0.0)
+    np.maximum(brush.wet - loss, 0.0, out=brush.wet)
+
+
+def adjust_ellipse(brush, vel6, dt):
+    """Eq. 16 (rotation and elongation of the middle control ellipse at constant hair area),
+    Sec. 5.4 (the tip control line follows), Eq. 17 (relocation)."""
+    q = brush.q
+    vel = (np.asarray(vel6[:3], dtype=float) @ brush.R) / V_REF  # brush frame, scaled
+    touching = brush.touching
+    eo = brush.eori
+    per = dt * REF_RATE
+    rot = q.re * brush.gamma * (eo @ vel) * per  # Eq. 16
+    inc = q.ie * brush.gamma * norm(cross(eo, vel)) * per  # Eq. 16
+    rot = np.where(touching, rot, 0.0)
+    inc = np.where(touching, inc, 0.0)
+    # rotate the minor axis about the shaft
+    c, s = np.cos(rot), np.sin(rot)
+    ex, ey = eo[:, 0] * c - eo[:, 1] * s, eo[:, 0] * s + eo[:, 1] * c
+    brush.eori = unit(np.stack([ex, ey, eo[:, 2]], axis=1))
+    area = brush.a * brush.b
+    a = brush.a + inc * brush.r
+    a = np.minimum(a, np.sqrt(area * MAX_FLATNESS))
+    # free state: the belly rounds and the tip closes again (gap: elastic return)
+    krec = min(1.0, q.e * REC_RATE * dt)
+    rnd = np.sqrt(area)
+    a = np.where(touching, a, a + krec * (rnd - a))
+    brush.a = a
+    brush.b = area / a  # pi a b / 4 constant (Sec. 5.3)
+    tl = brush.tiplen + inc * brush.r  # Sec. 5.4: the tip control line lengthens by inc
+    brush.tiplen = np.where(touching, np.minimum(tl, 0.5 * brush.a), tl * (1.0 - krec))
+    # Eq. 17: loc' = nu loc + (1 - nu) (1/n) sum_j arc(P_1..P_{j+1}) / arc(P_1..P_n)
+    seg = norm(np.diff(brush.cc, axis=1))
+    cum = np.cumsum(seg, axis=1)
+    ideal = np.sum(cum / np.maximum(cum[:, -1:], 1e-12), axis=1) / brush.n
+    new_loc = q.nu * brush.loc + (1.0 - q.nu) * ideal
+    brush.loc = np.clip(np.where(touching, new_loc, brush.loc), 0.05, 0.9)
+
+
+def split(brush):
+    """Sec. 5.5: a primitive whose inner stress exceeds tre splits into k = floor(str/tre)
+    primitives (Eq. 18), each with 1/k of the hair: a, b / sqrt(k) and len / k (Eq. 19).
+    Key points move by rand * (str - tre) (in units of r), rand a random unit vector, growing
+    from zero at the shared bottom control circle to full at the tip (hair fans out from the
+    ferrule)."""
+    tre = max(brush.q.tre, 1e-3)
+    k = np.floor(brush.stress / tre).astype(int)
+    k = np.where(brush.touching, k, 1)
+    room = brush.max_primitives - brush.m
+    k = np.clip(k, 1, None)
+    if room <= 0 or not np.any(k >= 2):
+        return 0
+    extra = k - 1
+    # cap the total, taking from the most stressed first (deterministic order)
+    order = np.argsort(-brush.stress, kind="stable")
+    budget = room
+    for i in order:
+        share = min(extra[i], budget)
+        extra[i] = share
+        budget -= share
+    k = extra + 1
+    if not np.any(k >= 2):
+        return 0
+    reps = k
+    src = np.repeat(np.arange(brush.m), reps)
+    kk = np.repeat(k, reps).astype(float)
+    excess = np.repeat(np.maximum(brush.stress - tre, 0.0), reps)
+    total = len(src)
+    dirs = brush.rng.normal(size=(total, 3))
+    dirs = unit(dirs)
+    split_child = kk > 1
+    frac = brush.sarc[src] / brush.L
+    offset = (dirs[:, None, :] * (excess * brush.r)[:, None, None]) * frac[..., None]
+    offset = np.where(split_child[:, None, None], offset, 0.0)
+    take_primitives(brush, src)  # every field copied to the children, then what differs:
+    brush.cc = brush.cc + offset
+    brush.cc[..., 2] = np.maximum(brush.cc[..., 2], 0.0)
+    brush.cc[:, 0] = brush.B
+    sq = np.sqrt(kk)
+    brush.a = brush.a / sq  # Eq. 19
+    brush.b = brush.b / sq
+    brush.tiplen = brush.tiplen / kk
+    brush.hair_u = np.where(
+        split_child[:, None], brush.rng.random((total, HAIR_BINS)), brush.hair_u
+    )
+    ang = brush.rng.random(total) * 2 * np.pi
+    brush.lay = np.stack([np.cos(ang), np.sin(ang)], axis=1)
+    new = int(np.sum(k - 1))
+    brush.splits += new
+    return new
+
+
+def ink_flow(brush):
+    """Eq. 20: each key point's wetness moves toward the mean wetness of the other
+    primitives' key points within the diffusion distance eta (in units of the brush's
+    diameter), by the share pw."""
+    if brush.m < 2 or brush.q.pw <= 0.0:
+        return
+    eta = brush.q.eta * 2.0 * brush.r
+    pts = brush.cc.reshape(-1, 3)
+    wet = brush.wet.reshape(-1)
+    owner = np.repeat(np.arange(brush.m), brush.n)
+    # |P_i - P_j|^2 a coordinate at a time (the same sums as over the last axis, faster)
+    dx = pts[:, None, 0] - pts[None, :, 0]
+    d2 = dx * dx
+    for k in (1, 2):
+        dk = pts[:, None, k] - pts[None, :, k]
+        d2 += dk * dk
+    near = (d2 <= eta * eta) & (owner[:, None] != owner[None, :])  # tr(eta - |..|), j != i
+    cnt = near.sum(axis=1)
+    # summed without BLAS: its threaded matrix-vector product would keep a second core
+    # spinning every step (and its kernels differ between machines)
+    mean = np.where(cnt > 0, np.einsum("ij,j->i", near, wet) / np.maximum(cnt, 1), wet)
+    brush.wet = (wet * (1.0 - brush.q.pw) + mean * brush.q.pw).reshape(brush.m, brush.n)
+
+
+def capillary(brush, dt):
+    """Ink wicks along the axis toward drier key points (gap fill, see module doc)."""
+    k = min(0.5, CAP_RATE * dt)
+    w = brush.wet
+    flux = k * 0.5 * (w[:, 2:] - w[:, 1:-1])  # between key points 2..n (not the ferrule)
+    if flux.size == 0:
+        return
+    w[:, 1:-1] += flux
+    w[:, 2:] -= flux
+
+
+def redraw_streaks(brush):
+    """Hair bundles whose dryness draw (Eq. 27) changes this step, so streaks have ends."""
+    redraw = brush.rng.random(brush.hair_u.shape) < STREAK_REDRAW
+    fresh = brush.rng.random(brush.hair_u.shape)
+    brush.hair_u = np.where(redraw, fresh, brush.hair_u)

@@ -1,0 +1,64 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
+"""The brush's orientation (Sec. 4, Fig. 6(a)) and the small vector helpers the engine shares.
+
+R = Rx(q) Ry(d) Rz(r): r turns the brush about its handle, d deflects it sideways (about the
+paper's y axis), q forward (about the x axis). The helpers skip numpy's Python wrappers on the
+hot paths and give the same sums and products as np.linalg.norm, np.cross and np.dot."""
+
+from __future__ import annotations
+
+import numpy as np
+
+_add = np.add.reduce  # np.sum without its Python wrapper (the same sums)
+
+
+def rotation_matrix(d_deg: float, q_deg: float, r_deg: float) -> np.ndarray:
+    """R = Rx(q) Ry(d) Rz(r), angles in degrees (Sec. 4, Fig. 6(a))."""
+    d, q, r = np.radians([d_deg, q_deg, r_deg])
+    cx, sx = np.cos(q), np.sin(q)
+    cy, sy = np.cos(d), np.sin(d)
+    cz, sz = np.cos(r), np.sin(r)
+    rx = np.array([[1, 0, 0], [0, cx, -sx], [0, sx, cx]])
+    ry = np.array([[cy, 0, sy], [0, 1, 0], [-sy, 0, cy]])
+    rz = np.array([[cz, -sz, 0], [sz, cz, 0], [0, 0, 1]])
+    return rx @ ry @ rz
+
+
+def angles_from_matrix(R) -> tuple[float, float, float]:
+    """(d, q, r) in degrees with rotation_matrix(d, q, r) == R, for |d| < 90 (inverse of the
+    above; Blender's Euler mode 'ZYX' with (x, y, z) = (q, d, r) is the same matrix)."""
+    R = np.asarray(R, dtype=float)
+    d = np.arcsin(np.clip(R[0, 2], -1.0, 1.0))
+    q = np.arctan2(-R[1, 2], R[2, 2])
+    r = np.arctan2(-R[0, 1], R[0, 0])
+    return tuple(float(v) for v in np.degrees([d, q, r]))
+
+
+def norm(v, axis=-1, keepdims=False):
+    """Euclidean length along ``axis``."""
+    return np.sqrt(_add(v * v, axis=axis, keepdims=keepdims))
+
+
+def dot(a, b):
+    """Dot products of (..., k) vectors."""
+    return np.einsum("...k,...k->...", a, b)
+
+
+def cross(a, b):
+    """np.cross of (..., 3) vectors without its Python wrapper (the same products)."""
+    out = np.empty(np.broadcast_shapes(a.shape, b.shape))
+    a0, a1, a2 = a[..., 0], a[..., 1], a[..., 2]
+    b0, b1, b2 = b[..., 0], b[..., 1], b[..., 2]
+    out[..., 0] = a1 * b2 - a2 * b1
+    out[..., 1] = a2 * b0 - a0 * b2
+    out[..., 2] = a0 * b1 - a1 * b0
+    return out
+
+
+def unit(v, fallback=None):
+    """v / |v| along the last axis; where |v| is about 0, ``fallback`` when given."""
+    n = norm(v, keepdims=True)
+    out = v / np.maximum(n, 1e-12)
+    if fallback is not None:
+        out = np.where(n > 1e-9, out, fallback)
+    return out
