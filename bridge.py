@@ -10,15 +10,18 @@ plane's local coordinates are centred, so engine x = 1000 * local x + width / 2.
 from __future__ import annotations
 
 import json
+import math
 
 import bpy
 import numpy as np
 
 from .sim import display
 from .sim.brush import angles_from_matrix, rotation_matrix
+from .sim.jsonio import MAX_JSON_BYTES, parse_json
 from .sim.params import (
     MAX_PAPER_PIXELS,
     MAX_PAPER_SIDE_PX,
+    ParameterError,
     QualityParams,
     geometry_from_preset,
     load_preset,
@@ -30,6 +33,7 @@ RECORDING_TEXT = "HairyBrush Recording"
 PAPER_IMAGE = "HairyBrush Paper"
 PRIMITIVE_COLLECTION = "HairyBrush Primitives"
 PAPER_TAG = "hairy_brush_paper"
+PAINTED_KEY = "painted_samples"  # in a recording's "blender" extra: samples painted live
 SHOWN_TAG = "hairy_brush_shown"  # on the paper image: how many samples it shows
 PRIMITIVE_TAG = "hairy_brush_primitive"
 MM = 1000.0
@@ -39,16 +43,48 @@ class UserError(Exception):
     """A problem to report to the user with ``self.report({'ERROR'}, str(exc))``."""
 
 
+# every problem an operator reports to the user as it is (each message names what is wrong)
+USER_ERRORS = (UserError, RecordingError, ParameterError)
+
+
 def settings(scene):
     return scene.hairy_brush
 
 
+def _in_scene(st, obj) -> bool:
+    """Whether ``obj`` is still in the settings' scene (a deleted object can linger in the
+    file, unlinked, while a property still points at it)."""
+    return st.id_data.objects.get(obj.name) == obj
+
+
 def require_brush_and_paper(st):
-    if st.brush_object is None:
-        raise UserError("No brush empty: run Setup or pick one in the sidebar")
-    if st.paper_object is None:
-        raise UserError("No paper plane: run Setup or pick one in the sidebar")
+    if st.brush_object is None or not _in_scene(st, st.brush_object):
+        raise UserError("No brush empty in the scene: run Setup or pick one in the sidebar")
+    if st.paper_object is None or not _in_scene(st, st.paper_object):
+        raise UserError("No paper plane in the scene: run Setup or pick one in the sidebar")
     return st.brush_object, st.paper_object
+
+
+# settings a hand-edited .blend could hold as NaN or infinity (Blender keeps them)
+FINITE_SETTINGS = {
+    "paper_width_mm": "Paper width",
+    "paper_height_mm": "Paper height",
+    "px_per_mm": "Resolution",
+    "sample_rate_hz": "Sample rate",
+    "dip_depth": "Dip depth",
+    "dip_wetness": "Dip wetness",
+    "paint_press_mm": "Press",
+}
+
+
+def check_settings(st):
+    """One clear message for a setting that is not a number."""
+    for name, label in FINITE_SETTINGS.items():
+        if not math.isfinite(getattr(st, name)):
+            raise UserError(f"{label} is not a number: set it again in the sidebar")
+    for name in QualityParams.names():
+        if not math.isfinite(getattr(st.quality, name)):
+            raise UserError(f"Quality value '{name}' is not a number: set it again")
 
 
 # ------------------------------------------------------------------------------ paper size
@@ -59,6 +95,7 @@ def paper_pixels(st) -> tuple[int, int]:
 
 
 def check_paper_size(st) -> tuple[int, int]:
+    check_settings(st)
     w, h = paper_pixels(st)
     if w > MAX_PAPER_SIDE_PX or h > MAX_PAPER_SIDE_PX or w * h > MAX_PAPER_PIXELS:
         raise UserError(
@@ -85,7 +122,10 @@ def engine_to_world(st, paper_obj) -> np.ndarray:
 def sample_from_matrices(st, brush_mw, paper_mw) -> np.ndarray:
     """One 6-DOF sample (x, y, z mm; d, q, r degrees) from the brush empty's and the paper's
     world matrices: the brush pose relative to the paper (Sec. 4, Fig. 6(a))."""
-    rel = np.linalg.inv(np.asarray(paper_mw, dtype=float)) @ np.asarray(brush_mw, dtype=float)
+    paper_mw = np.asarray(paper_mw, dtype=float)
+    if not np.isfinite(paper_mw).all() or abs(np.linalg.det(paper_mw[:3, :3])) < 1e-18:
+        raise UserError("The paper plane is scaled to nothing (or not a number): fix its scale")
+    rel = np.linalg.inv(paper_mw) @ np.asarray(brush_mw, dtype=float)
     rot = rel[:3, :3]
     scale = np.linalg.norm(rot, axis=0)
     rot = rot / np.where(scale > 0, scale, 1.0)
@@ -118,11 +158,10 @@ def read_recording_dict(st) -> dict:
     text = st.recording
     if text is None:
         raise UserError("No recording yet: bake the brush's animation, paint, or import one")
-    try:
-        d = json.loads(text.as_string())
-    except json.JSONDecodeError as exc:
-        raise UserError(f"Recording text '{text.name}' is not valid JSON: {exc}") from None
-    return d
+    body = text.as_string()
+    if len(body) > MAX_JSON_BYTES:
+        raise UserError(f"Recording text '{text.name}' is too large ({len(body)} characters)")
+    return parse_json(body, f"Recording text '{text.name}'", UserError)
 
 
 def recording_from_scene(scene) -> Recording:
@@ -131,7 +170,10 @@ def recording_from_scene(scene) -> Recording:
     st = settings(scene)
     d = read_recording_dict(st)
     if isinstance(d, dict):
-        d.update(scene_overrides(st))
+        over = scene_overrides(st)
+        if isinstance(d.get("brush"), dict):  # the recording's own geometry overrides stay
+            over["brush"] = {**d["brush"], **over["brush"]}
+        d.update(over)
     try:
         return from_dict(d)
     except RecordingError as exc:
@@ -158,18 +200,41 @@ def recording_text(rec: Recording) -> str:
 
 
 def copy_settings_from_recording(st, rec: Recording):
-    """After an import: show the recording's own settings in the sidebar."""
-    st.paper_width_mm = rec.width_mm
-    st.paper_height_mm = rec.height_mm
-    st.px_per_mm = rec.px_per_mm
-    st.seed = rec.seed
-    st.sample_rate_hz = rec.sample_rate_hz
-    st.brush_preset = rec.brush.get("preset", st.brush_preset)
-    st.paper_preset = rec.paper_preset
-    st.ink_preset = rec.ink.get("preset", st.ink_preset)
+    """After an import: show the recording's own settings in the sidebar. Everything is checked
+    against what the settings can hold first, so a refused recording changes nothing."""
+    values = {
+        "paper_width_mm": rec.width_mm,
+        "paper_height_mm": rec.height_mm,
+        "px_per_mm": rec.px_per_mm,
+        "seed": rec.seed,
+        "sample_rate_hz": rec.sample_rate_hz,
+        "brush_preset": rec.brush.get("preset", st.brush_preset),
+        "paper_preset": rec.paper_preset,
+        "ink_preset": rec.ink.get("preset", st.ink_preset),
+    }
     q, _geom, _paper, _ink = rec.resolve()
-    for name in QualityParams.names():
-        setattr(st.quality, name, getattr(q, name))
+    quality = {name: getattr(q, name) for name in QualityParams.names()}
+    for name, value in values.items():
+        _check_fits(st, name, value)
+    for name, value in quality.items():
+        _check_fits(st.quality, name, value)
+    for name, value in values.items():
+        setattr(st, name, value)
+    for name, value in quality.items():
+        setattr(st.quality, name, value)
+
+
+def _check_fits(group, name: str, value):
+    """UserError unless ``value`` fits the property (its range, or its enum's items)."""
+    prop = group.bl_rna.properties[name]
+    if prop.type == "ENUM":
+        if value not in {item.identifier for item in prop.enum_items}:
+            raise UserError(f"'{value}' is not a {prop.name.lower()} preset of this extension")
+    elif not prop.hard_min <= value <= prop.hard_max:
+        raise UserError(
+            f"{prop.name} {value} is outside what the setting holds "
+            f"({prop.hard_min:g} to {prop.hard_max:g})"
+        )
 
 
 def new_recording(scene, samples, dips=None) -> Recording:
@@ -367,14 +432,14 @@ def keyframe_samples(scene, st, samples, rate_hz: float, frame_start: float):
         t, q, _scale = basis.decompose()
         e = q.to_euler("ZYX", prev) if prev is not None else q.to_euler("ZYX")
         loc[i], rot[i], prev = t[:], e[:], e
-    obj.animation_data_clear()
+    remove_fcurves(obj, ("location", "rotation_euler"))  # other animation stays
     for path in ("location", "rotation_euler"):
         for k in range(3):
             obj.keyframe_insert(path, index=k, frame=float(frames[0]))
-    fcurves = {(fc.data_path, fc.array_index): fc for fc in _fcurves(obj.animation_data)}
+    curves = {(fc.data_path, fc.array_index): fc for fc in fcurves(obj.animation_data)}
     for path, values in (("location", loc), ("rotation_euler", rot)):
         for k in range(3):
-            fc = fcurves[(path, k)]
+            fc = curves[(path, k)]
             kp = fc.keyframe_points
             kp.add(len(samples) - len(kp))
             co = np.stack([frames, values[:, k]], axis=1).astype(np.float32)
@@ -385,7 +450,29 @@ def keyframe_samples(scene, st, samples, rate_hz: float, frame_start: float):
     return float(frames[-1])
 
 
-def _fcurves(ad):
+def remove_fcurves(obj, paths):
+    """Delete the object's F-curves of these data paths (every index), keeping the rest."""
+    ad = obj.animation_data
+    if ad is None or ad.action is None:
+        return
+    action = ad.action
+    if hasattr(action, "fcurves"):  # Blender < 5 (legacy actions)
+        owners = [action.fcurves]
+    else:
+        slot = getattr(ad, "action_slot", None)
+        owners = [
+            bag.fcurves
+            for layer in action.layers
+            for strip in layer.strips
+            if slot is not None and (bag := strip.channelbag(slot)) is not None
+        ]
+    for fcurves in owners:
+        for fc in [fc for fc in fcurves if fc.data_path in paths]:
+            fcurves.remove(fc)
+
+
+def fcurves(ad):
+    """The F-curves of an object's animation (legacy or slotted actions)."""
     action = ad.action
     if hasattr(action, "fcurves"):  # Blender < 5 (legacy actions)
         return list(action.fcurves)

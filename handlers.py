@@ -6,12 +6,12 @@ playback caches."""
 from __future__ import annotations
 
 import contextlib
+import time
 
 import bpy
 from bpy.app.handlers import persistent
 
 from . import bridge, playback
-from .sim.recording import RecordingError
 
 _suspend = 0
 last_error = ""
@@ -28,21 +28,85 @@ def suspended():
         _suspend -= 1
 
 
+FRAME_BUDGET_S = 0.5  # simulation a frame change may take while the artist works
+CATCH_UP_SLICE_S = 0.1  # then the rest is simulated in slices of this, between UI events
+
+
+def exact_frames() -> bool:
+    """Rendering (or a command-line render) needs every frame exact, however long it takes."""
+    return bpy.app.background or bpy.app.is_job_running("RENDER")
+
+
+def _report(scene, message: str):
+    global last_error
+    if message != last_error:
+        print(f"Virtual Hairy Brush: frame {scene.frame_current}: {message}")
+    last_error = message
+
+
 def follow_frame(scene) -> bool:
-    """Show the artwork as it is at the scene's current frame. Returns whether it did."""
+    """Show the artwork as it is at the scene's current frame. Returns whether it did. While
+    the artist works, a frame change simulates for at most FRAME_BUDGET_S; a longer catch-up
+    goes on in slices from a timer (another frame change, or turning Follow Frames off, stops
+    it). No exception leaves this function: a handler must not break Blender's frame changes."""
     global last_error
     st = bridge.settings(scene)
     if _suspend or not st.sync_frames or st.recording is None or st.paper_object is None:
         return False
+    frame = scene.frame_current + scene.frame_subframe
     try:
-        playback.show_frame(scene, scene.frame_current + scene.frame_subframe)
-    except (bridge.UserError, RecordingError) as exc:
-        if str(exc) != last_error:
-            print(f"Virtual Hairy Brush: frame {scene.frame_current}: {exc}")
-        last_error = str(exc)
+        pb = playback.playback_for(scene)
+        target = bridge.samples_at_frame(pb.rec, scene, frame)
+        sim = playback.show(scene, target, should_stop=_deadline(exact_frames()))
+    except bridge.USER_ERRORS as exc:
+        _report(scene, str(exc))
+        return False
+    except MemoryError:
+        _report(scene, "not enough memory for this paper: lower its resolution")
+        return False
+    except Exception as exc:  # a handler must not raise into Blender
+        _report(scene, f"unexpected error ({type(exc).__name__}: {exc})")
         return False
     last_error = ""
+    if sim.index < target:
+        _catch_up_later(scene.name, frame, target)
     return True
+
+
+def _deadline(exact: bool):
+    if exact:
+        return None
+    end = time.perf_counter() + FRAME_BUDGET_S
+    return lambda: time.perf_counter() > end
+
+
+def _catch_up_later(scene_name: str, frame: float, target: int):
+    """Go on simulating toward ``target`` in slices between UI events, with a progress bar."""
+    wm = bpy.context.window_manager
+
+    def slice_():
+        scene = bpy.data.scenes.get(scene_name)
+        if scene is None or scene.frame_current + scene.frame_subframe != frame:
+            wm.progress_end()
+            return None
+        if not bridge.settings(scene).sync_frames:
+            wm.progress_end()
+            return None
+        try:
+            end = time.perf_counter() + CATCH_UP_SLICE_S
+            sim = playback.show(scene, target, should_stop=lambda: time.perf_counter() > end)
+        except Exception as exc:  # a timer must not raise into Blender
+            _report(scene, f"catching up: {exc}")
+            wm.progress_end()
+            return None
+        wm.progress_update(int(100 * sim.index / max(target, 1)))
+        if sim.index >= target:
+            wm.progress_end()
+            return None
+        return 0.01
+
+    wm.progress_begin(0, 100)
+    bpy.app.timers.register(slice_, first_interval=0.01)
 
 
 @persistent
@@ -66,7 +130,7 @@ def on_undo_redo(_scene, _data=None):
                 bridge.show_blank(st)
             else:
                 playback.show(scene, int(img[bridge.SHOWN_TAG]))
-        except (bridge.UserError, RecordingError) as exc:
+        except Exception as exc:  # a handler must not raise into Blender
             print(f"Virtual Hairy Brush: undo: {exc}")
 
 

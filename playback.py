@@ -45,6 +45,7 @@ _PLAYBACKS: dict[str, Playback] = {}
 
 def clear():
     _PLAYBACKS.clear()
+    _FAILED.clear()
 
 
 def cache_key(scene) -> str:
@@ -58,12 +59,23 @@ def cache_key(scene) -> str:
     return h.hexdigest()
 
 
+_FAILED: dict[str, tuple[str, str]] = {}  # scene -> (cache key, message) of a failed parse
+
+
 def playback_for(scene) -> Playback:
-    """The scene's Playback, rebuilt only when the recording or a setting changed."""
+    """The scene's Playback, rebuilt only when the recording or a setting changed; a recording
+    that failed to load fails again at once until it or a setting changes."""
     key = cache_key(scene)
     pb = _PLAYBACKS.get(scene.name)
+    failed = _FAILED.get(scene.name)
+    if failed is not None and failed[0] == key:
+        raise bridge.UserError(failed[1])
     if pb is None or pb.key != key:
-        rec = bridge.recording_from_scene(scene)
+        try:
+            rec = bridge.recording_from_scene(scene)
+        except bridge.USER_ERRORS as exc:
+            _FAILED[scene.name] = (key, str(exc))
+            raise
         per = bridge.timeline(rec, scene)[1]  # frames per sample
         pb = Playback(rec, key, samples_per_frame=1.0 / per)
         _PLAYBACKS[scene.name] = pb

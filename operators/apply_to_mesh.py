@@ -84,7 +84,7 @@ class HAIRY_BRUSH_OT_apply_to_mesh(bpy.types.Operator):
                     if slot.material is None:
                         slot.material = bpy.data.materials.new(f"{o.name} Material")
                     done += add_ink(slot.material, img, uv)
-        except bridge.UserError as exc:
+        except bridge.USER_ERRORS as exc:
             self.report({"ERROR"}, str(exc))
             return {"CANCELLED"}
         self.report({"INFO"}, f"Ink applied to {len(meshes)} mesh(es), {done} material(s)")

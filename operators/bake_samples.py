@@ -9,7 +9,7 @@ import bpy
 import numpy as np
 
 from .. import bridge, handlers
-from ..sim.recording import RecordingError, from_dict
+from ..sim.recording import from_dict
 
 
 def nan_keyframes(obj):
@@ -23,7 +23,7 @@ def nan_keyframes(obj):
         ad = o.animation_data
         if ad is None or ad.action is None:
             continue
-        for fc in bridge._fcurves(ad):
+        for fc in bridge.fcurves(ad):
             for kp in fc.keyframe_points:
                 vals = (*kp.co, *kp.handle_left, *kp.handle_right)
                 if not all(math.isfinite(v) for v in vals):
@@ -54,6 +54,13 @@ def sample_brush(scene, st, frame_start: int, frame_end: int, rate: float, progr
     return out
 
 
+def painted_samples(rec) -> int:
+    """How many of a recording's samples were painted live (0 for None)."""
+    info = rec.extra.get("blender", {}) if rec is not None and isinstance(rec.extra, dict) else {}
+    n = info.get(bridge.PAINTED_KEY, 0) if isinstance(info, dict) else 0
+    return int(n) if isinstance(n, int) else 0
+
+
 class HAIRY_BRUSH_OT_bake_samples(bpy.types.Operator):
     """Sample the animated brush empty over the scene's frame range into the recording"""
 
@@ -61,13 +68,35 @@ class HAIRY_BRUSH_OT_bake_samples(bpy.types.Operator):
     bl_label = "Bake Brush Samples"
     bl_options = {"REGISTER", "UNDO"}
 
+    replace_painted: bpy.props.BoolProperty(
+        name="Replace Painted Strokes",
+        default=False,
+        description="Bake even though the recording holds strokes painted live, which the "
+        "keyframes do not have: they are replaced",
+    )
+
     def execute(self, context):
         scene = context.scene
         st = bridge.settings(scene)
         try:
             bridge.require_brush_and_paper(st)
-        except bridge.UserError as exc:
+            bridge.check_settings(st)
+        except bridge.USER_ERRORS as exc:
             self.report({"ERROR"}, str(exc))
+            return {"CANCELLED"}
+        old, unreadable = None, None
+        if st.recording is not None:
+            try:
+                old = from_dict(bridge.read_recording_dict(st))
+            except bridge.USER_ERRORS as exc:
+                unreadable = str(exc)
+        painted = painted_samples(old)
+        if painted and not self.replace_painted:
+            self.report(
+                {"ERROR"},
+                f"The recording holds {painted} samples painted live, which baking the "
+                "keyframes would replace: export it first, or bake with Replace Painted Strokes",
+            )
             return {"CANCELLED"}
         bad = nan_keyframes(st.brush_object)
         if bad is not None:
@@ -100,18 +129,17 @@ class HAIRY_BRUSH_OT_bake_samples(bpy.types.Operator):
             self.report({"ERROR"}, f"The brush's pose is not a number at sample {i}")
             return {"CANCELLED"}
         dips = None
-        if st.recording is not None:  # re-baking keeps the dips already recorded
-            try:
-                old = from_dict(bridge.read_recording_dict(st))
-                if old.dips:
-                    dips = [dp for dp in old.dips if dp.before_sample <= len(samples)]
-            except (bridge.UserError, RecordingError):
-                pass  # an unreadable old recording is replaced
+        if old is not None and old.dips and not painted:  # re-baking keeps the dips recorded
+            dips = [dp for dp in old.dips if dp.before_sample <= len(samples)]
         try:
             rec = bridge.new_recording(scene, samples, dips)
-        except (RecordingError, bridge.UserError) as exc:
+        except bridge.USER_ERRORS as exc:
             self.report({"ERROR"}, f"Cannot bake: {exc}")
             return {"CANCELLED"}
+        if unreadable is not None:  # the unreadable text stays in the file, a new one is made
+            old_name = st.recording.name
+            st.recording = None
+            self.report({"WARNING"}, f"{unreadable}; kept as '{old_name}', baked into a new text")
         bridge.store_recording(st, rec)
         self.report({"INFO"}, f"Baked {len(samples)} samples at {st.sample_rate_hz:g} Hz")
         return {"FINISHED"}

@@ -9,7 +9,6 @@ import bpy
 
 from .. import bridge, handlers, playback
 from ..sim.png import write_png
-from ..sim.recording import RecordingError
 
 
 class HAIRY_BRUSH_OT_bake_sequence(bpy.types.Operator):
@@ -38,7 +37,7 @@ class HAIRY_BRUSH_OT_bake_sequence(bpy.types.Operator):
                     sim = pb.seek(bridge.samples_at_frame(pb.rec, scene, f))
                     write_png(os.path.join(folder, f"paper_{f:04d}.png"), sim.image8())
                     wm.progress_update(k)
-        except (bridge.UserError, RecordingError, OSError) as exc:
+        except (*bridge.USER_ERRORS, OSError) as exc:
             self.report({"ERROR"}, str(exc))
             return {"CANCELLED"}
         finally:

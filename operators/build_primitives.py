@@ -7,7 +7,6 @@ import bpy
 
 from .. import bridge, playback
 from ..sim.engine import Simulation
-from ..sim.recording import RecordingError
 
 
 class HAIRY_BRUSH_OT_build_primitives(bpy.types.Operator):
@@ -33,7 +32,7 @@ class HAIRY_BRUSH_OT_build_primitives(bpy.types.Operator):
                 sim = Simulation(bridge.new_recording(scene, [s]))
                 sim.brush.place(s)
             n = playback.sync_primitives(scene, sim, create=True)
-        except (bridge.UserError, RecordingError) as exc:
+        except bridge.USER_ERRORS as exc:
             self.report({"ERROR"}, str(exc))
             return {"CANCELLED"}
         self.report({"INFO"}, f"{n} writing primitive(s)")

@@ -7,7 +7,6 @@ import bpy
 from bpy_extras.io_utils import ExportHelper
 
 from .. import bridge
-from ..sim.recording import RecordingError
 
 
 class HAIRY_BRUSH_OT_export_recording(bpy.types.Operator, ExportHelper):
@@ -24,7 +23,7 @@ class HAIRY_BRUSH_OT_export_recording(bpy.types.Operator, ExportHelper):
         try:
             rec = bridge.recording_from_scene(context.scene)
             rec.save(self.filepath)
-        except (bridge.UserError, RecordingError, OSError) as exc:
+        except (*bridge.USER_ERRORS, OSError) as exc:
             self.report({"ERROR"}, str(exc))
             return {"CANCELLED"}
         self.report({"INFO"}, f"Wrote {len(rec.samples)} samples to {self.filepath}")

@@ -13,8 +13,7 @@ import numpy as np
 from .. import bridge
 from ..sim.fit import FitSettings, TrainingSample, character_samples, fit
 from ..sim.hanzi import find_char
-from ..sim.params import ParameterError, QualityParams
-from ..sim.recording import RecordingError
+from ..sim.params import QualityParams
 from .add_settings_preset import PRESET_SUBDIR, HAIRY_BRUSH_OT_add_settings_preset
 
 
@@ -101,7 +100,7 @@ class HAIRY_BRUSH_OT_fit_parameters(bpy.types.Operator):
         try:
             bridge.require_brush_and_paper(st)
             samples = self._samples(scene, st)
-        except (bridge.UserError, RecordingError, ParameterError, ValueError) as exc:
+        except (*bridge.USER_ERRORS, ValueError) as exc:
             self.report({"ERROR"}, str(exc))
             return {"CANCELLED"}
         settings = FitSettings(
@@ -120,7 +119,7 @@ class HAIRY_BRUSH_OT_fit_parameters(bpy.types.Operator):
                 settings,
                 progress=lambda f, *_: wm.progress_update(int(100 * f)),
             )
-        except (ParameterError, RecordingError) as exc:
+        except bridge.USER_ERRORS as exc:
             self.report({"ERROR"}, str(exc))
             return {"CANCELLED"}
         finally:

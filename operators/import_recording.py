@@ -7,7 +7,7 @@ import bpy
 from bpy_extras.io_utils import ImportHelper
 
 from .. import bridge
-from ..sim.recording import RecordingError, load
+from ..sim.recording import load
 
 
 class HAIRY_BRUSH_OT_import_recording(bpy.types.Operator, ImportHelper):
@@ -25,10 +25,10 @@ class HAIRY_BRUSH_OT_import_recording(bpy.types.Operator, ImportHelper):
         st = bridge.settings(context.scene)
         try:
             rec = load(self.filepath)
-        except RecordingError as exc:
+            bridge.copy_settings_from_recording(st, rec)
+        except bridge.USER_ERRORS as exc:
             self.report({"ERROR"}, f"{bpy.path.basename(self.filepath)}: {exc}")
             return {"CANCELLED"}
-        bridge.copy_settings_from_recording(st, rec)
         st.recording = None  # a new text block: the previous recording stays in the file
         text = bridge.store_recording(st, rec)
         self.report({"INFO"}, f"Imported {len(rec.samples)} samples into '{text.name}'")

@@ -18,7 +18,6 @@ from mathutils import Matrix
 from .. import bridge, playback
 from ..sim.engine import Simulation
 from ..sim.live import HOVER_MM, LiveBrush, LiveEvent
-from ..sim.recording import RecordingError
 
 TIMER_S = 1.0 / 120.0  # how often the modal operator gets the UI loop's attention
 ENGINE_BUDGET_S = 0.030  # engine time per timer event while painting (the UI stays responsive)
@@ -51,8 +50,12 @@ def start_simulation(scene, xy) -> tuple[Simulation, bool]:
 
 
 def keep_stroke(scene, live: LiveBrush):
-    """Store the recording with the new stroke; the playback continues from the live state."""
-    bridge.store_recording(bridge.settings(scene), live.sim.rec)
+    """Store the recording with the new stroke (marked as painted, so a bake does not replace
+    it unasked); the playback continues from the live state."""
+    rec = live.sim.rec
+    info = rec.extra.setdefault("blender", {})
+    info[bridge.PAINTED_KEY] = int(info.get(bridge.PAINTED_KEY, 0)) + len(live.new_samples)
+    bridge.store_recording(bridge.settings(scene), rec)
     playback.adopt(scene, live.sim)
 
 
@@ -79,7 +82,7 @@ class HAIRY_BRUSH_OT_paint(bpy.types.Operator):
         try:
             img = bridge.ensure_paper_image(st)
             sim, _fresh = start_simulation(scene, xy)
-        except (bridge.UserError, RecordingError) as exc:
+        except bridge.USER_ERRORS as exc:
             self.report({"ERROR"}, str(exc))
             return {"CANCELLED"}
         self.start(context, img, LiveBrush(sim, st.paint_press_mm, st.paint_angle_step, xy))

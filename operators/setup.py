@@ -73,7 +73,8 @@ class HAIRY_BRUSH_OT_setup(bpy.types.Operator):
         try:
             bridge.check_paper_size(st)
             color = paper_from_preset(load_preset("paper", st.paper_preset)).color
-        except bridge.UserError as exc:
+            geom_len = bridge.hair_length(st)
+        except bridge.USER_ERRORS as exc:
             self.report({"ERROR"}, str(exc))
             return {"CANCELLED"}
         coll = scene.collection
@@ -96,7 +97,6 @@ class HAIRY_BRUSH_OT_setup(bpy.types.Operator):
             brush.empty_display_size = 0.03
             brush.rotation_mode = "ZYX"  # Rx(q) Ry(d) Rz(r): X = q, Y = d, Z = r
             brush.rotation_euler = (0.0, 0.0, 0.0)  # upright: the hair hangs down -Z
-            geom_len = bridge.hair_length(st)
             brush.parent = st.paper_object
             brush.location = (0.0, 0.0, (geom_len + HOVER_MM) / bridge.MM)
             coll.objects.link(brush)

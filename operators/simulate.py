@@ -7,7 +7,6 @@ from __future__ import annotations
 import bpy
 
 from .. import bridge, playback
-from ..sim.recording import RecordingError
 
 
 class HAIRY_BRUSH_OT_simulate(bpy.types.Operator):
@@ -34,7 +33,7 @@ class HAIRY_BRUSH_OT_simulate(bpy.types.Operator):
             if self.to_current_frame:
                 n = bridge.samples_at_frame(rec, scene, scene.frame_current)
             playback.show(scene, n, progress=lambda f: wm.progress_update(int(100 * f)))
-        except (bridge.UserError, RecordingError) as exc:
+        except bridge.USER_ERRORS as exc:
             self.report({"ERROR"}, str(exc))
             return {"CANCELLED"}
         except MemoryError:

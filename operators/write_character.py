@@ -13,8 +13,6 @@ from bpy_extras.io_utils import ImportHelper
 from .. import bridge, playback
 from ..sim.hanzi import find_char
 from ..sim.imitate import write_character
-from ..sim.params import ParameterError
-from ..sim.recording import RecordingError
 from .setup import resize_paper
 
 
@@ -63,7 +61,7 @@ class HAIRY_BRUSH_OT_write_character(bpy.types.Operator, ImportHelper):
             else:
                 char = find_char(self.filepath)
             template = bridge.settings_recording(scene)
-        except (bridge.UserError, ValueError, RecordingError) as exc:
+        except (*bridge.USER_ERRORS, ValueError) as exc:
             self.report({"ERROR"}, str(exc))
             return {"CANCELLED"}
         old_size = (st.paper_width_mm, st.paper_height_mm)
@@ -89,7 +87,7 @@ class HAIRY_BRUSH_OT_write_character(bpy.types.Operator, ImportHelper):
                 px_per_mm=ppm,
             )
             rec = bridge.new_recording(scene, rec.samples, dips=rec.dips)
-        except (bridge.UserError, RecordingError, ParameterError, ValueError) as exc:
+        except (*bridge.USER_ERRORS, ValueError) as exc:
             st.paper_width_mm, st.paper_height_mm = old_size  # a cancelled operator leaves no trace
             self.report({"ERROR"}, str(exc))
             return {"CANCELLED"}

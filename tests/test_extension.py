@@ -383,7 +383,7 @@ def test_clear_errors_for_bad_input(hb):
     st.paper_width_mm, st.px_per_mm = 200.0, 2.0
     setup_scene(bpy, ppm=2.0)
     keyframe_stroke(bpy, st)
-    fcurve = ext().bridge._fcurves(st.brush_object.animation_data)[0]
+    fcurve = ext().bridge.fcurves(st.brush_object.animation_data)[0]
     fcurve.keyframe_points[1].co.y = float("nan")
     with pytest.raises(RuntimeError, match="not a number on location"):
         bpy.ops.hairy_brush.bake_samples()
@@ -676,3 +676,124 @@ def test_a_large_recording_is_stored_a_sample_a_line(hb, tmp_path):
     text = st.recording.as_string()
     assert text.count("\n") >= n  # one sample a line: Blender's text stays linear
     assert len(json.loads(text)["samples"]) == n
+
+
+# ----------------------------------------------------------------------------- nothing is lost
+def test_bake_refuses_a_deleted_brush_and_keeps_the_recording(hb):
+    st = setup_scene(bpy)
+    keyframe_stroke(bpy, st)
+    bpy.ops.hairy_brush.bake_samples()
+    text = st.recording.as_string()
+    brush = st.brush_object
+    for ob in bpy.context.scene.objects:
+        ob.select_set(ob == brush)
+    bpy.context.view_layer.objects.active = brush
+    bpy.ops.object.delete()
+    with pytest.raises(RuntimeError, match="No brush empty in the scene"):
+        bpy.ops.hairy_brush.bake_samples()
+    assert st.recording.as_string() == text
+
+
+def test_bake_asks_before_replacing_painted_strokes(hb):
+    LiveEvent = ext().sim.live.LiveEvent  # noqa: N806
+    st = setup_scene(bpy)
+    sc = bpy.context.scene
+    paint = ext().operators.paint
+    sim, _ = paint.start_simulation(sc, (60.0, 100.0))
+    live = ext().sim.live.LiveBrush(sim, press_mm=5.0, xy=(60.0, 100.0))
+    live.handle(LiveEvent("LEFTMOUSE", "PRESS", (60.0, 100.0)))
+    for i in range(30):
+        live.handle(LiveEvent("MOUSEMOVE", "NOTHING", (60.0 + i, 100.0)))
+        live.handle(LiveEvent("TIMER", "NOTHING"))
+    assert live.handle(LiveEvent("RET", "PRESS")) == "FINISHED"
+    paint.keep_stroke(sc, live)
+    text = st.recording.as_string()
+    keyframe_stroke(bpy, st)
+    with pytest.raises(RuntimeError, match="30 samples painted live"):
+        bpy.ops.hairy_brush.bake_samples()
+    assert st.recording.as_string() == text
+    assert bpy.ops.hairy_brush.bake_samples(replace_painted=True) == {"FINISHED"}
+    assert st.recording.as_string() != text
+
+
+def test_a_refused_import_changes_nothing_and_overrides_survive(hb, tmp_path):
+    st = setup_scene(bpy, ppm=2.0)
+    samples = [[60.0, 100.0, HAIR + 5, 0, 0, 0], [60.0, 100.0, HAIR - 4, 0, 0, 0]]
+    samples += [[60.0 + i, 100.0, HAIR - 4, 0, 0, 0] for i in range(60)]
+    rec = ext().sim.recording.Recording(np.array(samples), width_mm=150.0, px_per_mm=2.0)
+    d = rec.to_dict()
+    d["seed"] = 3_000_000_000
+    bad = tmp_path / "bad.json"
+    bad.write_text(json.dumps(d))
+    with pytest.raises(RuntimeError, match="Seed 3000000000 is outside"):
+        bpy.ops.hairy_brush.import_recording(filepath=str(bad))
+    assert (st.paper_width_mm, st.px_per_mm) == (200.0, 2.0) and st.recording is None
+    # a brush geometry override in the recording is kept by simulate and export
+    d["seed"] = 7
+    d["brush"] = {"preset": "mixed", "geometry": {"hair_length_mm": 24.0}}
+    good = tmp_path / "good.json"
+    good.write_text(json.dumps(d))
+    assert bpy.ops.hairy_brush.import_recording(filepath=str(good)) == {"FINISHED"}
+    assert bpy.ops.hairy_brush.simulate() == {"FINISHED"}
+    want = Simulation(load_recording(good)).run().paper.rgb()
+    assert np.abs(pixels(st.paper_image)[..., :3] - want).max() <= 0.5 / 4095 + 1e-6
+    out = tmp_path / "out.json"
+    assert bpy.ops.hairy_brush.export_recording(filepath=str(out)) == {"FINISHED"}
+    assert json.loads(out.read_text())["brush"]["geometry"] == {"hair_length_mm": 24.0}
+
+
+def test_write_character_keeps_the_brushs_other_animation(hb):
+    from conftest import ROOT
+
+    st = setup_scene(bpy, ppm=1.0)
+    b = st.brush_object
+    b.empty_display_size = 0.01
+    b.keyframe_insert("empty_display_size", frame=1)
+    b.empty_display_size = 0.05
+    b.keyframe_insert("empty_display_size", frame=50)
+    path = ROOT / "data" / "hanzi" / "十.json"
+    assert bpy.ops.hairy_brush.write_character(filepath=str(path), size_mm=100.0, passes=1) == {
+        "FINISHED"
+    }
+    paths = {fc.data_path for fc in ext().bridge.fcurves(b.animation_data)}
+    assert {"location", "rotation_euler", "empty_display_size"} <= paths
+
+
+def test_settings_that_are_not_numbers_get_one_message(hb):
+    st = setup_scene(bpy)
+    keyframe_stroke(bpy, st)
+    bpy.ops.hairy_brush.bake_samples()
+    st["px_per_mm"] = float("nan")  # as a hand-edited .blend can hold it
+    for op in (bpy.ops.hairy_brush.bake_samples, bpy.ops.hairy_brush.simulate):
+        with pytest.raises(RuntimeError, match="Resolution is not a number"):
+            op()
+    bpy.context.scene.frame_set(20)  # the handler reports, never raises
+    assert "Resolution is not a number" in ext().handlers.last_error
+    st.px_per_mm = 2.0
+    st.paper_object.scale = (0.0, 1.0, 1.0)
+    with pytest.raises(RuntimeError, match="scaled to nothing"):
+        bpy.ops.hairy_brush.bake_samples()
+
+
+def test_a_broken_recording_is_parsed_once_and_frame_changes_stay_bounded(hb, monkeypatch):
+    st = setup_scene(bpy)
+    keyframe_stroke(bpy, st)
+    bpy.ops.hairy_brush.bake_samples()
+    good = st.recording.as_string()
+    st.recording.from_string("{not json")
+    calls = []
+    real = ext().bridge.recording_from_scene
+    monkeypatch.setattr(
+        ext().bridge, "recording_from_scene", lambda sc: calls.append(1) or real(sc)
+    )
+    sc = bpy.context.scene
+    for f in (5, 6, 7):
+        sc.frame_set(f)
+    assert len(calls) == 1 and "not valid JSON" in ext().handlers.last_error
+    st.recording.from_string(good)
+    # while the artist works (not rendering), a frame change simulates for a bounded time
+    monkeypatch.setattr(ext().handlers, "exact_frames", lambda: False)
+    monkeypatch.setattr(ext().handlers, "FRAME_BUDGET_S", 0.0)
+    sc.frame_set(45)
+    pb = ext().playback.playback_for(sc)
+    assert 0 < pb.sim.index < ext().bridge.samples_at_frame(pb.rec, sc, 45)
