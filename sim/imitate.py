@@ -390,6 +390,11 @@ def _check_writing(n_px, size_mm, passes, dip_every_mm, px_per_mm) -> None:
             f"image size must be a whole number of pixels in [{MIN_SHEET_PX}, "
             f"{MAX_PAPER_SIDE_PX}], got {short_repr(n_px)}"
         )
+    if px_per_mm is not None and not number_within(px_per_mm, *PX_PER_MM_RANGE):
+        raise ParameterError(
+            f"px_per_mm must be a number in [{PX_PER_MM_RANGE[0]:g}, {PX_PER_MM_RANGE[1]:g}], "
+            f"got {short_repr(px_per_mm)}"
+        )
     if size_mm is not None and not number_within(size_mm, *PAPER_MM_RANGE):
         raise ParameterError(
             f"character size must be a number of mm in [{PAPER_MM_RANGE[0]:g}, "
@@ -442,6 +447,8 @@ def write_character(
     work."""
     check_char(char, "character data")
     _check_writing(n_px, size_mm, passes, dip_every_mm, px_per_mm)
+    if size_mm is not None:  # the sheet can be checked before the brush is calibrated
+        _check_sheet(float(size_mm), n_px / size_mm if px_per_mm is None else px_per_mm)
     if response is None:
         response = calibrate(template)
     size = auto_size_mm(char, response) if size_mm is None else float(size_mm)

@@ -337,3 +337,66 @@ def test_fit_checks_the_image_size_before_decoding(tmp_path, capsys):
     assert time.perf_counter() - t0 < 2.0
     img.write_bytes(b"\x89PNG\r\n\x1a\n")
     refused(capsys, *argv, says=["IHDR", str(img)])
+
+
+# ------------------------------------------------------------------ the library's own checks
+def test_graphics_txt_lines_are_read_bounded(tmp_path):
+    from sim.hanzi import MAX_CHAR_BYTES, CharacterError, find_char
+
+    good = json.dumps({"character": "一", **CHAR}, ensure_ascii=False)
+    g = tmp_path / "graphics.txt"
+    g.write_bytes(b"\xff\xfe junk line\n" + good.encode() + b"\n")
+    assert find_char("一", g)["medians"] == CHAR["medians"]
+    g.write_bytes(b'{"character":"\xe4\xb8\x80", \xff}\n')
+    with pytest.raises(CharacterError, match="line 1 is not UTF-8"):
+        find_char("一", g)
+    g.write_bytes(b"x" * (MAX_CHAR_BYTES + 10) + b"\n" + good.encode())
+    with pytest.raises(CharacterError, match="line 1 is longer than"):
+        find_char("一", g)
+    g.write_text(json.dumps({"character": "一", "strokes": [1], "medians": []}, ensure_ascii=False))
+    with pytest.raises(CharacterError, match="line 1"):
+        find_char("一", g)
+
+
+def test_writer_checks_its_arguments_before_calibrating():
+    from sim.imitate import write_character
+    from sim.params import ParameterError
+    from sim.recording import Recording
+
+    template = Recording(REC["samples"])
+    for kw, says in (
+        ({"passes": 0}, "practice passes"),
+        ({"passes": True}, "practice passes"),
+        ({"n_px": 0}, "image size"),
+        ({"size_mm": 0.0}, "character size"),
+        ({"size_mm": float("nan")}, "character size"),
+        ({"n_px": 0, "px_per_mm": 5000.0, "size_mm": 100.0}, "px_per_mm"),
+        ({"n_px": 0, "px_per_mm": "5", "size_mm": 100.0}, "px_per_mm"),
+        ({"n_px": 8192, "size_mm": 5.0}, "px/mm"),
+        ({"n_px": 0, "px_per_mm": 100.0, "size_mm": 1000.0}, "at most 8192 px"),
+    ):
+        args = {"n_px": 64, "passes": 1, **kw}
+        t0 = time.perf_counter()
+        with pytest.raises(ParameterError, match=says):
+            write_character(CHAR, args.pop("n_px"), template, **args)
+        assert time.perf_counter() - t0 < 0.5  # no calibration was run
+
+
+def test_bad_presets_name_the_field(tmp_path):
+    from sim.params import ParameterError, ink_from_preset, load_preset, paper_from_preset
+
+    (tmp_path / "inks").mkdir()
+    (tmp_path / "papers").mkdir()
+    for doc, kind, says in (
+        ({"kind": "ink", "color": [0, 0]}, "ink", "'color'"),
+        ({"kind": "ink", "wetness": "0.9"}, "ink", "'wetness'"),
+        ({"kind": "ink", "radiation": 3}, "ink", "'radiation'"),
+        ({"kind": "paper", "capacity": -1}, "paper", "'capacity'"),
+        ({"kind": "paper", "color": [1, 1, True]}, "paper", "'color'"),
+        ([1], "paper", "JSON object"),
+    ):
+        folder = tmp_path / ("inks" if kind == "ink" else "papers")
+        (folder / "x.json").write_text(json.dumps(doc))
+        build = ink_from_preset if kind == "ink" else paper_from_preset
+        with pytest.raises(ParameterError, match=says):
+            build(load_preset(kind, "x", tmp_path))
