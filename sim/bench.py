@@ -23,7 +23,7 @@ ROOT = Path(__file__).resolve().parent.parent
 PAPER_MM = 200.0
 
 
-def _long_stroke(y=100.0):
+def long_stroke(y=100.0):
     """A long pressed stroke that zig-zags across the sheet's middle (about 4 s at 120 Hz)."""
     pts = [[40, y], [160, y], [150, y - 20], [40, y - 20], [50, y - 40], [160, y - 40]]
     return stroke(
@@ -31,7 +31,12 @@ def _long_stroke(y=100.0):
     )
 
 
-def _sim(samples, size_px, ppm, primitives=1, seed=0):
+_long_stroke = long_stroke  # the name scripts/bench_live.py uses
+
+
+def workload(samples, size_px, ppm, primitives=1, seed=0) -> Simulation:
+    """A seeded simulation of ``samples`` on a square sheet of size_px pixels at ppm, its brush
+    dipped and, for primitives > 1, split into that many primitives up front."""
     rec = Recording(
         samples,
         width_mm=size_px / ppm,
@@ -45,14 +50,9 @@ def _sim(samples, size_px, ppm, primitives=1, seed=0):
     )
     sim = Simulation(rec)
     sim.brush.max_primitives = primitives
-    if primitives > 1:  # split the brush into the requested number of primitives up front
-        b = sim.brush
-        b.dip(sim.ink, 0.8, (0, 0, 0), 0.9)
-        b.touching[:] = True
-        b.stress[:] = float(primitives)
-        b.q = b.q.with_values({"tre": 1.0})
-        b.split()
-        b.touching[:] = False
+    if primitives > 1:  # with tre = 1, inner stress k splits a primitive into k (Eq. 18)
+        sim.brush.dip(sim.ink, 0.8, (0, 0, 0), 0.9)
+        sim.brush.split_under(float(primitives))
         sim.dips = []
     return sim
 
@@ -63,10 +63,10 @@ STAGES = ("brush", "sweep", "cut", "mark pixels", "paper")
 def samples_per_second(samples, size_px, ppm, primitives=1, repeats=3, stages=None):
     """Samples per second of the median of ``repeats`` runs; ``stages`` (a dict), when given,
     gets the milliseconds per sample of every stage of the engine in that same run."""
-    _sim(samples[:60], size_px, ppm, primitives).run()  # warm-up, untimed (allocator, caches)
+    workload(samples[:60], size_px, ppm, primitives).run()  # warm-up, untimed (allocator, caches)
     runs, m = [], 0
     for _ in range(repeats):
-        sim = _sim(samples, size_px, ppm, primitives)
+        sim = workload(samples, size_px, ppm, primitives)
         sim.timings = {}
         t0 = time.perf_counter()
         sim.run()
@@ -91,7 +91,7 @@ def nurbs_speedup(repeats=3):
     """Engine's surface evaluation against geomdl's, same surfaces and parameters."""
     from .nurbs import CIRCLE_KNOTS, surface_control_net, to_geomdl
 
-    sim = _sim(_long_stroke(), 1024, 5.0, primitives=8)
+    sim = workload(long_stroke(), 1024, 5.0, primitives=8)
     b = sim.brush
     b.cc[..., 0] += np.linspace(0, 5, b.n) ** 1.5 / 3  # bent axes
     lay = b.layout
@@ -165,7 +165,7 @@ def main(quick: bool = False, out_dir: Path | None = None) -> dict:
     out_dir = Path(out_dir or ROOT / "out")
     out_dir.mkdir(parents=True, exist_ok=True)
     rep = 1 if quick else 5
-    s = _long_stroke()
+    s = long_stroke()
     res = {}
     rows = []
     st1, st16 = {}, {}

@@ -247,19 +247,15 @@ class HairyBrush:
         """Sec. 5.5, Eq. 18-19; returns the number of new primitives."""
         return dynamics.split(self)
 
-    def split_into(self, k: int) -> int:
-        """Split every primitive into k at once (Eq. 18 with str = k tre), as if each pressed
-        the paper that hard: for benchmarks and tests that want a split brush. Returns the
-        number of new primitives (fewer when ``max_primitives`` caps them)."""
-        q = self.q
+    def split_under(self, stress: float) -> int:
+        """Split as if every primitive pressed the paper with inner stress ``stress`` (Eq. 18
+        with the brush's tre: k = floor(stress / tre)), for benchmarks and tests that want a
+        split brush. Returns the number of new primitives (``max_primitives`` caps them)."""
         self.touching[:] = True
-        self.stress[:] = float(k)
-        self.q = q.with_values({"tre": 1.0})
-        try:
-            return self.split()
-        finally:
-            self.q = q
-            self.touching[:] = False
+        self.stress[:] = stress
+        new = self.split()
+        self.touching[:] = False
+        return new
 
     def ink_flow(self):
         """Eq. 20."""

@@ -8,19 +8,15 @@ import time
 import numpy as np
 import pytest
 
-from sim.bench import _long_stroke, _sim
+from sim.engine import Simulation
 from sim.mark import compute_marks
+from tests.builders import character, long_stroke, simulation, stepped
 from tests.reference_mark import reference_marks
 
 
 def _states(primitives, ppm, every=37):
     """Brush states along a long pressed zig-zag stroke (bent, spread and split brushes)."""
-    s = _long_stroke()
-    sim = _sim(s, int(200 * ppm), ppm, primitives)
-    while not sim.done:
-        sim.step()
-        if sim.index % every == 0:
-            yield sim
+    return stepped(simulation(long_stroke(), int(200 * ppm), ppm, primitives), every)
 
 
 def _assert_marks_equal_reference(sims, ppm):
@@ -58,22 +54,8 @@ def test_fast_marks_equal_reference(primitives, ppm, every):
 def test_fast_marks_equal_reference_on_a_written_character():
     """The demo character (wolf brush, pressed and split): many pixels lie between several
     pairs of section planes, of which only the first and the last slab count."""
-    from sim.bench import ROOT
-    from sim.engine import Simulation
-    from sim.hanzi import character_recording
-    from sim.recording import from_dict
-
-    d = character_recording(ROOT / "data" / "hanzi" / "永.json").to_dict()
-    d["paper"]["px_per_mm"] = 6.0
-    sim = Simulation(from_dict(d))
-
-    def states():
-        while not sim.done:
-            sim.step()
-            if sim.index % 31 == 0:
-                yield sim
-
-    checked, _ = _assert_marks_equal_reference(states(), 6.0)
+    sim = Simulation(character(6.0))
+    checked, _ = _assert_marks_equal_reference(stepped(sim, 31), 6.0)
     assert checked > 20 and sim.brush.splits > 0
 
 
@@ -150,9 +132,9 @@ def test_batched_deposit_equals_one_mark_after_another():
     from sim.paper import Paper
     from tests.reference_paper import reference_deposit
 
-    s = _long_stroke()[:260]
-    a = _sim(s, 1200, 6.0, 16)
-    b = _sim(s, 1200, 6.0, 16)
+    s = long_stroke()[:260]
+    a = simulation(s, 1200, 6.0, 16)
+    b = simulation(s, 1200, 6.0, 16)
     for sim in (a, b):
         sim.paper.dry_per_step = 0.004  # lazy drying on
         sim.q = sim.brush.q = sim.brush.q.with_values({"ren": 1.0, "ab": 0.6})
@@ -175,7 +157,7 @@ def test_batched_deposit_equals_one_mark_after_another():
 def test_banded_uint8_image_and_png_equal_the_float_image(tmp_path):
     from sim.png import read_png, to_uint8, write_png
 
-    sim = _sim(_long_stroke(), 700, 3.5, 1)
+    sim = simulation(long_stroke(), 700, 3.5, 1)
     sim.paper.ink[...] = np.random.default_rng(3).random(sim.paper.ink.shape, dtype=np.float32)
     img8 = sim.image8()
     np.testing.assert_array_equal(img8, to_uint8(sim.image()))
@@ -208,14 +190,10 @@ def test_run_fills_marks_for_several_samples_at_once_and_equals_step_by_step():
     """``run`` lets the brush run ahead of the paper and fills several samples' marks in one
     pass; the paper is the same, bit for bit, as one sample at a time (a written character with
     dips and splits), also when run stops and goes on, or snapshots in between."""
-    from sim.bench import ROOT
-    from sim.engine import BATCH_STEPS, Simulation
-    from sim.hanzi import character_recording
-    from sim.recording import Dip, from_dict
+    from sim.engine import BATCH_STEPS
+    from sim.recording import Dip
 
-    d = character_recording(ROOT / "data" / "hanzi" / "永.json").to_dict()
-    d["paper"]["px_per_mm"] = 4.0
-    rec = from_dict(d)
+    rec = character(4.0)
     rec.dips.append(Dip(411, 0.7, (0.6, 0.1, 0.1), 0.9))  # a second dip, mid-batch
     a = Simulation(rec).run()
     b = Simulation(rec)
@@ -239,8 +217,8 @@ def test_timings_split_a_run_into_its_stages_without_changing_it():
     keeping timings does not change the artwork."""
     from sim.bench import STAGES, samples_per_second
 
-    s = _long_stroke()[:90]
-    a, b = _sim(s, 400, 2.0, 4), _sim(s, 400, 2.0, 4)
+    s = long_stroke()[:90]
+    a, b = simulation(s, 400, 2.0, 4), simulation(s, 400, 2.0, 4)
     a.timings = {}
     t0 = time.perf_counter()
     a.run()

@@ -76,16 +76,12 @@ def test_wetness_colour_in_range_and_hair_never_through_the_paper(
 def test_split_conserves_hair_area(stress, tre, m0):
     b = HairyBrush(BrushGeometry(), QualityParams(tre=tre), np.random.default_rng(1))
     b.place([0, 0, 20, 0, 0, 0])
-    if m0 > 1:
-        b.touching[:] = True
-        b.stress[:] = 2.0
+    if m0 > 1:  # 2 m0 primitives to begin with
         b.q = QualityParams(tre=1.0 / m0)
-        b.split()
+        b.split_under(2.0)
         b.q = QualityParams(tre=tre)
     area = b.hair_area()
-    b.touching[:] = True
-    b.stress[:] = stress
-    b.split()
+    b.split_under(stress)
     assert abs(b.hair_area() - area) < 1e-9 * area
     assert b.m <= 32
     assert b.cc.shape == (b.m, b.n, 3)
