@@ -1,22 +1,19 @@
 # SPDX-License-Identifier: GPL-3.0-or-later
 """Glue between Blender data and the engine: scene settings -> Recording, object matrices ->
 6-DOF samples, engine images -> image datablocks, engine surfaces -> NURBS surface objects.
-
-Units: Blender works in metres, the engine in millimetres. The engine's paper coordinates put
-(0, 0) at the paper's lower-left corner, x to the right, y up, z above the paper; the paper
-plane's local coordinates are centred, so engine x = 1000 * local x + width / 2.
+The maths (units, poses, rays, frames) is in ``sim.placement``; here it meets Blender's data.
 """
 
 from __future__ import annotations
 
 import json
 import math
+import os
 
 import bpy
 import numpy as np
 
-from .sim import display
-from .sim.brush import angles_from_matrix, rotation_matrix
+from .sim import display, placement
 from .sim.jsonio import MAX_JSON_BYTES, parse_json
 from .sim.params import (
     MAX_PAPER_PIXELS,
@@ -28,6 +25,7 @@ from .sim.params import (
     paper_from_preset,
 )
 from .sim.recording import Dip, Recording, RecordingError, from_dict
+from .sim.timeline import DEFAULT_BUDGET_BYTES as SNAPSHOT_BUDGET_BYTES
 
 RECORDING_TEXT = "HairyBrush Recording"
 PAPER_IMAGE = "HairyBrush Paper"
@@ -36,7 +34,10 @@ PAPER_TAG = "hairy_brush_paper"
 PAINTED_KEY = "painted_samples"  # in a recording's "blender" extra: samples painted live
 SHOWN_TAG = "hairy_brush_shown"  # on the paper image: how many samples it shows
 PRIMITIVE_TAG = "hairy_brush_primitive"
-MM = 1000.0
+MM = placement.MM
+# memory a paper pixel costs: the engine's buffers (ink 12, wetness 4, last step 4), the kept
+# display pixels (16) and Blender's float image (16)
+BYTES_PER_PIXEL = 52
 
 
 class UserError(Exception):
@@ -97,22 +98,33 @@ def paper_pixels(st) -> tuple[int, int]:
 def check_paper_size(st) -> tuple[int, int]:
     check_settings(st)
     w, h = paper_pixels(st)
+    need = w * h * BYTES_PER_PIXEL + SNAPSHOT_BUDGET_BYTES
+    free = available_memory()
     if w > MAX_PAPER_SIDE_PX or h > MAX_PAPER_SIDE_PX or w * h > MAX_PAPER_PIXELS:
         raise UserError(
             f"Paper of {w} x {h} px is too large (at most {MAX_PAPER_SIDE_PX} px a side, about "
-            f"{w * h * 40 / 2**20:.0f} MB of buffers): lower Resolution or the paper size"
+            f"{need / 2**20:.0f} MB of memory): lower Resolution or the paper size"
+        )
+    if free is not None and need > free:
+        raise UserError(
+            f"Paper of {w} x {h} px needs about {need / 2**20:.0f} MB of memory and "
+            f"{free / 2**20:.0f} MB are free: lower Resolution or the paper size"
         )
     return w, h
+
+
+def available_memory() -> int | None:
+    """Bytes of physical memory free now (None where the system does not say)."""
+    try:
+        return os.sysconf("SC_AVPHYS_PAGES") * os.sysconf("SC_PAGE_SIZE")
+    except (AttributeError, ValueError, OSError):
+        return None
 
 
 # ------------------------------------------------------------------------------ transforms
 def engine_to_paper_local(st) -> np.ndarray:
     """4x4: engine mm (paper corner origin) -> paper object's local metres (centred)."""
-    m = np.eye(4)
-    m[:3, :3] /= MM
-    m[0, 3] = -st.paper_width_mm / (2 * MM)
-    m[1, 3] = -st.paper_height_mm / (2 * MM)
-    return m
+    return placement.engine_to_paper_local(st.paper_width_mm, st.paper_height_mm)
 
 
 def engine_to_world(st, paper_obj) -> np.ndarray:
@@ -120,20 +132,18 @@ def engine_to_world(st, paper_obj) -> np.ndarray:
 
 
 def sample_from_matrices(st, brush_mw, paper_mw) -> np.ndarray:
-    """One 6-DOF sample (x, y, z mm; d, q, r degrees) from the brush empty's and the paper's
-    world matrices: the brush pose relative to the paper (Sec. 4, Fig. 6(a))."""
-    paper_mw = np.asarray(paper_mw, dtype=float)
-    if not np.isfinite(paper_mw).all() or abs(np.linalg.det(paper_mw[:3, :3])) < 1e-18:
-        raise UserError("The paper plane is scaled to nothing (or not a number): fix its scale")
-    rel = np.linalg.inv(paper_mw) @ np.asarray(brush_mw, dtype=float)
-    rot = rel[:3, :3]
-    scale = np.linalg.norm(rot, axis=0)
-    rot = rot / np.where(scale > 0, scale, 1.0)
-    x = rel[0, 3] * MM + st.paper_width_mm / 2
-    y = rel[1, 3] * MM + st.paper_height_mm / 2
-    z = rel[2, 3] * MM
-    d, q, r = angles_from_matrix(rot)
-    return np.array([x, y, z, d, q, r])
+    """One 6-DOF sample from the brush empty's and the paper's world matrices."""
+    try:
+        return placement.sample_from_matrices(
+            brush_mw, paper_mw, st.paper_width_mm, st.paper_height_mm
+        )
+    except placement.PlacementError as exc:
+        raise UserError(str(exc)) from None
+
+
+def matrix_from_sample(st, paper_mw, sample) -> np.ndarray:
+    """World matrix of the brush empty for a 6-DOF sample."""
+    return placement.matrix_from_sample(paper_mw, sample, st.paper_width_mm, st.paper_height_mm)
 
 
 # ------------------------------------------------------------------------------ recordings
@@ -269,20 +279,13 @@ def timeline(rec: Recording, scene) -> tuple[float, float]:
 
 
 def samples_at_frame(rec: Recording, scene, frame: float) -> int:
-    """How many samples have been written by the end of ``frame`` (sample i lies at frame
-    start + i * frames_per_sample)."""
-    start, per = timeline(rec, scene)
-    if frame < start:
-        return 0
-    return int(min(len(rec.samples), np.floor((frame - start) / per + 1e-9) + 1))
+    """How many samples have been written by the end of ``frame``."""
+    return placement.samples_at_frame(len(rec.samples), *timeline(rec, scene), frame)
 
 
 def first_sample_from_frame(rec: Recording, scene, frame: float) -> int:
     """Index of the first sample at or after ``frame``."""
-    start, per = timeline(rec, scene)
-    if frame <= start:
-        return 0
-    return int(min(len(rec.samples), np.ceil((frame - start) / per - 1e-9)))
+    return placement.first_sample_from_frame(len(rec.samples), *timeline(rec, scene), frame)
 
 
 # ------------------------------------------------------------------------------ images
@@ -368,43 +371,6 @@ def pack_image(img):
 
 
 # ------------------------------------------------------------------------------ NURBS objects
-def primitive_points(nets, to_local: np.ndarray) -> np.ndarray:
-    """Engine control nets (m, Nu, Nv, 4) homogeneous, mm -> Blender point coordinates (m,
-    Nv * Nu, 4): Cartesian xyz in the object's local space and the weight; u (along the axis)
-    runs fastest, as in Blender's surface point order."""
-    w = nets[..., 3:4]
-    xyz = nets[..., :3] / w
-    hom = np.concatenate([xyz, np.ones_like(w)], axis=-1) @ to_local.T
-    co = np.concatenate([hom[..., :3], w], axis=-1)  # (m, Nu, Nv, 4)
-    m, nu, nv, _ = co.shape
-    return np.ascontiguousarray(co.transpose(0, 2, 1, 3).reshape(m, nv * nu, 4))
-
-
-def ray_to_paper(engine_to_world_m: np.ndarray, origin, direction):
-    """Where a view ray meets the paper plane, in engine mm (x, y); None if it misses."""
-    inv = np.linalg.inv(engine_to_world_m)
-    o = inv @ np.r_[np.asarray(origin, dtype=float), 1.0]
-    d = inv[:3, :3] @ np.asarray(direction, dtype=float)
-    if abs(d[2]) < 1e-12:
-        return None
-    t = -o[2] / d[2]
-    if t < 0:
-        return None
-    p = o[:3] + t * d
-    return float(p[0]), float(p[1])
-
-
-def matrix_from_sample(st, paper_mw, sample) -> np.ndarray:
-    """World matrix of the brush empty for a 6-DOF sample (inverse of sample_from_matrices)."""
-    x, y, z, d, q, r = (float(v) for v in sample)
-    rel = np.eye(4)
-    rel[:3, :3] = rotation_matrix(d, q, r)
-    rel[:3, 3] = (x - st.paper_width_mm / 2) / MM, (y - st.paper_height_mm / 2) / MM, z / MM
-    pm = np.asarray(paper_mw, dtype=float).copy()
-    pm[:3, :3] /= np.linalg.norm(pm[:3, :3], axis=0)  # paper scale does not scale the brush
-    return pm @ rel
-
-
 def hair_length(st) -> float:
     return geometry_from_preset(load_preset("brush", st.brush_preset)).hair_length_mm
 

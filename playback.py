@@ -13,10 +13,10 @@ import bpy
 import numpy as np
 
 from . import bridge
+from .sim import placement
 from .sim.engine import Simulation
 from .sim.timeline import Timeline
 
-SNAPSHOT_BUDGET_BYTES = 768 * 2**20
 NU_AXIS, NV_RING = 28, 9  # control points of a primitive surface in Bezier form (see sim)
 MAX_SNAPSHOT_EVERY = 64  # samples
 
@@ -30,7 +30,7 @@ class Playback:
         self.key = key
         self.rec = rec
         every = int(min(max(round(samples_per_frame), 1), MAX_SNAPSHOT_EVERY))
-        self.timeline = Timeline(Simulation(rec), every, SNAPSHOT_BUDGET_BYTES)
+        self.timeline = Timeline(Simulation(rec), every, bridge.SNAPSHOT_BUDGET_BYTES)
 
     @property
     def sim(self) -> Simulation:
@@ -172,7 +172,7 @@ def sync_primitives(scene, sim: Simulation, create: bool = True) -> int:
     to_local = np.linalg.inv(np.array(brush_obj.matrix_world)) @ bridge.engine_to_world(
         st, paper_obj
     )
-    co = bridge.primitive_points(nets, to_local).astype(np.float32)
+    co = placement.primitive_points(nets, to_local).astype(np.float32)
     objs = primitive_objects(scene)
     if len(objs) < len(co) and (create or objs):
         coll = _collection(scene)

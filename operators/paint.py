@@ -16,6 +16,7 @@ from bpy_extras import view3d_utils
 from mathutils import Matrix
 
 from .. import bridge, playback
+from ..sim import placement
 from ..sim.engine import Simulation
 from ..sim.live import HOVER_MM, LiveBrush, LiveEvent
 
@@ -33,7 +34,7 @@ def mouse_to_paper(context, st, mx: float, my: float):
         return None
     origin = view3d_utils.region_2d_to_origin_3d(region, rv3d, (mx, my))
     direction = view3d_utils.region_2d_to_vector_3d(region, rv3d, (mx, my))
-    return bridge.ray_to_paper(bridge.engine_to_world(st, st.paper_object), origin, direction)
+    return placement.ray_to_paper(bridge.engine_to_world(st, st.paper_object), origin, direction)
 
 
 def start_simulation(scene, xy) -> tuple[Simulation, bool]:

@@ -50,11 +50,23 @@ class Simulation:
     def done(self) -> bool:
         return self.index >= len(self.rec.samples)
 
+    @property
+    def dips(self) -> list:
+        """The dip events, in order, looked up by sample (a long list costs nothing a step).
+        Assign a new list to change them: the lookup is built on assignment."""
+        return self._dips
+
+    @dips.setter
+    def dips(self, dips):
+        self._dips = dips
+        self._dips_at = {}
+        for dp in dips:
+            self._dips_at.setdefault(dp.before_sample, []).append(dp)
+
     def _dip_now(self):
-        for dp in self.dips:
-            if dp.before_sample == self.index:
-                self.brush.dip(self.ink, dp.depth, dp.color, dp.wetness)
-                self.predictor.reset()
+        for dp in self._dips_at.get(self.index, ()):
+            self.brush.dip(self.ink, dp.depth, dp.color, dp.wetness)
+            self.predictor.reset()
 
     def step(self):
         """Process one 6-DOF sample: the brush moves and the paper takes its marks."""
