@@ -60,7 +60,7 @@ def split(sim, primitives: int):
     b = sim.brush
     b.max_primitives = primitives
     b.dip(sim.ink, 0.8, (0, 0, 0), 0.9)
-    b.split_into(primitives)
+    b.split_under((primitives + 0.5) * b.q.tre)  # Eq. 18: k = floor(stress / tre)
     sim.dips = []
 
 
@@ -120,7 +120,7 @@ def paint(ext, size_px: int, primitives: int, seconds: float):
     state = op.step(bpy.context, LiveEvent("LEFTMOUSE", "RELEASE", xy, time=t))
     lag = time.perf_counter() - t
     assert state == {"FINISHED"}, state
-    return op.refreshes, lag, len(op._live.new_samples)
+    return op.refreshes, lag, len(op._live.new_samples), sim.brush.m
 
 
 def scrub(ext, size_px: int, frames: int, seed: int = 0):
@@ -176,11 +176,11 @@ def main(argv=None) -> int:
     frames = 60 if args.quick else 300
     res, rows = {}, []
     med = lambda v: statistics.median(v)  # noqa: E731
-    for size, prims, label in ((2048, 1, "2048_1p"), (4096, 16, "4096_16p")):
-        refresh, lag, n = paint(ext, size, prims, seconds)
+    for size, prims, label in ((1024, 1, "1024_1p"), (2048, 1, "2048_1p"), (4096, 16, "4096_16p")):
+        refresh, lag, n, m = paint(ext, size, prims, seconds)
         res[f"refresh_ms_{size}"] = round(med(refresh) * 1e3, 2)
         res[f"lag_s_{label}"] = round(lag, 3)
-        rows.append((f"paint {size} px, {prims} primitive(s)", f"{n} samples in {seconds} s"))
+        rows.append((f"paint {size} px, {m} primitive(s)", f"{n} samples in {seconds} s"))
         rows.append(("  refresh (median, ms)", f"{med(refresh) * 1e3:.1f} of {len(refresh)}"))
         rows.append(("  lag from release to final image (s)", f"{lag:.3f}"))
     back, fwd, jump, first = scrub(ext, 4096, frames)
@@ -195,7 +195,7 @@ def main(argv=None) -> int:
     from importlib import import_module
 
     bench = import_module(ADDON + ".sim.bench")
-    rate, _m = bench.samples_per_second(bench._long_stroke(), 4096, 4096 / PAPER_MM, 16, 3)
+    rate, _m = bench.samples_per_second(bench.long_stroke(), 4096, 4096 / PAPER_MM, 16, 3)
     res["samples_per_s_16p_4096"] = round(rate, 1)
     rows.append(("engine alone, 16 primitives, 4096 px (samples/s)", f"{rate:.0f}"))
     for a, b in rows:
