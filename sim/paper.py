@@ -128,11 +128,7 @@ class Paper:
         marks = [mk for mk in marks if mk.rows.size]
         if not marks:
             return
-        margin = self.sat_passes + 1
-        y0 = max(min(mk.iy0 for mk in marks) - margin, 0)
-        x0 = max(min(mk.ix0 for mk in marks) - margin, 0)
-        y1 = min(max(mk.iy0 + mk.shape[0] for mk in marks) + margin, self.H)
-        x1 = min(max(mk.ix0 + mk.shape[1] for mk in marks) + margin, self.W)
+        y0, y1, x0, x1 = self._window(marks)
         self._touch(y0, y1, x0, x1)
         wet = self.wet[y0:y1, x0:x1]
         ink = self.ink[y0:y1, x0:x1]
@@ -144,31 +140,14 @@ class Paper:
         # every mark's pixels at once, in the marks' order; a pixel that several marks cover
         # takes them one after the other (its k-th visit in round k), exactly as in sequence
         hw, ww = w.shape
-        sizes = [mk.rows.size for mk in marks]
         locs = [(mk.rows + (mk.iy0 - y0)) * ww + (mk.cols + (mk.ix0 - x0)) for mk in marks]
         loc = np.concatenate(locs)
         full = loc + ((y0 * self.W + x0) - (loc // ww) * (ww - self.W))  # index in the paper
         wet_tau = np.concatenate([mk.wet for mk in marks]).astype(np.float32, copy=False)
         col = np.concatenate([mk.col for mk in marks]).astype(np.float32, copy=False)
         col = col.reshape(-1).view(_RGB)
-        prim = np.repeat([mk.primitive for mk in marks], sizes)
-        # Eq. 27: Cr = 0 with probability min(ren * ab * gamma, 1), else wet_lambda; the draw is
-        # made per hair bundle across the primitive (its marginal probability is exactly Eq.
-        # 27's), so that dry pixels line up into the streaks of "flying white"
-        p0 = np.minimum(q.ren * q.ab * np.asarray(gamma, dtype=float), 1.0)
-        hb = hair_u.shape[1]
-        lateral = np.concatenate([mk.lateral for mk in marks])
-        bundle = np.clip(((lateral + 1.0) * 0.5 * hb).astype(np.int64), 0, hb - 1)
-        skip = np.take(hair_u, prim * hb + bundle) < np.take(p0, prim)
-        # a pixel that several marks cover takes them in the marks' order: its k-th visit is
-        # made in round k (visits counted mark by mark)
-        visits = np.zeros(hw * ww, dtype=np.uint16)
-        rank = np.empty(loc.size, dtype=np.uint16)
-        at = 0
-        for li in locs:
-            rank[at : at + li.size] = visits[li]
-            visits[li] += 1  # a mark covers each of its pixels once
-            at += li.size
+        skip = _dry_brush(marks, gamma, hair_u, q)
+        rank, visits = _visit_ranks(locs, hw * ww)
         dried = (visits > 0).reshape(hw, ww)
         bounds = [0, loc.size]
         top = int(rank.max())
@@ -195,16 +174,29 @@ class Paper:
             old += cr[:, None] * (col[sel] - old)
             np.put(inkv, fi, old.reshape(-1).view(_RGB))
         w = np.where(dried, w, np.maximum(w - drystep, 0.0))
+        self._saturate_window(w, ink)
+        wet[...] = w
+        last[...] = step
+
+    def _window(self, marks) -> tuple[int, int, int, int]:
+        """(y0, y1, x0, x1): the marks' pixels and the reach of saturation around them."""
+        margin = self.sat_passes + 1
+        y0 = max(min(mk.iy0 for mk in marks) - margin, 0)
+        x0 = max(min(mk.ix0 for mk in marks) - margin, 0)
+        y1 = min(max(mk.iy0 + mk.shape[0] for mk in marks) + margin, self.H)
+        x1 = min(max(mk.ix0 + mk.shape[1] for mk in marks) + margin, self.W)
+        return y0, y1, x0, x1
+
+    def _saturate_window(self, w, ink):
+        """Eq. 25, a pass per pixel ring of spread, over the neighbourhood of saturated pixels
+        only (nothing else can change)."""
         for _ in range(self.sat_passes):
             over = np.nonzero(w > self.capacity)
             if over[0].size == 0:
                 break
-            # only the neighbourhood of saturated pixels can change
             sy0, sy1 = max(over[0].min() - 1, 0), over[0].max() + 2
             sx0, sx1 = max(over[1].min() - 1, 0), over[1].max() + 2
             self._saturate(w[sy0:sy1, sx0:sx1], ink[sy0:sy1, sx0:sx1], self.capacity)
-        wet[...] = w
-        last[...] = step
 
     @staticmethod
     def _saturate(w, ink, cap: float):
@@ -267,6 +259,34 @@ class Paper:
         self.ink[...] = snap["ink"]
         self.last[...] = snap["last"]
         self.step = snap["step"]
+
+
+def _dry_brush(marks, gamma, hair_u, q) -> np.ndarray:
+    """Eq. 27 for every mark pixel: True where the colour ratio Cr is 0 (no ink is laid), with
+    probability min(ren * ab * gamma, 1) (gamma: how dry the primitive's hair is). The draw is
+    made per hair bundle across the primitive (its marginal probability is exactly Eq. 27's), so
+    dry pixels line up into the streaks of "flying white"."""
+    sizes = [mk.rows.size for mk in marks]
+    prim = np.repeat([mk.primitive for mk in marks], sizes)
+    p0 = np.minimum(q.ren * q.ab * np.asarray(gamma, dtype=float), 1.0)
+    hb = hair_u.shape[1]
+    lateral = np.concatenate([mk.lateral for mk in marks])
+    bundle = np.clip(((lateral + 1.0) * 0.5 * hb).astype(np.int64), 0, hb - 1)
+    return np.take(hair_u, prim * hb + bundle) < np.take(p0, prim)
+
+
+def _visit_ranks(locs, size: int) -> tuple[np.ndarray, np.ndarray]:
+    """A pixel that several marks cover takes them in the marks' order: the rank of each mark
+    pixel (its pixel's k-th visit is made in round k, visits counted mark by mark) and the
+    visits of every pixel of the window (``size`` of them)."""
+    visits = np.zeros(size, dtype=np.uint16)
+    rank = np.empty(sum(li.size for li in locs), dtype=np.uint16)
+    at = 0
+    for li in locs:
+        rank[at : at + li.size] = visits[li]
+        visits[li] += 1  # a mark covers each of its pixels once
+        at += li.size
+    return rank, visits
 
 
 class PaperHold:
