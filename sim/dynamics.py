@@ -42,10 +42,10 @@ def move(brush, pose6, vel6, dt: float):
     B1 = np.array([x, y, max(z, 0.0)])
     R1 = rotation_matrix(d, qq, rr)
     lift = B1[2] - B0[2]
-    cc = brush.cc
-    contact = cc[..., 2] <= CONTACT_EPS
+    points = brush.cc
+    contact = points[..., 2] <= CONTACT_EPS
     contact[:, 0] = False
-    local = (cc - B0) @ R0
+    local = (points - B0) @ R0
     rest = np.zeros_like(local)
     rest[..., 2] = -brush.sarc
     krec = min(1.0, q.e * REC_RATE * dt)  # elastic return of free hair (gap, see module doc)
@@ -57,8 +57,8 @@ def move(brush, pose6, vel6, dt: float):
     # Sec. 5.2.2: hair under the paper travels with the active point (held by friction, sliding
     # a little after the brush), plus dis = e * gamma (in units of r) along the drag
     dis = q.e * brush.gamma * brush.r * (dt * REF_RATE)
-    held = cc.copy()
-    held[..., :2] += SLIP * (carried[..., :2] - cc[..., :2]) + dis[:, None, None] * lag
+    held = points.copy()
+    held[..., :2] += SLIP * (carried[..., :2] - points[..., :2]) + dis[:, None, None] * lag
     new = np.where(contact[..., None], held, carried)
     if speed > 1.0:
         brush.travel = vxy / speed
@@ -146,7 +146,7 @@ def constrain(brush, vel6):
     """Hair is inextensible and cannot pass through the paper. Walking from the bottom
     control circle to the tip: a key point too far from its predecessor is pulled after it
     (sliding on the paper); a key point on the paper lies flat at its full arc distance."""
-    cc = brush.cc
+    points = brush.cc
     m, n = brush.m, brush.n
     shaft = -brush.R[:, 2]
     vxy = np.asarray(vel6[:2], dtype=float)
@@ -158,10 +158,10 @@ def constrain(brush, vel6):
     else:  # a vertical brush at rest lays its hair back along the way it came
         fb = np.tile(-brush.travel, (m, 1)) + 0.25 * brush.lay
         fb /= np.linalg.norm(fb, axis=1, keepdims=True)
-    prev = cc[:, 0]
+    prev = points[:, 0]
     segs = brush.sarc[:, 1:] - brush.sarc[:, :-1]
     for j in range(1, n):
-        p = cc[:, j]
+        p = points[:, j]
         d = p - prev
         dist = norm(d)
         seg = segs[:, j - 1]
@@ -181,7 +181,7 @@ def constrain(brush, vel6):
         else:
             p = cand
         np.maximum(p[:, 2], 0.0, out=p[:, 2])
-        cc[:, j] = p
+        points[:, j] = p
         prev = p
 
 

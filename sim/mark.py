@@ -15,6 +15,12 @@ paper plane psi (z = 0), and the ink information of every pixel inside the cut.
    section plane through tau) to V (on the surface, in tau's direction): with f = |tau - V^| /
    |V - V^|, V^ takes its ink from the two nearest key points (Eq. 21), V from V^'s texture
    function (Eq. 22), and tau = (1 - f) info(V^) + f info(V) (Eq. 23).
+
+Symbols: cur_u the intersection curve; tau a pixel's centre on the paper; V^ a point of the
+middle control axis and V one of the surface; a slab is the solid between two neighbouring grid
+rows, lam the position between them (0 at the first, 1 at the second); Hd a pixel's signed
+distance to a row's plane; S_i and hei_i the cut's bounding-box area and its distance to the tip
+(Eq. 10). The ink fields (wet, col, wr, cr, wv, cv) are named in ``brush_state``.
 """
 
 from __future__ import annotations
@@ -321,9 +327,12 @@ def fill_marks(cuts: list[Cut | None], ppm: float) -> list[list[Mark]]:
     pixels, edge = _marks_ink_batched(prims, win, lo, hi, ppm, rows)
     redo = np.nonzero(edge)[0]
     if redo.size:  # the solid reaches past a span: scan those cuts' whole bounding boxes
-        wr = win[redo]
-        full = np.zeros(int(wr[:, 2].sum()), dtype=np.int64), np.repeat(wr[:, 3], wr[:, 2])
-        again = _marks_ink_batched(prims[redo], wr, *full, ppm, rows).pixels
+        whole = win[redo]
+        lo_hi = (
+            np.zeros(int(whole[:, 2].sum()), dtype=np.int64),
+            np.repeat(whole[:, 3], whole[:, 2]),
+        )
+        again = _marks_ink_batched(prims[redo], whole, *lo_hi, ppm, rows).pixels
         for jj, j in enumerate(redo.tolist()):
             pixels[j] = again[jj]
     out, at = [], 0

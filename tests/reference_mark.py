@@ -1,6 +1,6 @@
 # SPDX-License-Identifier: GPL-3.0-or-later
-"""The first, plain implementation of the current drawing mark (every bounding-box pixel against
-every row of the surface), kept as the reference the fast ``sim.mark`` must agree with."""
+"""A plain implementation of the current drawing mark (every bounding-box pixel against every
+row of the surface): the reference the fast ``sim.mark`` must agree with."""
 
 import numpy as np
 

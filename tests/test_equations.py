@@ -266,3 +266,26 @@ def test_split_respects_the_primitive_cap(brush):
     b.touching[:] = True
     b.stress[:] = 10.0
     assert b.split() == 0 and b.m == 3
+
+
+def test_every_primitive_field_is_declared_once_and_kept_by_snapshots(brush):
+    """The fields of key points and primitives are those of ``brush_state.FIELDS``: every array
+    of the brush with a row per primitive is one of them, and a snapshot taken before a split
+    brings all of them back."""
+    from sim.brush_state import FIELDS, KEY
+
+    b = brush
+    assert b.split_under(4.5 * b.q.tre) == 3 and b.m == 4  # 4 rows: no pose vector has 4
+    declared = {f.name for f in FIELDS}
+    per_primitive = {k for k, v in vars(b).items() if isinstance(v, np.ndarray) and len(v) == 4}
+    assert per_primitive == declared
+    for f in FIELDS:
+        lead = (b.m, b.n) if f.per == KEY else (b.m,)
+        assert getattr(b, f.name).shape == lead + f.shape
+    snap = b.snapshot()
+    assert b.split_under(2.5 * b.q.tre) == 4 and b.m == 8
+    b.restore(snap)
+    again = b.snapshot()
+    assert b.m == 4 and set(again) == set(snap)
+    for k, v in snap.items():
+        assert np.array_equal(again[k], v), k
