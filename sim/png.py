@@ -37,14 +37,15 @@ def to_uint8(rgb) -> np.ndarray:
 
 
 def write_png(path, img, level: int = 6) -> None:
-    """img: (H, W, 3|4) uint8 or float in [0, 1], top row first."""
+    """img: (H, W[, 1|2|3|4]) uint8 or float in [0, 1] (grey, grey + alpha, RGB, RGBA), top
+    row first."""
     a = np.asarray(img)
     if a.dtype != np.uint8:
         a = to_uint8(a)
     if a.ndim == 2:
         a = a[..., None]
     h, w, c = a.shape
-    ctype = {1: 0, 3: 2, 4: 6}[c]
+    ctype = {1: 0, 2: 4, 3: 2, 4: 6}[c]
     z = zlib.compressobj(level)
     parts = []
     band = max(1, (1 << 22) // max(w * c, 1))  # about 4 MB of rows per band

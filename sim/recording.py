@@ -10,7 +10,7 @@ from __future__ import annotations
 
 import json
 import math
-from dataclasses import dataclass, field, fields
+from dataclasses import dataclass, field, fields, replace
 from pathlib import Path
 
 import numpy as np
@@ -158,8 +158,6 @@ def _geometry_override(geom: BrushGeometry, override) -> BrushGeometry:
     unknown = sorted(str(k) for k in override if k not in known)
     if unknown:
         raise RecordingError(f"unknown field(s) {unknown} in 'brush.geometry' (known: {known})")
-    from dataclasses import replace
-
     try:
         return replace(geom, **override)
     except ParameterError as exc:

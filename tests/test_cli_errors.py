@@ -400,3 +400,19 @@ def test_bad_presets_name_the_field(tmp_path):
         build = ink_from_preset if kind == "ink" else paper_from_preset
         with pytest.raises(ParameterError, match=says):
             build(load_preset(kind, "x", tmp_path))
+
+
+@pytest.mark.parametrize("channels", [1, 2, 4])
+def test_fit_takes_grey_and_alpha_images(tmp_path, channels):
+    import numpy as np
+
+    from sim.fit import image_sample
+    from sim.png import write_png
+
+    rec = from_dict(REC)  # a 240 x 160 px paper
+    img = np.random.default_rng(0).integers(0, 256, (160, 240, channels), dtype=np.uint8)
+    write_png(tmp_path / "i.png", img)
+    target = image_sample(rec, tmp_path / "i.png").target
+    assert target.shape == (160, 240, 3)
+    want = img[..., 0] if channels <= 2 else img[..., 2]
+    assert np.allclose(target[..., 2], want / 255.0)
