@@ -1,6 +1,7 @@
 # SPDX-License-Identifier: GPL-3.0-or-later
-"""The virtual hairy brush HB = (CWP, Qp) (Eq. 1): writing primitives (Sec. 3.2), the brush
-states (Sec. 3.3-3.6) and the dynamic adjustments (Sec. 5).
+"""The virtual hairy brush HB = (CWP, Qp) (Eq. 1): writing primitives (Sec. 3.2), their swept
+solid and the brush states (Sec. 3.3-3.6), and the entry points of the dynamic adjustments
+(Sec. 5, in ``dynamics``).
 
 All m writing primitives share one set of arrays: key points are ``(m, n, ...)`` (every primitive
 has the same number n of key points, as the paper's split keeps it, Sec. 5.5), so every step is

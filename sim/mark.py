@@ -421,7 +421,11 @@ def _marks_ink_batched(prims, win, lo, hi, ppm, rows) -> WindowsInk:
         for t, j in enumerate(js.tolist()):
             px = part.pixels[t]
             pieces[j].append(px._replace(rows=px.rows + off[t]))  # rows in the window's frame
-    joined = [PixelInk._make(np.concatenate(f) for f in zip(*p, strict=True)) for p in pieces]
+    none = _no_ink(1).pixels[0]  # a window without rows (no columns on the paper)
+    joined = [
+        PixelInk._make(np.concatenate(f) for f in zip(*p, strict=True)) if p else none
+        for p in pieces
+    ]
     return WindowsInk(joined, edge)
 
 
