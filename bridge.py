@@ -33,6 +33,8 @@ PRIMITIVE_COLLECTION = "HairyBrush Primitives"
 PAPER_TAG = "hairy_brush_paper"
 PAINTED_KEY = "painted_samples"  # in a recording's "blender" extra: samples painted live
 SHOWN_TAG = "hairy_brush_shown"  # on the paper image: how many samples it shows
+SAMPLES_TAG = "hairy_brush_samples"  # on a recording text: its samples and dips when stored
+DIPS_TAG = "hairy_brush_dips"
 PRIMITIVE_TAG = "hairy_brush_primitive"
 MM = placement.MM
 # memory a paper pixel costs: the engine's buffers (ink 12, wetness 4, last step 4), the kept
@@ -97,7 +99,11 @@ def paper_pixels(st) -> tuple[int, int]:
 
 def check_paper_size(st) -> tuple[int, int]:
     check_settings(st)
-    w, h = paper_pixels(st)
+    return check_paper_pixels(*paper_pixels(st))
+
+
+def check_paper_pixels(w: int, h: int) -> tuple[int, int]:
+    """UserError unless a paper of w x h px fits the engine's limits and the free memory."""
     need = w * h * BYTES_PER_PIXEL + SNAPSHOT_BUDGET_BYTES
     free = available_memory()
     if w > MAX_PAPER_SIDE_PX or h > MAX_PAPER_SIDE_PX or w * h > MAX_PAPER_PIXELS:
@@ -147,16 +153,38 @@ def matrix_from_sample(st, paper_mw, sample) -> np.ndarray:
 
 
 # ------------------------------------------------------------------------------ recordings
+_PAPER_OVERRIDES: list[bool] = []
+
+
+def paper_overrides_supported() -> bool:
+    """Whether the engine's recordings carry a paper colour and capacity of their own (the
+    'paper' section's 'color' and 'capacity'); asked once."""
+    if not _PAPER_OVERRIDES:
+        d = Recording(np.array([[0.0, 0.0, 100.0, 0.0, 0.0, 0.0]])).to_dict()
+        d["paper"].update(color=[0.5, 0.25, 0.125], capacity=0.125)
+        try:
+            spec = from_dict(d).resolve()[2]
+            ok = tuple(spec.color) == (0.5, 0.25, 0.125) and spec.capacity == 0.125
+        except (RecordingError, ParameterError):
+            ok = False
+        _PAPER_OVERRIDES.append(ok)
+    return _PAPER_OVERRIDES[0]
+
+
 def scene_overrides(st) -> dict:
     """The scene's settings as recording fields: they decide how a recording is rendered."""
     check_paper_size(st)
+    paper = {
+        "width_mm": float(st.paper_width_mm),
+        "height_mm": float(st.paper_height_mm),
+        "px_per_mm": float(st.px_per_mm),
+        "preset": st.paper_preset,
+    }
+    if paper_overrides_supported():
+        paper["color"] = [float(c) for c in st.paper_color]
+        paper["capacity"] = float(st.paper_capacity)
     return {
-        "paper": {
-            "width_mm": float(st.paper_width_mm),
-            "height_mm": float(st.paper_height_mm),
-            "px_per_mm": float(st.px_per_mm),
-            "preset": st.paper_preset,
-        },
+        "paper": paper,
         "brush": {"preset": st.brush_preset},
         "ink": {"preset": st.ink_preset},
         "quality": st.quality.as_dict(),
@@ -196,6 +224,9 @@ def store_recording(st, rec: Recording) -> bpy.types.Text:
         text = bpy.data.texts.new(RECORDING_TEXT)
         st.recording = text
     text.from_string(recording_text(rec))
+    # counted here, so the sidebar shows them without reading the text
+    text[SAMPLES_TAG] = len(rec.samples)
+    text[DIPS_TAG] = len(rec.dips)
     return text
 
 
@@ -223,6 +254,7 @@ def copy_settings_from_recording(st, rec: Recording):
         "ink_preset": rec.ink.get("preset", st.ink_preset),
     }
     q, _geom, _paper, _ink = rec.resolve()
+    _check_fits(st, "paper_capacity", _paper.capacity)
     quality = {name: getattr(q, name) for name in QualityParams.names()}
     for name, value in values.items():
         _check_fits(st, name, value)
@@ -232,6 +264,7 @@ def copy_settings_from_recording(st, rec: Recording):
         setattr(st, name, value)
     for name, value in quality.items():
         setattr(st.quality, name, value)
+    st.paper_color, st.paper_capacity = _paper.color, _paper.capacity
 
 
 def _check_fits(group, name: str, value):
@@ -239,7 +272,8 @@ def _check_fits(group, name: str, value):
     prop = group.bl_rna.properties[name]
     if prop.type == "ENUM":
         if value not in {item.identifier for item in prop.enum_items}:
-            raise UserError(f"'{value}' is not a {prop.name.lower()} preset of this extension")
+            kind = prop.name.lower().removesuffix(" preset")
+            raise UserError(f"'{value}' is not a {kind} preset of this extension")
     elif not prop.hard_min <= value <= prop.hard_max:
         raise UserError(
             f"{prop.name} {value} is outside what the setting holds "
@@ -329,7 +363,7 @@ def show_paper(img, paper, index: int):
 
 def show_blank(st):
     """The paper image as the blank paper of the scene's paper preset."""
-    color = paper_from_preset(load_preset("paper", st.paper_preset)).color
+    color = blank_color(st)
     img = ensure_paper_image(st, color)
     w, h = paper_pixels(st)
     blank = np.empty((h, w, 3), np.float32)
@@ -337,6 +371,13 @@ def show_blank(st):
     write_image(img, blank)
     img[SHOWN_TAG] = 0
     return img
+
+
+def blank_color(st) -> tuple:
+    """The blank paper's colour as the engine will simulate it."""
+    if paper_overrides_supported():
+        return tuple(float(c) for c in st.paper_color)
+    return paper_from_preset(load_preset("paper", st.paper_preset)).color
 
 
 def write_image(img, rgb_bottom_up: np.ndarray):

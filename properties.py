@@ -17,40 +17,103 @@ from bpy.props import (
 )
 
 from .sim.params import (
+    PAPER_CAPACITY_RANGE,
     QUALITY_DOC,
     QualityParams,
+    geometry_from_preset,
     ink_from_preset,
     load_preset,
+    paper_from_preset,
     preset_names,
     quality_from_presets,
 )
 from .sim.recording import DEFAULT_BRUSH, DEFAULT_INK, DEFAULT_PAPER
 
-QUALITY_LABELS = {
-    "e": "Elasticity",
-    "tre": "Split Threshold",
-    "nu": "Relocation",
-    "re": "Rotation",
-    "ie": "Elongation",
-    "sm": "Paper Grip",
-    "ren": "Dry Brush",
-    "eta": "Diffusion Distance",
-    "ab": "Absorbency",
-    "pw": "Diffusion",
-    "dry": "Drying Speed",
+# what each quality value acts on, its plain name and what it does (the paper's symbol follows)
+QUALITY_GROUPS = (
+    ("Brush", "OUTLINER_OB_EMPTY", ("e", "tre", "nu", "re", "ie")),
+    ("Ink in the Brush", "MOD_FLUIDSIM", ("ren", "eta", "pw")),
+    ("Paper", "TEXTURE", ("sm", "ab", "dry")),
+)
+QUALITY_UI = {
+    "e": (
+        "Springiness",
+        "Higher: bent hair springs back faster and bends further under the same "
+        "pressure; lower: a stiff brush that keeps its shape",
+    ),
+    "tre": (
+        "Split Threshold",
+        "Lower: the hair splits into separate clusters under less "
+        "pressure (cursive strokes with several tips)",
+    ),
+    "nu": (
+        "Belly Lag",
+        "Higher: the brush's belly follows the bent hair more slowly, so the "
+        "stroke's body keeps its shape longer",
+    ),
+    "re": ("Twist", "Higher: moving sideways twists the brush's tip more around the handle"),
+    "ie": ("Flattening", "Higher: moving sideways flattens and widens the brush more"),
+    "ren": (
+        "Flying White",
+        "Higher: fast, pressed strokes skip more pixels and leave dry-brush streaks",
+    ),
+    "eta": (
+        "Ink Sharing Distance",
+        "Higher: hair clusters further apart still share ink inside the brush",
+    ),
+    "pw": (
+        "Ink Sharing",
+        "Higher: more ink flows each step between neighbouring hair clusters "
+        "inside the brush (not bleeding on paper: see the paper's Ink Capacity)",
+    ),
+    "sm": (
+        "Paper Grip",
+        "Higher: the paper pushes back harder on a moving brush and drags the hair more",
+    ),
+    "ab": (
+        "Absorbency",
+        "Higher: the paper drinks the brush's ink faster, so strokes run dry sooner",
+    ),
+    "dry": ("Drying Speed", "Higher: wet ink on the paper dries faster"),
 }
+QUALITY_LABELS = {name: label for name, (label, _tip) in QUALITY_UI.items()}
+PRESET_KINDS_SHOWN = ("brush", "paper", "ink", "quality")
+
+
+def _overwrites(kind: str, p) -> str:
+    """What choosing the preset sets, in the sidebar's words."""
+    names = [QUALITY_LABELS[k] for k in p.data.get("quality", {}) if k in QUALITY_LABELS]
+    if kind == "brush":
+        hair = geometry_from_preset(p).hair_length_mm
+        return f"hair length {hair:g} mm (the touching height) and " + ", ".join(names)
+    if kind == "paper":
+        return "paper colour, Ink Capacity and " + ", ".join(names)
+    if kind == "ink":
+        return "Ink Colour, Ink Wetness and Dip Depth"
+    return ", ".join(names)
 
 
 def _preset_items(kind):
     items = []
     for i, name in enumerate(preset_names(kind)):
         p = load_preset(kind, name)
-        items.append((name, p.label, p.description, i))
+        tip = f"{p.description} Choosing it sets {_overwrites(kind, p)}".strip()
+        items.append((name, p.label, tip, i))
     return items
 
 
-# EnumProperty items must stay referenced from Python (Blender keeps no copy of the strings).
-_ITEMS = {kind: _preset_items(kind) for kind in ("brush", "paper", "ink")}
+# EnumProperty items must stay referenced from Python (Blender keeps no copy of the strings);
+# read once here, so nothing in a draw() reads a preset file
+_ITEMS = {kind: _preset_items(kind) for kind in PRESET_KINDS_SHOWN}
+PRESET_INFO = {(kind, it[0]): (it[1], it[2]) for kind, items in _ITEMS.items() for it in items}
+HAIR_LENGTH_MM = {
+    name: geometry_from_preset(load_preset("brush", name)).hair_length_mm
+    for name, *_ in _ITEMS["brush"]
+}
+
+
+def preset_label(kind: str, name: str) -> str:
+    return PRESET_INFO.get((kind, name), (name, ""))[0]
 
 
 def apply_quality_presets(st, brush: bool = True, paper: bool = True):
@@ -63,6 +126,13 @@ def apply_quality_presets(st, brush: bool = True, paper: bool = True):
         setattr(st.quality, k, v)
 
 
+def apply_paper_preset(st):
+    """The paper preset's colour and capacity into the settings."""
+    spec = paper_from_preset(load_preset("paper", st.paper_preset))
+    st.paper_color = spec.color
+    st.paper_capacity = spec.capacity
+
+
 def apply_ink_preset(st):
     ink = ink_from_preset(load_preset("ink", st.ink_preset))
     st.ink_color = ink.color
@@ -71,15 +141,25 @@ def apply_ink_preset(st):
 
 
 def _brush_changed(self, _context):
+    from .operators.setup import follow_hair_length
+
     apply_quality_presets(self, brush=True, paper=False)
+    follow_hair_length(self)
 
 
 def _paper_changed(self, _context):
     apply_quality_presets(self, brush=False, paper=True)
+    apply_paper_preset(self)
 
 
 def _ink_changed(self, _context):
     apply_ink_preset(self)
+
+
+def _paper_size_changed(self, _context):
+    from .operators.setup import resize_paper
+
+    resize_paper(self)
 
 
 def _quality_annotations():
@@ -91,10 +171,11 @@ def _quality_annotations():
     )
     ann = {}
     for name in QualityParams.names():
-        doc, group = QUALITY_DOC[name]
+        label, effect = QUALITY_UI[name]
+        group = QUALITY_DOC[name][1]
         ann[name] = FloatProperty(
-            name=QUALITY_LABELS[name],
-            description=f"{doc} (Qp{group}, '{name}')",
+            name=label,
+            description=f"{effect} (the paper's '{name}', Qp{group})",
             default=getattr(defaults, name),
             min=0.0,
             max=1.0,
@@ -120,16 +201,19 @@ def _is_mesh(_self, obj):
     return obj.type == "MESH"
 
 
+_DEFAULT_PAPER_SPEC = paper_from_preset(load_preset("paper", DEFAULT_PAPER))
+
+
 class HAIRY_BRUSH_PG_settings(bpy.types.PropertyGroup):
     brush_object: PointerProperty(
-        name="Brush",
+        name="Brush Empty",
         type=bpy.types.Object,
         poll=_is_empty,
         description="Empty whose location is the brush base and whose rotation (Euler ZYX: "
         "X = forward deflection q, Y = sideways deflection d, Z = rotation r) tilts the brush",
     )
     paper_object: PointerProperty(
-        name="Paper", type=bpy.types.Object, poll=_is_mesh, description="The paper plane"
+        name="Paper Plane", type=bpy.types.Object, poll=_is_mesh, description="The paper plane"
     )
     paper_image: PointerProperty(
         name="Paper Image", type=bpy.types.Image, description="Image the ink is simulated into"
@@ -140,38 +224,75 @@ class HAIRY_BRUSH_PG_settings(bpy.types.PropertyGroup):
         description="The 6-DOF recording (JSON text block) that rebuilds the artwork",
     )
     paper_width_mm: FloatProperty(
-        name="Width", default=200.0, min=1.0, max=5000.0, description="Paper width in mm"
+        name="Width (mm)",
+        default=200.0,
+        min=1.0,
+        max=5000.0,
+        update=_paper_size_changed,
+        description="Paper width in millimetres; the paper plane follows (200 mm = 0.2 m)",
     )
     paper_height_mm: FloatProperty(
-        name="Height", default=200.0, min=1.0, max=5000.0, description="Paper height in mm"
+        name="Height (mm)",
+        default=200.0,
+        min=1.0,
+        max=5000.0,
+        update=_paper_size_changed,
+        description="Paper height in millimetres; the paper plane follows (200 mm = 0.2 m)",
     )
     px_per_mm: FloatProperty(
-        name="Resolution",
+        name="Resolution (px/mm)",
         default=5.0,
         min=0.1,
         max=200.0,
         description="Paper pixels per millimetre (image size = paper size x resolution)",
     )
     brush_preset: EnumProperty(
-        name="Brush",
+        name="Brush Preset",
         items=_ITEMS["brush"],
         default=DEFAULT_BRUSH,
         update=_brush_changed,
-        description="Brush preset",
+        description="The kind of brush: its hair length (where it touches the paper) and its "
+        "brush quality values",
     )
     paper_preset: EnumProperty(
-        name="Paper",
+        name="Paper Preset",
         items=_ITEMS["paper"],
         default=DEFAULT_PAPER,
         update=_paper_changed,
-        description="Paper preset",
+        description="The kind of paper: its colour, ink capacity and paper quality values",
     )
     ink_preset: EnumProperty(
-        name="Ink",
+        name="Ink Preset",
         items=_ITEMS["ink"],
         default=DEFAULT_INK,
         update=_ink_changed,
-        description="Ink preset",
+        description="The kind of ink: its colour, wetness and dip depth",
+    )
+    paper_color: FloatVectorProperty(
+        name="Paper Colour",
+        subtype="COLOR",
+        size=3,
+        min=0.0,
+        max=1.0,
+        default=_DEFAULT_PAPER_SPEC.color,
+        description="Colour of the blank paper (set by the paper preset)",
+    )
+    paper_capacity: FloatProperty(
+        name="Ink Capacity",
+        default=_DEFAULT_PAPER_SPEC.capacity,
+        min=PAPER_CAPACITY_RANGE[0],
+        max=PAPER_CAPACITY_RANGE[1],
+        soft_max=10.0,
+        description="How much ink a pixel of paper holds before the rest spreads to its "
+        "neighbours: lower bleeds more (raw xuan 0.55, sized xuan 1, smooth paper 1000)",
+    )
+    touch_height_mm: FloatProperty(
+        name="Touching Height (mm)",
+        default=HAIR_LENGTH_MM[DEFAULT_BRUSH],
+        min=0.0,
+        options={"HIDDEN"},
+        description="The hair length of the brush the scene was last set up for: the brush "
+        "touches the paper when its base is this high above it",
     )
     quality: PointerProperty(type=HAIRY_BRUSH_PG_quality)
     ink_color: FloatVectorProperty(
@@ -184,7 +305,12 @@ class HAIRY_BRUSH_PG_settings(bpy.types.PropertyGroup):
         description="Colour of the ink the next dip loads",
     )
     dip_wetness: FloatProperty(
-        name="Wetness", default=0.9, min=0.0, max=1.0, description="Wetness the dip loads"
+        name="Ink Wetness",
+        default=0.9,
+        min=0.0,
+        max=1.0,
+        subtype="FACTOR",
+        description="How wet the brush is after the dip: wetter strokes are darker and longer",
     )
     dip_depth: FloatProperty(
         name="Dip Depth",
@@ -195,13 +321,19 @@ class HAIRY_BRUSH_PG_settings(bpy.types.PropertyGroup):
         description="How much of the hair, from the tip, goes into the ink (Eq. 7-8)",
     )
     sample_rate_hz: FloatProperty(
-        name="Sample Rate",
+        name="Sample Rate (Hz)",
         default=120.0,
         min=1.0,
         max=1000.0,
-        description="6-DOF samples per second taken from the animated brush",
+        description="Poses a second that Bake Brush Samples takes from the animated brush",
     )
-    seed: IntProperty(name="Seed", default=0, min=0, description="Seed of the one random generator")
+    seed: IntProperty(
+        name="Seed",
+        default=0,
+        min=0,
+        description="Seed of the simulation's one random generator: the same seed, the same "
+        "artwork",
+    )
     sync_frames: BoolProperty(
         name="Follow Frames",
         default=True,
@@ -209,25 +341,26 @@ class HAIRY_BRUSH_PG_settings(bpy.types.PropertyGroup):
         "so a render of frame N shows the artwork as it was at frame N",
     )
     paint_press_mm: FloatProperty(
-        name="Press",
+        name="Press (mm)",
         default=4.0,
         min=0.0,
         max=60.0,
-        description="Live painting: how far the brush base goes below the hair length while "
-        "the button is held (mouse wheel changes it)",
+        description="Live painting: how far the brush base goes below the touching height "
+        "while the button is held (mouse wheel changes it)",
     )
     paint_angle_step: FloatProperty(
-        name="Angle Step",
+        name="Angle Step (°)",
         default=2.0,
         min=0.1,
         max=30.0,
-        description="Live painting: degrees per key press of q/w, e/r, c/v",
+        description="Live painting: degrees the brush tilts or turns per press of Q/W, E/R, C/V",
     )
     sequence_dir: StringProperty(
         name="Sequence Folder",
         default="//hairy_brush_frames/",
         subtype="DIR_PATH",
-        description="Where Bake Sequence writes one paper image per frame",
+        description="Where Bake Image Sequence writes one paper image per frame (// is the "
+        ".blend's folder: save the file first)",
     )
 
 

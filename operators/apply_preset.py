@@ -1,12 +1,20 @@
 # SPDX-License-Identifier: GPL-3.0-or-later
-"""hairy_brush.apply_preset: choose one of the shipped JSON presets (presets/*/*.json)."""
+"""hairy_brush.apply_preset: choose one of the shipped JSON presets (presets/*/*.json); the
+tooltip says what it overwrites, the report what it did."""
 
 from __future__ import annotations
 
 import bpy
 
 from .. import bridge
-from ..properties import apply_ink_preset, apply_quality_presets
+from ..properties import (
+    PRESET_INFO,
+    QUALITY_LABELS,
+    apply_ink_preset,
+    apply_paper_preset,
+    apply_quality_presets,
+    preset_label,
+)
 from ..sim.params import ParameterError, QualityParams, load_preset
 
 PROPERTY = {"brush": "brush_preset", "paper": "paper_preset", "ink": "ink_preset"}
@@ -30,6 +38,18 @@ class HAIRY_BRUSH_OT_apply_preset(bpy.types.Operator):
     )
     name: bpy.props.StringProperty()
 
+    @classmethod
+    def description(cls, _context, properties):
+        info = PRESET_INFO.get((properties.kind, properties.name))
+        return info[1] if info else cls.__doc__.replace("\n", " ")
+
+    @classmethod
+    def poll(cls, context):
+        if context.scene is None:
+            cls.poll_message_set("No scene")
+            return False
+        return True
+
     def execute(self, context):
         st = bridge.settings(context.scene)
         try:
@@ -39,14 +59,38 @@ class HAIRY_BRUSH_OT_apply_preset(bpy.types.Operator):
         except ParameterError as exc:
             self.report({"ERROR"}, str(exc))
             return {"CANCELLED"}
+        label = preset_label(self.kind, self.name)
         if self.kind == "quality":  # only the values it names; brush and paper stay chosen
             for k in preset.data.get("quality", {}):
                 setattr(st.quality, k, values[k])
+            self.report({"INFO"}, f"{label}: set {_names(preset)}")
             return {"FINISHED"}
+        hair_before = st.touch_height_mm
         setattr(st, PROPERTY[self.kind], self.name)
         # also when the preset was already chosen (no update then): restore its values
         if self.kind == "ink":
             apply_ink_preset(st)
-        else:
-            apply_quality_presets(st, brush=self.kind == "brush", paper=self.kind == "paper")
+            self.report({"INFO"}, f"Ink {label}: set Ink Colour, Ink Wetness and Dip Depth")
+            return {"FINISHED"}
+        apply_quality_presets(st, brush=self.kind == "brush", paper=self.kind == "paper")
+        if self.kind == "paper":
+            apply_paper_preset(st)
+            self.report({"INFO"}, f"Paper {label}: set colour, Ink Capacity, {_names(preset)}")
+            return {"FINISHED"}
+        self.report(
+            {"INFO"}, f"Brush {label}: {_hair_change(st, hair_before)}; set {_names(preset)}"
+        )
         return {"FINISHED"}
+
+
+def _names(preset) -> str:
+    return ", ".join(QUALITY_LABELS[k] for k in preset.data.get("quality", {}))
+
+
+def _hair_change(st, before: float) -> str:
+    now = st.touch_height_mm
+    text = f"hair length {now:g} mm (touches the paper at z = {now:g} mm)"
+    if abs(now - before) > 1e-6 and st.brush_object is not None:
+        way = "up" if now > before else "down"
+        text += f", brush empty moved {way} {abs(now - before):g} mm to hover as before"
+    return text

@@ -48,6 +48,11 @@ def add_ink(mat, img, uv_name: str):
     return True
 
 
+def _selected_meshes(context, st) -> list:
+    objs = context.selected_objects or []
+    return [o for o in objs if o.type == "MESH" and o != st.paper_object]
+
+
 def _socket(sockets, identifier):
     return next(s for s in sockets if s.identifier == identifier)
 
@@ -60,20 +65,36 @@ class HAIRY_BRUSH_OT_apply_to_mesh(bpy.types.Operator):
     bl_label = "Apply Ink to Selected Meshes"
     bl_options = {"REGISTER", "UNDO"}
 
+    @classmethod
+    def poll(cls, context):
+        st = bridge.settings(context.scene)
+        if st.paper_image is None:
+            cls.poll_message_set("No paper image yet: run Setup and Simulate first")
+            return False
+        if not _selected_meshes(context, st):
+            cls.poll_message_set("Select one or more meshes (other than the paper)")
+            return False
+        return True
+
     def execute(self, context):
         st = bridge.settings(context.scene)
         img = st.paper_image
         if img is None:
             self.report({"ERROR"}, "No paper image yet: run Setup and Simulate first")
             return {"CANCELLED"}
-        meshes = [o for o in context.selected_objects if o.type == "MESH" and o != st.paper_object]
+        meshes = _selected_meshes(context, st)
         if not meshes:
             self.report({"ERROR"}, "Select one or more meshes (other than the paper)")
             return {"CANCELLED"}
-        for o in meshes:
-            if not o.data.uv_layers:
-                self.report({"ERROR"}, f"'{o.name}' has no UV map: unwrap it first")
-                return {"CANCELLED"}
+        no_uv = [o.name for o in meshes if not o.data.uv_layers]
+        meshes = [o for o in meshes if o.data.uv_layers]
+        if not meshes:
+            names = ", ".join(f"'{n}'" for n in no_uv)
+            self.report({"ERROR"}, f"{names} has no UV map: unwrap it first")
+            return {"CANCELLED"}
+        if no_uv:
+            names = ", ".join(f"'{n}'" for n in no_uv)
+            self.report({"WARNING"}, f"Skipped {names}: no UV map (unwrap it, then apply again)")
         done = 0
         try:
             for o in meshes:

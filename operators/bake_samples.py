@@ -10,6 +10,7 @@ import numpy as np
 
 from .. import bridge, handlers
 from ..sim.recording import from_dict
+from . import polls
 
 
 def nan_keyframes(obj):
@@ -54,6 +55,39 @@ def sample_brush(scene, st, frame_start: int, frame_end: int, rate: float, progr
     return out
 
 
+def contact_problems(samples: np.ndarray, hair_mm: float, frame_of) -> tuple[str, str]:
+    """("ERROR" or "WARNING" or "", message) for baked samples that would draw nothing or
+    nothing sensible: a brush that never moves, never reaches the paper, or is pushed through
+    it (pressed deeper than its hair is long). ``frame_of(i)`` is sample i's frame."""
+    z = samples[:, 2]
+    low = int(np.argmin(z))
+    if np.ptp(samples, axis=0).max() < 1e-6:
+        if z[0] >= hair_mm:
+            return "ERROR", (
+                f"The brush does not move: all {len(samples)} samples hold the same pose, "
+                f"{z[0] - hair_mm:.1f} mm above where it touches the paper (z = {hair_mm:g} mm)"
+                ": keyframe the brush empty first"
+            )
+        return "WARNING", (
+            f"The brush does not move: all {len(samples)} samples press {hair_mm - z[0]:.1f} mm "
+            "at one spot (a blot): keyframe the brush empty to write a stroke"
+        )
+    if z[low] >= hair_mm:
+        return "WARNING", (
+            f"The brush never touches the paper: its lowest point is z = {z[low]:.1f} mm "
+            f"(frame {frame_of(low):.0f}) and it touches at z = {hair_mm:g} mm, its hair "
+            "length: nothing will be drawn"
+        )
+    if z[low] < 0.0:
+        buried = np.flatnonzero(z < 0.0)
+        return "WARNING", (
+            f"The brush goes {-z[low]:.1f} mm through the paper at frame {frame_of(low):.0f} "
+            f"({len(buried)} samples below it, from frame {frame_of(buried[0]):.0f}): it "
+            f"touches at z = {hair_mm:g} mm, so press at most {hair_mm:g} mm (z above 0)"
+        )
+    return "", ""
+
+
 def painted_samples(rec) -> int:
     """How many of a recording's samples were painted live (0 for None)."""
     info = rec.extra.get("blender", {}) if rec is not None and isinstance(rec.extra, dict) else {}
@@ -74,6 +108,10 @@ class HAIRY_BRUSH_OT_bake_samples(bpy.types.Operator):
         description="Bake even though the recording holds strokes painted live, which the "
         "keyframes do not have: they are replaced",
     )
+
+    @classmethod
+    def poll(cls, context):
+        return polls.brush_and_paper(cls, context)
 
     def execute(self, context):
         scene = context.scene
@@ -136,10 +174,21 @@ class HAIRY_BRUSH_OT_bake_samples(bpy.types.Operator):
         except bridge.USER_ERRORS as exc:
             self.report({"ERROR"}, f"Cannot bake: {exc}")
             return {"CANCELLED"}
+        fps = scene.render.fps / scene.render.fps_base
+        level, problem = contact_problems(
+            samples,
+            bridge.hair_length(st),
+            lambda i: scene.frame_start + i * fps / rec.sample_rate_hz,
+        )
+        if level == "ERROR":
+            self.report({"ERROR"}, problem)
+            return {"CANCELLED"}
         if unreadable is not None:  # the unreadable text stays in the file, a new one is made
             old_name = st.recording.name
             st.recording = None
             self.report({"WARNING"}, f"{unreadable}; kept as '{old_name}', baked into a new text")
         bridge.store_recording(st, rec)
         self.report({"INFO"}, f"Baked {len(samples)} samples at {st.sample_rate_hz:g} Hz")
+        if level:
+            self.report({level}, problem)
         return {"FINISHED"}

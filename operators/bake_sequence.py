@@ -1,5 +1,6 @@
 # SPDX-License-Identifier: GPL-3.0-or-later
-"""hairy_brush.bake_sequence: the paper image of every frame, as an image sequence on disk."""
+"""hairy_brush.bake_sequence: the paper image of every frame, as an image sequence on disk;
+from the sidebar a modal job, a frame or part of one a slice (Esc stops it)."""
 
 from __future__ import annotations
 
@@ -9,9 +10,65 @@ import bpy
 
 from .. import bridge, handlers, playback
 from ..sim.png import write_png
+from . import polls
+from .jobs import Job, JobOperator, deadline
 
 
-class HAIRY_BRUSH_OT_bake_sequence(bpy.types.Operator):
+def sequence_folder(path: str) -> str:
+    """The folder as an absolute path; UserError for one relative to an unsaved .blend (it
+    would land wherever Blender was started from)."""
+    if not path.strip():
+        raise bridge.UserError("Choose a Sequence Folder first")
+    if path.startswith("//") and not bpy.data.filepath:
+        raise bridge.UserError(
+            f"Sequence Folder '{path}' is relative to the .blend, which is not saved yet: "
+            "save the file first or choose an absolute folder"
+        )
+    folder = bpy.path.abspath(path)
+    if not os.path.isabs(folder):
+        raise bridge.UserError(f"Sequence Folder '{path}' is not an absolute path")
+    return folder
+
+
+class SequenceJob(Job):
+    """One PNG per frame of the scene's range; the scene itself is not changed (the paper
+    image keeps what it showed)."""
+
+    title = "Baking image sequence"
+
+    def __init__(self, scene, folder: str):
+        self.scene = scene
+        self.folder = folder
+        self.pb = playback.playback_for(scene)
+        self.frames = list(range(scene.frame_start, scene.frame_end + 1))
+        self.k = 0
+        self.written = []
+
+    def step(self, budget_s: float) -> bool:
+        stop = deadline(budget_s)
+        os.makedirs(self.folder, exist_ok=True)
+        with handlers.suspended():
+            while self.k < len(self.frames):
+                f = self.frames[self.k]
+                target = bridge.samples_at_frame(self.pb.rec, self.scene, f)
+                sim = self.pb.seek(target, should_stop=stop)
+                if sim.index < target:
+                    break  # the slice's time is up inside a frame
+                path = os.path.join(self.folder, f"paper_{f:04d}.png")
+                write_png(path, sim.image8())
+                self.written.append(path)
+                self.k += 1
+                if stop is not None and stop():
+                    break
+        self.fraction = self.k / max(len(self.frames), 1)
+        self.status = f"frame {self.k} of {len(self.frames)}"
+        return self.k >= len(self.frames)
+
+    def finish(self, context):
+        return "INFO", f"Wrote {len(self.written)} images to {self.folder}"
+
+
+class HAIRY_BRUSH_OT_bake_sequence(JobOperator, bpy.types.Operator):
     """Write the paper image of every frame of the scene's range as PNG files (for render
     farms: an Image Texture set to Image Sequence plays them back)"""
 
@@ -19,28 +76,20 @@ class HAIRY_BRUSH_OT_bake_sequence(bpy.types.Operator):
     bl_label = "Bake Image Sequence"
     bl_options = {"REGISTER"}
 
+    @classmethod
+    def poll(cls, context):
+        return polls.recording(cls, context)
+
+    def invoke(self, context, _event):
+        self.in_background = True
+        return self.execute(context)
+
     def execute(self, context):
         scene = context.scene
-        st = bridge.settings(scene)
-        folder = bpy.path.abspath(st.sequence_dir)
-        if folder.startswith("//") or not folder:
-            self.report({"ERROR"}, "Save the .blend first or choose an absolute Sequence Folder")
-            return {"CANCELLED"}
-        wm = context.window_manager
-        frames = range(scene.frame_start, scene.frame_end + 1)
-        wm.progress_begin(0, len(frames))
         try:
-            os.makedirs(folder, exist_ok=True)
-            pb = playback.playback_for(scene)
-            with handlers.suspended():
-                for k, f in enumerate(frames):
-                    sim = pb.seek(bridge.samples_at_frame(pb.rec, scene, f))
-                    write_png(os.path.join(folder, f"paper_{f:04d}.png"), sim.image8())
-                    wm.progress_update(k)
-        except (*bridge.USER_ERRORS, OSError) as exc:
+            folder = sequence_folder(bridge.settings(scene).sequence_dir)
+            job = SequenceJob(scene, folder)
+        except bridge.USER_ERRORS as exc:
             self.report({"ERROR"}, str(exc))
             return {"CANCELLED"}
-        finally:
-            wm.progress_end()
-        self.report({"INFO"}, f"Wrote {len(frames)} images to {folder}")
-        return {"FINISHED"}
+        return self.run_job(context, job)

@@ -7,6 +7,7 @@ import bpy
 
 from .. import bridge, playback
 from ..sim.engine import Simulation
+from . import polls
 
 
 class HAIRY_BRUSH_OT_build_primitives(bpy.types.Operator):
@@ -16,6 +17,10 @@ class HAIRY_BRUSH_OT_build_primitives(bpy.types.Operator):
     bl_idname = "hairy_brush.build_primitives"
     bl_label = "Build Primitive Surfaces"
     bl_options = {"REGISTER", "UNDO"}
+
+    @classmethod
+    def poll(cls, context):
+        return polls.brush_and_paper(cls, context)
 
     def execute(self, context):
         scene = context.scene

@@ -7,6 +7,7 @@ import bpy
 
 from .. import bridge
 from ..sim.recording import RecordingError, from_dict
+from . import polls
 
 
 class HAIRY_BRUSH_OT_dip(bpy.types.Operator):
@@ -19,11 +20,20 @@ class HAIRY_BRUSH_OT_dip(bpy.types.Operator):
     at: bpy.props.EnumProperty(
         name="When",
         items=(
-            ("END", "Next Stroke", "Before the next sample painted or appended"),
             ("FRAME", "Current Frame", "Before the first sample at or after the current frame"),
+            (
+                "END",
+                "Next Painted Stroke",
+                "After the last sample: before the next stroke painted live",
+            ),
         ),
-        default="END",
+        default="FRAME",
+        description="Where in the recording the brush is dipped",
     )
+
+    @classmethod
+    def poll(cls, context):
+        return polls.recording(cls, context)
 
     def execute(self, context):
         scene = context.scene
@@ -49,5 +59,12 @@ class HAIRY_BRUSH_OT_dip(bpy.types.Operator):
         rec.dips.append(bridge.current_dip(st, at))
         rec.dips.sort(key=lambda dp: dp.before_sample)
         bridge.store_recording(st, rec)
-        self.report({"INFO"}, f"Dip before sample {at}")
+        if at >= n:
+            self.report(
+                {"WARNING"},
+                f"Dip after the last of the {n} samples: it loads the brush for the next stroke "
+                "painted live, and changes nothing already recorded",
+            )
+        else:
+            self.report({"INFO"}, f"Dip before sample {at} (frame {scene.frame_current})")
         return {"FINISHED"}

@@ -7,6 +7,7 @@ import bpy
 from bpy_extras.io_utils import ExportHelper
 
 from .. import bridge
+from . import polls
 
 
 class HAIRY_BRUSH_OT_export_recording(bpy.types.Operator, ExportHelper):
@@ -18,6 +19,10 @@ class HAIRY_BRUSH_OT_export_recording(bpy.types.Operator, ExportHelper):
 
     filename_ext = ".json"
     filter_glob: bpy.props.StringProperty(default="*.json", options={"HIDDEN"})
+
+    @classmethod
+    def poll(cls, context):
+        return polls.recording(cls, context)
 
     def execute(self, context):
         try:

@@ -14,7 +14,9 @@ from .. import bridge
 from ..sim.fit import FitSettings, TrainingSample, character_samples, fit
 from ..sim.hanzi import find_char
 from ..sim.params import QualityParams
+from . import polls
 from .add_settings_preset import PRESET_SUBDIR, HAIRY_BRUSH_OT_add_settings_preset
+from .jobs import JobOperator, WorkerJob
 
 
 def write_user_preset(st, name: str) -> str:
@@ -35,7 +37,41 @@ def write_user_preset(st, name: str) -> str:
     return path
 
 
-class HAIRY_BRUSH_OT_fit_parameters(bpy.types.Operator):
+class FitJob(WorkerJob):
+    """Eq. 28's fit in a worker (the training characters are written there too); ``finish``
+    sets the scene's quality values and saves the preset."""
+
+    title = "Fitting quality parameters"
+
+    def __init__(self, st, make_samples, settings: FitSettings, preset_name: str):
+        self.st = st
+        self.preset_name = preset_name
+        seed_quality = st.quality.as_dict()
+        super().__init__(
+            lambda progress: fit(make_samples(), seed_quality, settings, progress=progress)
+        )
+
+    def describe(self, details) -> str:
+        if len(details) < 3:
+            return ""
+        stage, rnd, best = details[:3]
+        return f"{'shape (Qp1)' if stage == 'qp1' else 'texture (Qp2)'}, round {rnd + 1}, " + (
+            f"Eq. 28 = {best:.4f}"
+        )
+
+    def finish(self, context):
+        res = self.result
+        checked = QualityParams().with_values(res.quality).to_dict()
+        for k, v in checked.items():
+            setattr(self.st.quality, k, v)
+        path = write_user_preset(self.st, self.preset_name)
+        return "INFO", (
+            f"Eq. 28 {res.start_target:.4f} -> {res.target:.4f} ({res.evaluations} runs); "
+            f"preset {os.path.basename(path)}"
+        )
+
+
+class HAIRY_BRUSH_OT_fit_parameters(JobOperator, bpy.types.Operator):
     """Fit the quality parameters to training samples (Eq. 28): characters written inside
     their font outlines, or the scene's recording against an image of the real artwork"""
 
@@ -52,7 +88,10 @@ class HAIRY_BRUSH_OT_fit_parameters(bpy.types.Operator):
         default="CHARACTERS",
     )
     characters: bpy.props.StringProperty(
-        name="Characters", default="一心", description="Training characters"
+        name="Characters",
+        default="一心",
+        description="The characters the brush learns from: it writes each and is scored "
+        "against the font's outline",
     )
     data_path: bpy.props.StringProperty(
         name="Stroke Data",
@@ -60,24 +99,90 @@ class HAIRY_BRUSH_OT_fit_parameters(bpy.types.Operator):
         default="",
         description="Folder of <char>.json or graphics.txt (empty: the bundled characters)",
     )
-    image: bpy.props.StringProperty(name="Image", default="", description="Target image name")
-    size_px: bpy.props.IntProperty(name="Training Size", default=64, min=16, max=512)
-    divisions: bpy.props.IntProperty(name="Divisions", default=2, min=1, max=4)
-    rounds: bpy.props.IntProperty(name="Rounds", default=2, min=1, max=6)
-    iterations: bpy.props.IntProperty(name="Descent Steps", default=3, min=1, max=20)
-    max_grid: bpy.props.IntProperty(name="Grid Points", default=16, min=1, max=729)
-    preset_name: bpy.props.StringProperty(name="Preset Name", default="Fitted")
+    image: bpy.props.StringProperty(
+        name="Image",
+        default="",
+        description="The image of the real artwork the scene's recording should make (the "
+        "paper's size in pixels)",
+    )
+    size_px: bpy.props.IntProperty(
+        name="Training Size (px)",
+        default=64,
+        min=16,
+        max=512,
+        description="Larger: each training character is written bigger - a closer fit, but "
+        "every evaluation takes longer",
+    )
+    divisions: bpy.props.IntProperty(
+        name="Divisions",
+        default=2,
+        min=1,
+        max=4,
+        description="More: a finer grid of starting points over the values' range (d "
+        "divisions per value)",
+    )
+    rounds: bpy.props.IntProperty(
+        name="Rounds",
+        default=2,
+        min=1,
+        max=6,
+        description="More: the search range shrinks around the best point more times, for "
+        "a more precise result",
+    )
+    iterations: bpy.props.IntProperty(
+        name="Descent Steps",
+        default=3,
+        min=1,
+        max=20,
+        description="More: each descent from a starting point goes further downhill",
+    )
+    max_grid: bpy.props.IntProperty(
+        name="Grid Points",
+        default=16,
+        min=1,
+        max=729,
+        description="At most this many grid points are tried a round (drawn at random when "
+        "the grid has more): more is slower and surer",
+    )
+    preset_name: bpy.props.StringProperty(
+        name="Preset Name",
+        default="Fitted",
+        description="The fitted values are saved as a preset of yours under this name",
+    )
+
+    @classmethod
+    def poll(cls, context):
+        return polls.brush_and_paper(cls, context)
 
     def invoke(self, context, event):
+        self.in_background = True
         return context.window_manager.invoke_props_dialog(self)
 
-    def _samples(self, scene, st):
+    def draw(self, context):
+        layout = self.layout
+        layout.use_property_split = True
+        layout.prop(self, "source")
+        if self.source == "CHARACTERS":
+            layout.prop(self, "characters")
+            layout.prop(self, "data_path")
+            layout.prop(self, "size_px")
+        else:
+            layout.prop_search(self, "image", bpy.data, "images")
+        col = layout.column(align=True)
+        for name in ("divisions", "rounds", "iterations", "max_grid"):
+            col.prop(self, name)
+        layout.prop(self, "preset_name")
+
+    def _samples(self, scene):
+        """A function that makes the training samples (in the worker: characters are written
+        there); what needs Blender's data is read here."""
         template = bridge.settings_recording(scene)
         if self.source == "CHARACTERS":
             chars = [find_char(c, self.data_path or None) for c in self.characters if c.strip()]
             if not chars:
                 raise ValueError("type at least one training character")
-            return character_samples(chars, self.size_px, template, names=list(self.characters))
+            names, size = list(self.characters), self.size_px
+            return lambda: character_samples(chars, size, template, names=names)
         img = bpy.data.images.get(self.image)
         if img is None:
             raise ValueError(f"no image named {self.image!r} to train against")
@@ -91,15 +196,14 @@ class HAIRY_BRUSH_OT_fit_parameters(bpy.types.Operator):
         a = np.empty(w * h * 4, dtype=np.float32)
         img.pixels.foreach_get(a)
         rgb = a.reshape(h, w, 4)[::-1, :, :3]  # top row first, as Eq. 28's images
-        return [TrainingSample(rec, rgb, img.name)]
+        return lambda: [TrainingSample(rec, rgb, img.name)]
 
     def execute(self, context):
         scene = context.scene
         st = bridge.settings(scene)
-        wm = context.window_manager
         try:
             bridge.require_brush_and_paper(st)
-            samples = self._samples(scene, st)
+            make_samples = self._samples(scene)
         except (*bridge.USER_ERRORS, ValueError) as exc:
             self.report({"ERROR"}, str(exc))
             return {"CANCELLED"}
@@ -111,26 +215,4 @@ class HAIRY_BRUSH_OT_fit_parameters(bpy.types.Operator):
             workers=1,  # Blender's executable is not a plain Python to fork workers from
             seed=int(st.seed),
         )
-        wm.progress_begin(0, 100)
-        try:
-            res = fit(
-                samples,
-                st.quality.as_dict(),
-                settings,
-                progress=lambda f, *_: wm.progress_update(int(100 * f)),
-            )
-        except bridge.USER_ERRORS as exc:
-            self.report({"ERROR"}, str(exc))
-            return {"CANCELLED"}
-        finally:
-            wm.progress_end()
-        checked = QualityParams().with_values(res.quality).to_dict()
-        for k, v in checked.items():
-            setattr(st.quality, k, v)
-        path = write_user_preset(st, self.preset_name)
-        self.report(
-            {"INFO"},
-            f"Eq. 28 {res.start_target:.4f} -> {res.target:.4f} ({res.evaluations} runs); "
-            f"preset {os.path.basename(path)}",
-        )
-        return {"FINISHED"}
+        return self.run_job(context, FitJob(st, make_samples, settings, self.preset_name))

@@ -8,6 +8,7 @@ from bpy_extras.io_utils import ImportHelper
 
 from .. import bridge
 from ..sim.recording import load
+from . import polls
 
 
 class HAIRY_BRUSH_OT_import_recording(bpy.types.Operator, ImportHelper):
@@ -21,6 +22,10 @@ class HAIRY_BRUSH_OT_import_recording(bpy.types.Operator, ImportHelper):
     filename_ext = ".json"
     filter_glob: bpy.props.StringProperty(default="*.json", options={"HIDDEN"})
 
+    @classmethod
+    def poll(cls, context):
+        return polls.object_mode(cls, context)
+
     def execute(self, context):
         st = bridge.settings(context.scene)
         try:
@@ -31,5 +36,9 @@ class HAIRY_BRUSH_OT_import_recording(bpy.types.Operator, ImportHelper):
             return {"CANCELLED"}
         st.recording = None  # a new text block: the previous recording stays in the file
         text = bridge.store_recording(st, rec)
-        self.report({"INFO"}, f"Imported {len(rec.samples)} samples into '{text.name}'")
+        self.report(
+            {"INFO"},
+            f"Imported {len(rec.samples)} samples into '{text.name}'; paper "
+            f"{rec.width_mm:g} x {rec.height_mm:g} mm, brush {st.brush_preset}",
+        )
         return {"FINISHED"}

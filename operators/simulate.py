@@ -1,15 +1,64 @@
 # SPDX-License-Identifier: GPL-3.0-or-later
 """hairy_brush.simulate: run the recording into the paper image (packed into the .blend when
-the file is saved)."""
+the file is saved); from the sidebar a modal job in slices (Esc puts the paper back)."""
 
 from __future__ import annotations
+
+import time
 
 import bpy
 
 from .. import bridge, playback
+from . import polls
+from .jobs import Job, JobOperator, deadline
+
+SHOW_EVERY_S = 1.0  # the paper image shows the ink so far this often while simulating
 
 
-class HAIRY_BRUSH_OT_simulate(bpy.types.Operator):
+class SimulateJob(Job):
+    """Seek the scene's playback to ``target`` samples a slice at a time; the paper image
+    shows the ink so far now and then and at the end."""
+
+    title = "Simulating ink"
+
+    def __init__(self, scene, target: int | None = None, to_current_frame: bool = False):
+        self.scene = scene
+        self.pb = playback.playback_for(scene)
+        n = len(self.pb.rec.samples)
+        if to_current_frame:
+            n = bridge.samples_at_frame(self.pb.rec, scene, scene.frame_current)
+        self.target = n if target is None else target
+        img = bridge.settings(scene).paper_image
+        self.shown_before = int(img[bridge.SHOWN_TAG]) if img and bridge.SHOWN_TAG in img else None
+        self._last_show = time.perf_counter()
+
+    def step(self, budget_s: float) -> bool:
+        sim = self.pb.seek(self.target, should_stop=deadline(budget_s))
+        self.fraction = sim.index / max(self.target, 1)
+        self.status = f"sample {sim.index} of {self.target}"
+        done = sim.index >= self.target
+        if not done and time.perf_counter() - self._last_show > SHOW_EVERY_S:
+            self._show(sim)
+        return done
+
+    def _show(self, sim):
+        img = bridge.ensure_paper_image(bridge.settings(self.scene))
+        bridge.show_paper(img, sim.paper, sim.index)
+        self._last_show = time.perf_counter()
+
+    def cancel(self):
+        if self.shown_before is not None:
+            playback.show(self.scene, self.shown_before)
+        elif bridge.settings(self.scene).paper_image is not None:
+            bridge.show_blank(bridge.settings(self.scene))
+
+    def finish(self, context):
+        playback.show(self.scene, self.target)
+        img = bridge.settings(self.scene).paper_image
+        return "INFO", f"Simulated {self.target} samples into '{img.name}'"
+
+
+class HAIRY_BRUSH_OT_simulate(JobOperator, bpy.types.Operator):
     """Simulate the whole recording (or up to the current frame) into the paper image"""
 
     bl_idname = "hairy_brush.simulate"
@@ -22,24 +71,17 @@ class HAIRY_BRUSH_OT_simulate(bpy.types.Operator):
         description="Stop at the current frame instead of the end of the recording",
     )
 
+    @classmethod
+    def poll(cls, context):
+        return polls.recording(cls, context)
+
+    def invoke(self, context, _event):
+        self.in_background = True
+        return self.execute(context)
+
     def execute(self, context):
-        scene = context.scene
-        st = bridge.settings(scene)
-        wm = context.window_manager
-        wm.progress_begin(0, 100)
         try:
-            rec = playback.playback_for(scene).rec
-            n = len(rec.samples)
-            if self.to_current_frame:
-                n = bridge.samples_at_frame(rec, scene, scene.frame_current)
-            playback.show(scene, n, progress=lambda f: wm.progress_update(int(100 * f)))
-        except bridge.USER_ERRORS as exc:
-            self.report({"ERROR"}, str(exc))
-            return {"CANCELLED"}
-        except MemoryError:
-            self.report({"ERROR"}, "Not enough memory for this paper: lower its resolution")
-            return {"CANCELLED"}
-        finally:
-            wm.progress_end()
-        self.report({"INFO"}, f"Simulated {n} samples into '{st.paper_image.name}'")
-        return {"FINISHED"}
+            job = SimulateJob(context.scene, to_current_frame=self.to_current_frame)
+        except (*bridge.USER_ERRORS, MemoryError) as exc:
+            return self._failed(exc)
+        return self.run_job(context, job)

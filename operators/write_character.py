@@ -1,22 +1,85 @@
 # SPDX-License-Identifier: GPL-3.0-or-later
 """hairy_brush.write_character: write a character from stroke data (hanzi-writer-data files or
 Make Me a Hanzi's graphics.txt) with the brush, and keyframe the brush empty along the
-trajectory: press from the outline's width through the brush's calibrated response."""
+trajectory: press from the outline's width through the brush's calibrated response. From the
+sidebar the writing runs as a modal job (Esc stops it; the scene changes only at the end)."""
 
 from __future__ import annotations
 
 import math
 
 import bpy
+import numpy as np
 from bpy_extras.io_utils import ImportHelper
 
 from .. import bridge, playback
 from ..sim.hanzi import find_char
-from ..sim.imitate import write_character
-from .setup import resize_paper
+from ..sim.imitate import auto_size_mm, calibrate, write_character
+from . import polls
+from .jobs import JobOperator, WorkerJob
 
 
-class HAIRY_BRUSH_OT_write_character(bpy.types.Operator, ImportHelper):
+class WriteJob(WorkerJob):
+    """The writing itself (calibration, practice passes) in a worker; ``finish`` sizes the
+    paper, keyframes the brush, stores the recording and shows the writing."""
+
+    title = "Writing character"
+
+    def __init__(self, scene, char: dict, size_mm: float, passes: int):
+        st = bridge.settings(scene)
+        self.scene, self.char = scene, char
+        self.template = bridge.settings_recording(scene)
+        self.ppm = float(st.px_per_mm)
+        if size_mm:
+            self._check(size_mm)
+        super().__init__(lambda progress: self._write(size_mm, passes, progress))
+
+    def _check(self, size_mm: float) -> float:
+        """The size as the settings will hold it (single precision), checked for memory."""
+        size = float(np.float32(size_mm))
+        w = max(1, round(size * self.ppm))
+        bridge.check_paper_pixels(w, w)
+        return size
+
+    def _write(self, size_mm: float, passes: int, progress):
+        if not size_mm:  # the size follows from the brush's response
+            progress(0.0, "calibrating the brush")
+            size_mm = auto_size_mm(self.char, calibrate(self.template))
+        size = self._check(size_mm)
+        rec, _, sim = write_character(
+            self.char,
+            0,
+            self.template,
+            size_mm=size,
+            passes=passes,
+            progress=progress,
+            px_per_mm=self.ppm,
+        )
+        return size, rec, sim
+
+    def describe(self, details) -> str:
+        return details[0] if details else "practising the strokes"
+
+    def finish(self, context):
+        size, rec, sim = self.result
+        scene = self.scene
+        st = bridge.settings(scene)
+        st.paper_width_mm = st.paper_height_mm = size  # the paper plane follows
+        rec = bridge.new_recording(scene, rec.samples, dips=rec.dips)
+        last = bridge.keyframe_samples(
+            scene, st, rec.samples, rec.sample_rate_hz, scene.frame_start
+        )
+        scene.frame_end = math.ceil(last)
+        bridge.store_recording(st, rec)
+        playback.clear()
+        bridge.show_paper(bridge.ensure_paper_image(st), sim.paper, len(rec.samples))
+        return "INFO", (
+            f"{len(self.char['medians'])} strokes, {len(rec.samples)} samples, "
+            f"{len(rec.dips)} dips, {size:.0f} mm"
+        )
+
+
+class HAIRY_BRUSH_OT_write_character(JobOperator, bpy.types.Operator, ImportHelper):
     """Write a character with the brush from stroke data: the brush follows each stroke's
     median, pressing as wide as the font's outline, and is keyframed so the writing plays,
     edits and renders as animation"""
@@ -34,7 +97,7 @@ class HAIRY_BRUSH_OT_write_character(bpy.types.Operator, ImportHelper):
         "a folder of <char>.json); leave empty to write the chosen .json file itself",
     )
     size_mm: bpy.props.FloatProperty(
-        name="Size",
+        name="Size (mm)",
         default=0.0,
         min=0.0,
         max=2000.0,
@@ -50,60 +113,24 @@ class HAIRY_BRUSH_OT_write_character(bpy.types.Operator, ImportHelper):
         "corrected before the best pass is kept (1: the calibrated response alone)",
     )
 
+    @classmethod
+    def poll(cls, context):
+        return polls.brush_and_paper(cls, context)
+
+    def invoke(self, context, event):
+        self.in_background = True
+        return ImportHelper.invoke(self, context, event)
+
     def execute(self, context):
         scene = context.scene
-        st = bridge.settings(scene)
-        wm = context.window_manager
         try:
-            bridge.require_brush_and_paper(st)
+            bridge.require_brush_and_paper(bridge.settings(scene))
             if self.character:
                 char = find_char(self.character, self.filepath or None)
             else:
                 char = find_char(self.filepath)
-            template = bridge.settings_recording(scene)
+            job = WriteJob(scene, char, self.size_mm, self.passes)
         except (*bridge.USER_ERRORS, ValueError) as exc:
             self.report({"ERROR"}, str(exc))
             return {"CANCELLED"}
-        old_size = (st.paper_width_mm, st.paper_height_mm)
-        wm.progress_begin(0, 100)
-        try:
-            size = self.size_mm
-            if not size:  # the size follows from the brush's response
-                from ..sim.imitate import auto_size_mm, calibrate
-
-                size = auto_size_mm(char, calibrate(template))
-            # the paper becomes the em box; the values read back are the ones the stored
-            # recording will carry (Blender keeps single precision)
-            st.paper_width_mm = st.paper_height_mm = size
-            size, ppm = float(st.paper_width_mm), float(st.px_per_mm)
-            bridge.check_paper_size(st)
-            rec, _, sim = write_character(
-                char,
-                0,
-                template,
-                size_mm=size,
-                passes=self.passes,
-                progress=lambda f: wm.progress_update(int(100 * f)),
-                px_per_mm=ppm,
-            )
-            rec = bridge.new_recording(scene, rec.samples, dips=rec.dips)
-        except (*bridge.USER_ERRORS, ValueError) as exc:
-            st.paper_width_mm, st.paper_height_mm = old_size  # a cancelled operator leaves no trace
-            self.report({"ERROR"}, str(exc))
-            return {"CANCELLED"}
-        finally:
-            wm.progress_end()
-        resize_paper(st)
-        last = bridge.keyframe_samples(
-            scene, st, rec.samples, rec.sample_rate_hz, scene.frame_start
-        )
-        scene.frame_end = math.ceil(last)
-        bridge.store_recording(st, rec)
-        playback.clear()
-        bridge.show_paper(bridge.ensure_paper_image(st), sim.paper, len(rec.samples))
-        self.report(
-            {"INFO"},
-            f"{len(char['medians'])} strokes, {len(rec.samples)} samples, "
-            f"{len(rec.dips)} dips, {size:.0f} mm",
-        )
-        return {"FINISHED"}
+        return self.run_job(context, job)

@@ -1,14 +1,14 @@
 # SPDX-License-Identifier: GPL-3.0-or-later
-"""View3D > Sidebar > Brush: set-up, brush, ink, paper, quality parameters, recording,
-animation."""
+"""View3D > Sidebar > Brush, in the order of the work: paper, brush, ink, write and paint,
+animation (with the recording), quality. Each setting sits beside the button that uses it.
+Nothing here reads a file or parses the recording: a draw runs on every redraw."""
 
 from __future__ import annotations
 
-import json
-
 import bpy
 
-from ..sim.params import QP1, QP2
+from .. import bridge
+from ..properties import HAIR_LENGTH_MM, QUALITY_GROUPS, preset_label
 
 
 class _Panel:
@@ -17,131 +17,172 @@ class _Panel:
     bl_category = "Brush"
 
 
-class HAIRY_BRUSH_PT_main(_Panel, bpy.types.Panel):
-    bl_label = "Virtual Hairy Brush"
-
-    def draw(self, context):
-        st = context.scene.hairy_brush
-        col = self.layout.column(align=True)
-        col.operator("hairy_brush.setup", icon="ADD")
-        col.prop(st, "brush_object")
-        col.prop(st, "paper_object")
-        col.prop(st, "paper_image")
-        col = self.layout.column(align=True)
-        col.operator("hairy_brush.bake_samples", icon="KEYINGSET")
-        col.operator("hairy_brush.simulate", icon="BRUSH_DATA")
-        col.operator("hairy_brush.paint", icon="GREASEPENCIL")
-        col.operator("hairy_brush.dip", icon="MOD_FLUIDSIM")
-        col.operator("hairy_brush.build_primitives", icon="SURFACE_NSURFACE")
-        col.operator("hairy_brush.write_character", icon="FONT_DATA")
-
-
-class HAIRY_BRUSH_PT_brush(_Panel, bpy.types.Panel):
-    bl_label = "Brush"
-    bl_parent_id = "HAIRY_BRUSH_PT_main"
-
-    def draw(self, context):
-        st = context.scene.hairy_brush
-        layout = self.layout
-        layout.prop(st, "brush_preset")
-        layout.prop(st, "sample_rate_hz")
-        layout.prop(st, "seed")
-        box = layout.box()
-        box.label(text="Live Painting")
-        box.prop(st, "paint_press_mm")
-        box.prop(st, "paint_angle_step")
-
-
-class HAIRY_BRUSH_PT_ink(_Panel, bpy.types.Panel):
-    bl_label = "Ink"
-    bl_parent_id = "HAIRY_BRUSH_PT_main"
-
-    def draw(self, context):
-        st = context.scene.hairy_brush
-        layout = self.layout
-        layout.prop(st, "ink_preset")
-        layout.prop(st, "ink_color")
-        layout.prop(st, "dip_wetness")
-        layout.prop(st, "dip_depth")
+def _preset_menu(layout, st, kind: str, text: str):
+    row = layout.row(align=True)
+    row.label(text=text)
+    row.menu(
+        f"HAIRY_BRUSH_MT_{kind}_presets", text=preset_label(kind, getattr(st, f"{kind}_preset"))
+    )
 
 
 class HAIRY_BRUSH_PT_paper(_Panel, bpy.types.Panel):
     bl_label = "Paper"
-    bl_parent_id = "HAIRY_BRUSH_PT_main"
+    bl_order = 0
 
     def draw(self, context):
         st = context.scene.hairy_brush
         layout = self.layout
-        layout.prop(st, "paper_preset")
+        _preset_menu(layout, st, "paper", "Paper")
         col = layout.column(align=True)
         col.prop(st, "paper_width_mm")
         col.prop(st, "paper_height_mm")
         col.prop(st, "px_per_mm")
-        w = round(st.paper_width_mm * st.px_per_mm)
-        h = round(st.paper_height_mm * st.px_per_mm)
-        layout.label(text=f"{w} x {h} px", icon="IMAGE_DATA")
+        w, h = bridge.paper_pixels(st)
+        layout.label(text=f"Image {w} x {h} px", icon="IMAGE_DATA")
+        col = layout.column(align=True)
+        col.enabled = bridge.paper_overrides_supported()
+        col.prop(st, "paper_color")
+        col.prop(st, "paper_capacity")
+        if not col.enabled:
+            layout.label(text="Colour and capacity: the preset's", icon="INFO")
+        layout.operator("hairy_brush.setup", icon="ADD")
+        col = layout.column(align=True)
+        col.prop(st, "paper_object")
+        col.prop(st, "paper_image")
 
 
-class HAIRY_BRUSH_PT_quality(_Panel, bpy.types.Panel):
-    bl_label = "Quality Parameters"
-    bl_parent_id = "HAIRY_BRUSH_PT_main"
+class HAIRY_BRUSH_PT_brush(_Panel, bpy.types.Panel):
+    bl_label = "Brush"
+    bl_order = 1
 
     def draw(self, context):
-        q = context.scene.hairy_brush.quality
+        st = context.scene.hairy_brush
         layout = self.layout
-        row = layout.row(align=True)
-        row.menu("HAIRY_BRUSH_MT_settings_presets", text="Presets")
-        row.operator("hairy_brush.add_settings_preset", text="", icon="ADD")
-        op = row.operator("hairy_brush.add_settings_preset", text="", icon="REMOVE")
-        op.remove_active = True
-        for title, names in (("Shape (Qp1)", QP1), ("Texture (Qp2)", QP2)):
-            col = layout.column(align=True)
-            col.label(text=title)
-            for name in names:
-                col.prop(q, name, slider=True)
-        layout.operator("hairy_brush.fit_parameters", icon="DRIVER_DISTANCE")
+        _preset_menu(layout, st, "brush", "Brush")
+        layout.prop(st, "brush_object")
+        hair = HAIR_LENGTH_MM.get(st.brush_preset, st.touch_height_mm)
+        layout.label(
+            text=f"Touches the paper at z = {hair:g} mm (hair length)", icon="EMPTY_SINGLE_ARROW"
+        )
+        z = _brush_height(st)
+        if z is not None:
+            where = "above" if z >= hair else "pressed into"
+            layout.label(text=f"Base now at z = {z:.1f} mm: {abs(z - hair):.1f} mm {where} it")
+
+
+def _brush_height(st):
+    """The brush base's height above the paper (mm), or None without brush and paper."""
+    if st.brush_object is None or st.paper_object is None:
+        return None
+    try:
+        s = bridge.sample_from_matrices(
+            st, st.brush_object.matrix_world, st.paper_object.matrix_world
+        )
+    except bridge.USER_ERRORS:
+        return None
+    return float(s[2])
+
+
+class HAIRY_BRUSH_PT_ink(_Panel, bpy.types.Panel):
+    bl_label = "Ink"
+    bl_order = 2
+
+    def draw(self, context):
+        st = context.scene.hairy_brush
+        layout = self.layout
+        _preset_menu(layout, st, "ink", "Ink")
+        col = layout.column(align=True)
+        col.prop(st, "ink_color")
+        col.prop(st, "dip_wetness", slider=True)
+        col.prop(st, "dip_depth", slider=True)
+        layout.operator("hairy_brush.dip", text="Dip Brush at Current Frame", icon="MOD_FLUIDSIM")
+
+
+class HAIRY_BRUSH_PT_write(_Panel, bpy.types.Panel):
+    bl_label = "Write and Paint"
+    bl_order = 3
+
+    def draw(self, context):
+        st = context.scene.hairy_brush
+        layout = self.layout
+        col = layout.column(align=True)
+        col.prop(st, "paint_press_mm")
+        col.prop(st, "paint_angle_step")
+        col.operator("hairy_brush.paint", icon="GREASEPENCIL")
+        layout.operator("hairy_brush.write_character", icon="FONT_DATA")
+
+
+class HAIRY_BRUSH_PT_animation(_Panel, bpy.types.Panel):
+    bl_label = "Animation"
+    bl_order = 4
+
+    def draw(self, context):
+        st = context.scene.hairy_brush
+        layout = self.layout
+        col = layout.column(align=True)
+        col.prop(st, "sample_rate_hz")
+        col.prop(st, "seed")
+        col.operator("hairy_brush.bake_samples", icon="KEYINGSET")
+        layout.operator("hairy_brush.simulate", icon="BRUSH_DATA")
+        layout.prop(st, "sync_frames")
+        layout.operator("hairy_brush.build_primitives", icon="SURFACE_NSURFACE")
+        col = layout.column(align=True)
+        col.prop(st, "sequence_dir")
+        col.operator("hairy_brush.bake_sequence", icon="RENDER_ANIMATION")
+        layout.operator("hairy_brush.apply_to_mesh", icon="MATERIAL")
 
 
 class HAIRY_BRUSH_PT_recording(_Panel, bpy.types.Panel):
     bl_label = "Recording"
-    bl_parent_id = "HAIRY_BRUSH_PT_main"
+    bl_parent_id = "HAIRY_BRUSH_PT_animation"
 
     def draw(self, context):
         st = context.scene.hairy_brush
         layout = self.layout
         layout.prop(st, "recording")
-        if st.recording is not None:
-            try:
-                d = json.loads(st.recording.as_string())
-                layout.label(
-                    text=f"{len(d.get('samples', []))} samples, {len(d.get('dips', []))} dips"
-                )
-            except (json.JSONDecodeError, AttributeError):
-                layout.label(text="Not a valid recording", icon="ERROR")
+        text = st.recording
+        if text is not None:
+            n = text.get(bridge.SAMPLES_TAG)
+            if n is None:
+                layout.label(text="Not counted: stored outside the extension", icon="INFO")
+            else:
+                layout.label(text=f"{n} samples, {text.get(bridge.DIPS_TAG, 0)} dips")
         row = layout.row(align=True)
         row.operator("hairy_brush.import_recording", icon="IMPORT")
         row.operator("hairy_brush.export_recording", icon="EXPORT")
 
 
-class HAIRY_BRUSH_PT_animation(_Panel, bpy.types.Panel):
-    bl_label = "Animation and Surfaces"
-    bl_parent_id = "HAIRY_BRUSH_PT_main"
+class HAIRY_BRUSH_PT_quality(_Panel, bpy.types.Panel):
+    bl_label = "Quality"
+    bl_order = 5
 
     def draw(self, context):
         st = context.scene.hairy_brush
+        q = st.quality
         layout = self.layout
-        layout.prop(st, "sync_frames")
-        layout.prop(st, "sequence_dir")
-        layout.operator("hairy_brush.bake_sequence", icon="RENDER_ANIMATION")
-        layout.operator("hairy_brush.apply_to_mesh", icon="MATERIAL")
+        row = layout.row(align=True)
+        row.menu(
+            "HAIRY_BRUSH_MT_settings_presets",
+            text=bpy.types.HAIRY_BRUSH_MT_settings_presets.bl_label,
+        )
+        row.operator("hairy_brush.add_settings_preset", text="", icon="ADD")
+        op = row.operator("hairy_brush.add_settings_preset", text="", icon="REMOVE")
+        op.remove_active = True
+        layout.menu("HAIRY_BRUSH_MT_quality_presets", icon="PRESET")
+        for title, icon, names in QUALITY_GROUPS:
+            col = layout.column(align=True)
+            col.label(text=title, icon=icon)
+            for name in names:
+                col.prop(q, name, slider=True)
+        layout.operator("hairy_brush.fit_parameters", icon="DRIVER_DISTANCE")
 
 
 CLASSES = (
-    HAIRY_BRUSH_PT_main,
+    HAIRY_BRUSH_PT_paper,
     HAIRY_BRUSH_PT_brush,
     HAIRY_BRUSH_PT_ink,
-    HAIRY_BRUSH_PT_paper,
-    HAIRY_BRUSH_PT_quality,
-    HAIRY_BRUSH_PT_recording,
+    HAIRY_BRUSH_PT_write,
     HAIRY_BRUSH_PT_animation,
+    HAIRY_BRUSH_PT_recording,
+    HAIRY_BRUSH_PT_quality,
 )
