@@ -139,11 +139,8 @@ class JobOperator:
     def run_job(self, context, job: Job) -> set:
         wm = context.window_manager
         if self.in_background and not bpy.app.background and context.window is not None:
-            self._job = job
-            wm.progress_begin(0, 100)
-            self._timer = wm.event_timer_add(TIMER_S, window=context.window)
+            self.begin_job(context, job)
             wm.modal_handler_add(self)
-            context.workspace.status_text_set(job.status_line())
             return {"RUNNING_MODAL"}
         wm.progress_begin(0, 100)
         try:
@@ -155,6 +152,14 @@ class JobOperator:
         finally:
             wm.progress_end()
         return self._finished(context, job)
+
+    def begin_job(self, context, job: Job):
+        """Progress bar, status line and the timer whose events run the slices."""
+        self._job = job
+        wm = context.window_manager
+        wm.progress_begin(0, 100)
+        self._timer = wm.event_timer_add(TIMER_S, window=context.window)
+        context.workspace.status_text_set(job.status_line())
 
     def modal(self, context, event):
         job = self._job

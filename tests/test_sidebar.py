@@ -393,6 +393,50 @@ def test_simulate_runs_in_slices_and_esc_puts_the_paper_back(hb):
     assert np.abs(pixels(st.paper_image)[..., :3] - want).max() <= 0.5 / 4095 + 1e-6
 
 
+def job_operator():
+    """The modal job's own methods on a stand-in (no window to run a modal operator in)."""
+    jobs = ext().operators.jobs
+
+    class Runner:
+        reports = []
+
+        def report(self, kind, msg):
+            self.reports.append((kind, msg))
+
+    for name in ("begin_job", "modal", "_end", "_failed", "_finished"):
+        setattr(Runner, name, getattr(jobs.JobOperator, name))
+    return Runner()
+
+
+def test_the_modal_operator_runs_a_job_from_timer_events_and_stops_on_esc(hb):
+    st = setup_scene(bpy)
+    keyframe_stroke(bpy, st)
+    bpy.ops.hairy_brush.bake_samples()
+    sc = bpy.context.scene
+    before = pixels(st.paper_image)
+    jobs, simulate = ext().operators.jobs, ext().operators.simulate
+    op = job_operator()
+    op.begin_job(bpy.context, simulate.SimulateJob(sc))
+    timer = SimpleNamespace(type="TIMER", value="NOTHING")
+    jobs.SLICE_S, old = 0.005, jobs.SLICE_S
+    try:
+        assert op.modal(bpy.context, timer) == {"RUNNING_MODAL"}
+        assert op.modal(bpy.context, SimpleNamespace(type="MOUSEMOVE")) == {"PASS_THROUGH"}
+        assert op.modal(bpy.context, SimpleNamespace(type="ESC")) == {"CANCELLED"}
+        assert op.reports[-1][0] == {"WARNING"} and "stopped" in op.reports[-1][1]
+        np.testing.assert_array_equal(pixels(st.paper_image), before)
+        op.begin_job(bpy.context, simulate.SimulateJob(sc))
+        for _ in range(10_000):
+            state = op.modal(bpy.context, timer)
+            if state != {"RUNNING_MODAL"}:
+                break
+    finally:
+        jobs.SLICE_S = old
+    assert state == {"FINISHED"} and op.reports[-1][0] == {"INFO"}
+    want = Simulation(ext().bridge.recording_from_scene(sc)).run().paper.rgb()
+    assert np.abs(pixels(st.paper_image)[..., :3] - want).max() <= 0.5 / 4095 + 1e-6
+
+
 def test_bake_sequence_runs_in_slices(hb, tmp_path):
     st = setup_scene(bpy)
     keyframe_stroke(bpy, st, frames=(1, 3, 9, 10))
