@@ -31,9 +31,6 @@ def long_stroke(y=100.0):
     )
 
 
-_long_stroke = long_stroke  # the name scripts/bench_live.py uses
-
-
 def workload(samples, size_px, ppm, primitives=1, seed=0) -> Simulation:
     """A seeded simulation of ``samples`` on a square sheet of size_px pixels at ppm, its brush
     dipped and, for primitives > 1, split into that many primitives up front."""
