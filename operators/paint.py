@@ -19,6 +19,7 @@ from .. import bridge, playback
 from ..sim import placement
 from ..sim.engine import Simulation
 from ..sim.live import HOVER_MM, LiveBrush, LiveEvent
+from . import polls
 
 TIMER_S = 1.0 / 120.0  # how often the modal operator gets the UI loop's attention
 ENGINE_BUDGET_S = 0.030  # engine time per timer event while painting (the UI stays responsive)
@@ -71,7 +72,13 @@ class HAIRY_BRUSH_OT_paint(bpy.types.Operator):
 
     @classmethod
     def poll(cls, context):
-        return context.area is not None and context.area.type == "VIEW_3D"
+        if context.area is None or context.area.type != "VIEW_3D":
+            cls.poll_message_set("Paint from a 3D Viewport")
+            return False
+        if bridge.settings(context.scene).paper_object is None:
+            cls.poll_message_set("No paper plane: run Setup first")
+            return False
+        return polls.object_mode(cls, context)
 
     def invoke(self, context, event):
         scene = context.scene
