@@ -17,7 +17,6 @@ from .sim import placement
 from .sim.engine import Simulation
 from .sim.timeline import Timeline
 
-NU_AXIS, NV_RING = 28, 9  # control points of a primitive surface in Bezier form (see sim)
 MAX_SNAPSHOT_EVERY = 64  # samples
 
 
@@ -113,14 +112,16 @@ def primitive_objects(scene) -> list:
     return sorted(objs, key=lambda o: int(o[bridge.PRIMITIVE_TAG]))
 
 
-def _new_surface_curve(name: str) -> bpy.types.Curve:
-    """A NURBS surface curve of NU_AXIS x NV_RING points. Blender's Python API cannot size a
+def _new_surface_curve(name: str, shape) -> bpy.types.Curve:
+    """A NURBS surface curve of the engine's net shape (``SweepLayout.bezier_net_shape``: the
+    control points and orders of a primitive in Bezier form). Blender's Python API cannot size a
     surface directly, so rows are added as splines and joined with Make Segment, once."""
     cu = bpy.data.curves.new(name, "SURFACE")
     cu.dimensions = "3D"
-    for j in range(NU_AXIS):
+    nu, nv = shape.points_u, shape.points_v
+    for j in range(nu):
         sp = cu.splines.new("NURBS")
-        sp.points.add(NV_RING - 1)
+        sp.points.add(nv - 1)
         for i, p in enumerate(sp.points):
             p.co = (i, j, 0.0, 1.0)
             p.select = True
@@ -140,12 +141,12 @@ def _new_surface_curve(name: str) -> bpy.types.Curve:
         vl.objects.active = prev_active
         bpy.data.objects.remove(tmp)
     sp = cu.splines[0]
-    if len(cu.splines) != 1 or (sp.point_count_u, sp.point_count_v) != (NU_AXIS, NV_RING):
+    if len(cu.splines) != 1 or (sp.point_count_u, sp.point_count_v) != (nu, nv):
         raise RuntimeError(
             f"building a NURBS surface gave {len(cu.splines)} splines of "
-            f"{sp.point_count_u} x {sp.point_count_v} points (expected 1 of {NU_AXIS} x {NV_RING})"
+            f"{sp.point_count_u} x {sp.point_count_v} points (expected 1 of {nu} x {nv})"
         )
-    sp.order_u, sp.order_v = 4, 3  # cubic along the axis, quadratic around it (Sec. 2)
+    sp.order_u, sp.order_v = shape.order_u, shape.order_v  # cubic along the axis, quadratic around
     sp.use_endpoint_u = sp.use_endpoint_v = True
     sp.use_bezier_u = sp.use_bezier_v = True  # the engine net is refined to Bezier form
     sp.resolution_u, sp.resolution_v = 3, 3
@@ -179,7 +180,11 @@ def sync_primitives(scene, sim: Simulation, create: bool = True) -> int:
         template = objs[0].data if objs else None
         for i in range(len(objs), len(co)):
             name = f"HairyBrush Primitive {i:02d}"
-            cu = template.copy() if template is not None else _new_surface_curve(name)
+            cu = (
+                template.copy()
+                if template is not None
+                else _new_surface_curve(name, sim.brush.layout.bezier_net_shape())
+            )
             cu.name = name
             template = cu
             obj = bpy.data.objects.new(name, cu)

@@ -17,6 +17,8 @@ the very same control net, and the tests check both against geomdl's own evaluat
 
 from __future__ import annotations
 
+from dataclasses import dataclass
+
 import numpy as np
 
 # The 9-point rational quadratic unit circle (Piegl & Tiller, Ex. 7.2).
@@ -174,6 +176,17 @@ def circle_points(t) -> np.ndarray:
     return (B * CIRCLE_W) @ CIRCLE_XY / hw[:, None]
 
 
+@dataclass(frozen=True)
+class SurfaceShape:
+    """A NURBS surface's control points along the axis (u) and around it (v), and its orders
+    (degree + 1) in each direction."""
+
+    points_u: int
+    points_v: int
+    order_u: int
+    order_v: int
+
+
 class SweepLayout:
     """Fixed parameters of the sweep: station parameters along the axis, the s knot vector, the
     interpolation matrix and evaluation grids. Fixed, so every matrix is computed once."""
@@ -197,6 +210,12 @@ class SweepLayout:
     @property
     def stations(self) -> int:
         return len(self.station_u)
+
+    def bezier_net_shape(self) -> SurfaceShape:
+        """Control points and orders of a primitive's surface in Bezier form (``bezier_form``
+        along the axis, the rational circle around it): what a Blender NURBS surface holds."""
+        spans = len(np.unique(self.knots_s)) - 1
+        return SurfaceShape(3 * spans + 1, len(CIRCLE_W), 3 + 1, CIRCLE_DEGREE + 1)
 
 
 def section_control_net(centres, U, V):

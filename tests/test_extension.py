@@ -259,7 +259,9 @@ def test_primitive_surfaces_match_the_engine(hb):
     for obj, net in zip(objs, nets, strict=False):
         assert obj.parent == st.brush_object
         sp = obj.data.splines[0]
-        assert (sp.point_count_u, sp.point_count_v, sp.order_u, sp.order_v) == (28, 9, 4, 3)
+        shape = pb.sim.brush.layout.bezier_net_shape()
+        want = (shape.points_u, shape.points_v, shape.order_u, shape.order_v)
+        assert (sp.point_count_u, sp.point_count_v, sp.order_u, sp.order_v) == want
         me = obj.evaluated_get(dg).to_mesh()
         mw = np.array(obj.matrix_world)
         V = np.array([mw @ np.r_[v.co[:], 1.0] for v in me.vertices])[:, :3]

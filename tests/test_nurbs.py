@@ -125,3 +125,11 @@ def test_collocation_solve_equals_lapack():
     params = chord_params(pts)
     N = bspline_basis(averaged_knots(params, 3), 3, params)
     np.testing.assert_allclose(solve_collocation(N, pts), np.linalg.solve(N, pts), atol=1e-12)
+
+
+def test_the_bezier_net_shape_is_what_surface_nets_returns(brush):
+    nets, breaks = brush.surface_nets()
+    shape = brush.layout.bezier_net_shape()
+    assert nets.shape[1:3] == (shape.points_u, shape.points_v)
+    assert shape.points_u == 3 * (len(breaks) - 1) + 1
+    assert (shape.order_u, shape.order_v) == (4, 3)  # cubic along the axis, quadratic around
