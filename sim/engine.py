@@ -6,6 +6,7 @@ bit, and snapshots let a caller jump to any sample and get exactly the same stat
 from __future__ import annotations
 
 import time
+from typing import NamedTuple
 
 import numpy as np
 
@@ -18,6 +19,15 @@ from .recording import Recording
 # samples whose marks are filled in together by ``run`` (the brush never reads the paper, so its
 # dynamics can run ahead of the paper; each step's deposit still comes in order)
 BATCH_STEPS = 8
+
+
+class PendingDeposit(NamedTuple):
+    """A sample the brush has made and the paper has not taken yet (see ``run``)."""
+
+    cut: object  # the solid's cut by the paper (sim.mark.Cut), None when it does not touch
+    gamma: np.ndarray  # each primitive's dryness then (Eq. 27)
+    hair_u: np.ndarray  # each primitive's hair bundles' dry-brush draws then (Eq. 27)
+    step: int  # the sample's number, from 1, as the paper counts steps
 
 
 class Simulation:
@@ -39,7 +49,7 @@ class Simulation:
         self.dips = recording.dips_or_default()
         self.index = 0  # next sample to process
         self.last_marks = []
-        self._pending = []  # samples moved but not yet deposited (see run)
+        self._pending: list[PendingDeposit] = []  # moved but not yet deposited (see run)
         self.timings = None  # a dict to keep the seconds spent in every stage (the benchmark)
         first = recording.samples[0]
         self.brush.place(
@@ -94,7 +104,7 @@ class Simulation:
         if cut is not None and b.state == "dipping":
             b.state = "working"
         # what the deposit of this sample needs, as it is now (Eq. 24-27)
-        self._pending.append((cut, b.gamma.copy(), b.hair_u.copy(), i + 1))
+        self._pending.append(PendingDeposit(cut, b.gamma.copy(), b.hair_u.copy(), i + 1))
         b.lose_wetness(self.dt)  # Eq. 15
         b.adjust_ellipse(vel, self.dt)  # Eq. 16, 17
         b.split()  # Eq. 18, 19
@@ -116,10 +126,10 @@ class Simulation:
         if not self._pending:
             return
         t0 = time.perf_counter()
-        marks_per_step = fill_marks([p[0] for p in self._pending], self.paper.ppm)
+        marks_per_step = fill_marks([p.cut for p in self._pending], self.paper.ppm)
         t0 = self._tick("mark pixels", t0)
-        for (_cut, gamma, hair_u, step), marks in zip(self._pending, marks_per_step, strict=True):
-            self.paper.deposit(marks, gamma, hair_u, self.q, self.dt, step)  # Eq. 24-27
+        for p, marks in zip(self._pending, marks_per_step, strict=True):
+            self.paper.deposit(marks, p.gamma, p.hair_u, self.q, self.dt, p.step)  # Eq. 24-27
             self.last_marks = marks
         self._pending = []
         self._tick("paper", t0)
