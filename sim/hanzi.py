@@ -61,10 +61,10 @@ def _check_outline(path, where: str) -> None:
 
 
 def _check_median(med, src: str, i: int) -> float:
-    """Median i: 2 or more [x, y] points near the em box; returns its length."""
+    """Median i: 1 or more [x, y] points near the em box (one: a dot); returns its length."""
     where = f"{src}: 'medians[{i}]'"
-    if not isinstance(med, list) or not 2 <= len(med) <= MAX_MEDIAN_POINTS:
-        raise CharacterError(f"{where} must be a list of 2 to {MAX_MEDIAN_POINTS} points [x, y]")
+    if not isinstance(med, list) or not 1 <= len(med) <= MAX_MEDIAN_POINTS:
+        raise CharacterError(f"{where} must be a list of 1 to {MAX_MEDIAN_POINTS} points [x, y]")
     for k, p in enumerate(med):
         if not (isinstance(p, list) and len(p) == 2 and all(number_within(v) for v in p)):
             raise CharacterError(

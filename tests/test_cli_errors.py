@@ -152,7 +152,7 @@ def test_geometry_override_is_checked():
         ({"strokes": ["M 0 0 Z"], "medians": CHAR["medians"]}, "no closed outline"),
         ({"strokes": ["Q 1 2 3 4 Z"], "medians": CHAR["medians"]}, "curve before any point"),
         ({"strokes": ["X 1 2"], "medians": CHAR["medians"]}, "unsupported SVG path command"),
-        ({"strokes": CHAR["strokes"], "medians": [[[500, 400]]]}, "'medians[0]'"),
+        ({"strokes": CHAR["strokes"], "medians": [[]]}, "'medians[0]' must be a list of 1 to"),
         ({"strokes": CHAR["strokes"], "medians": [[[5, 4], [5, 4, 1]]]}, "'medians[0][1]'"),
         ({"strokes": CHAR["strokes"], "medians": [[[5, 4], [True, 1]]]}, "'medians[0][1]'"),
         ([CHAR], "not hanzi-writer data"),
