@@ -416,3 +416,15 @@ def test_fit_takes_grey_and_alpha_images(tmp_path, channels):
     assert target.shape == (160, 240, 3)
     want = img[..., 0] if channels <= 2 else img[..., 2]
     assert np.allclose(target[..., 2], want / 255.0)
+
+
+def test_samples_and_file_sizes_are_bounded(tmp_path, monkeypatch):
+    import sim.recording
+    from sim.jsonio import read_json
+
+    monkeypatch.setattr(sim.recording, "MAX_SAMPLES", 2)
+    with pytest.raises(RecordingError, match="'samples' has 3 entries; at most 2"):
+        from_dict(REC)
+    p = write_json(tmp_path / "r.json", REC)
+    with pytest.raises(RecordingError, match="too large"):
+        read_json(p, "recording", RecordingError, max_bytes=100)
