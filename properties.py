@@ -27,7 +27,13 @@ from .sim.params import (
     preset_names,
     quality_from_presets,
 )
-from .sim.recording import DEFAULT_BRUSH, DEFAULT_INK, DEFAULT_PAPER
+from .sim.recording import (
+    DEFAULT_BRUSH,
+    DEFAULT_INK,
+    DEFAULT_PAPER,
+    PAPER_MM_RANGE,
+    PX_PER_MM_RANGE,
+)
 
 # what each quality value acts on, its plain name and what it does (the paper's symbol follows)
 QUALITY_GROUPS = (
@@ -226,24 +232,24 @@ class HAIRY_BRUSH_PG_settings(bpy.types.PropertyGroup):
     paper_width_mm: FloatProperty(
         name="Width (mm)",
         default=200.0,
-        min=1.0,
-        max=5000.0,
+        min=PAPER_MM_RANGE[0],
+        max=PAPER_MM_RANGE[1],
         update=_paper_size_changed,
         description="Paper width in millimetres; the paper plane follows (200 mm = 0.2 m)",
     )
     paper_height_mm: FloatProperty(
         name="Height (mm)",
         default=200.0,
-        min=1.0,
-        max=5000.0,
+        min=PAPER_MM_RANGE[0],
+        max=PAPER_MM_RANGE[1],
         update=_paper_size_changed,
         description="Paper height in millimetres; the paper plane follows (200 mm = 0.2 m)",
     )
     px_per_mm: FloatProperty(
         name="Resolution (px/mm)",
         default=5.0,
-        min=0.1,
-        max=200.0,
+        min=PX_PER_MM_RANGE[0],
+        max=PX_PER_MM_RANGE[1],
         description="Paper pixels per millimetre (image size = paper size x resolution)",
     )
     brush_preset: EnumProperty(

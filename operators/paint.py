@@ -18,7 +18,8 @@ from mathutils import Matrix
 from .. import bridge, playback
 from ..sim import placement
 from ..sim.engine import Simulation
-from ..sim.live import HOVER_MM, LiveBrush, LiveEvent
+from ..sim.live import LiveBrush, LiveEvent
+from ..sim.params import HOVER_MM
 from . import polls
 
 TIMER_S = 1.0 / 120.0  # how often the modal operator gets the UI loop's attention

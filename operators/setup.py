@@ -10,7 +10,7 @@ import numpy as np
 from mathutils import Vector
 
 from .. import bridge
-from ..sim.live import HOVER_MM
+from ..sim.params import HOVER_MM
 
 PAPER_MATERIAL = "HairyBrush Paper"
 HAIR_TAG = "hairy_brush_hair"

@@ -14,6 +14,7 @@ from .brush import HairyBrush
 from .inertia import InertiaPredictor
 from .mark import cut_marks, fill_marks
 from .paper import DRY_RATE, Paper
+from .params import HOVER_MM
 from .recording import Recording
 
 # samples whose marks are filled in together by ``run`` (the brush never reads the paper, so its
@@ -53,7 +54,7 @@ class Simulation:
         self.timings = None  # a dict to keep the seconds spent in every stage (the benchmark)
         first = recording.samples[0]
         self.brush.place(
-            np.r_[first[:2], max(first[2], self.geometry.hair_length_mm + 5), first[3:]]
+            np.r_[first[:2], max(first[2], self.geometry.hair_length_mm + HOVER_MM), first[3:]]
         )
 
     @property

@@ -12,7 +12,7 @@ import numpy as np
 
 from .jsonio import decode_text, parse_json, read_json
 from .outline import EM, TOP, parse_path
-from .params import number_within
+from .params import HOVER_MM, number_within
 from .strokes import stroke, travel
 
 MAX_CHAR_BYTES = 4 * 2**20  # a character file, or a line of graphics.txt
@@ -174,7 +174,7 @@ def simple_samples(
     rate_hz: float = 120.0,
 ) -> np.ndarray:
     """A plain trajectory: each median written at constant press, the brush lifted between."""
-    hover = hair_length_mm + 4.0
+    hover = hair_length_mm + HOVER_MM
     parts, prev = [], None
     for med in char["medians"]:
         pts = to_paper(med, size_mm)

@@ -20,7 +20,7 @@ import numpy as np
 from .engine import Simulation
 from .hanzi import check_char
 from .outline import EM, TOP, median_bands, median_radii, rasterise
-from .params import MAX_PAPER_SIDE_PX, ParameterError, number_within, short_repr
+from .params import HOVER_MM, MAX_PAPER_SIDE_PX, ParameterError, number_within, short_repr
 from .recording import PAPER_MM_RANGE, PX_PER_MM_RANGE, Dip, Recording, quantise
 from .strokes import stroke
 
@@ -28,7 +28,6 @@ CAL_PPM = 5.0  # px/mm of the calibration strokes
 CAL_LENGTH_MM = 45.0
 ENTRY_SAMPLES = 8
 EXIT_SAMPLES = 8
-HOVER_MM = 4.0
 MAX_PASSES = 50
 MIN_SHEET_PX = 8
 

@@ -28,9 +28,9 @@ from dataclasses import dataclass
 import numpy as np
 
 from .engine import BATCH_STEPS, Simulation
+from .params import HOVER_MM
 from .recording import Dip, quantise
 
-HOVER_MM = 5.0  # brush base above the hair length while the button is up
 WHEEL_STEP_MM = 0.5
 MAX_TILT_DEG = 60.0
 ANGLE_LIMIT = 80.0

@@ -78,6 +78,7 @@ QP2 = ("ren", "eta", "ab", "pw", "dry")  # texture of the strokes
 BRUSH_QUALITY = ("e", "tre", "nu", "re", "ie", "ren", "eta")
 PAPER_QUALITY = ("sm", "ab", "pw", "dry")
 
+HOVER_MM = 5.0  # how high the brush base hovers above touching height between strokes
 MAX_PAPER_SIDE_PX = 8192
 MAX_PAPER_PIXELS = 8192 * 8192
 PAPER_CAPACITY_RANGE = (1e-3, 1e6)  # a preset's wetness capacity

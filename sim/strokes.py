@@ -6,6 +6,8 @@ from __future__ import annotations
 
 import numpy as np
 
+from .params import HOVER_MM
+
 
 def stroke(
     points,
@@ -13,7 +15,7 @@ def stroke(
     speed_mm_s: float = 60.0,
     press_mm=8.0,
     hair_length_mm: float = 30.0,
-    hover_mm: float = 4.0,
+    hover_mm: float = HOVER_MM,
     tilt=(0.0, 0.0, 0.0),
     lift_fraction: float = 0.25,
     entry_samples: int = 10,

@@ -136,7 +136,7 @@ def _line_samples(known, n=2):
     """Short pressed strokes on a small sheet: cheap training samples for the fit."""
     out = []
     for k in range(n):
-        s = stroke([[8, 10 + 8 * k], [36, 14 + 8 * k]], press_mm=9.0, speed_mm_s=70)
+        s = stroke([[8, 10 + 8 * k], [36, 14 + 8 * k]], press_mm=9.0, speed_mm_s=70, hover_mm=4.0)
         rec = Recording(
             s,
             width_mm=44,

@@ -5,7 +5,8 @@ import numpy as np
 import pytest
 
 from sim.engine import Simulation
-from sim.live import HOVER_MM, LiveBrush, LiveEvent
+from sim.live import LiveBrush, LiveEvent
+from sim.params import HOVER_MM
 from sim.recording import Recording
 
 
