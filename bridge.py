@@ -22,7 +22,6 @@ from .sim.params import (
     QualityParams,
     geometry_from_preset,
     load_preset,
-    paper_from_preset,
 )
 from .sim.recording import Dip, Recording, RecordingError, from_dict
 from .sim.timeline import DEFAULT_BUDGET_BYTES as SNAPSHOT_BUDGET_BYTES
@@ -153,24 +152,6 @@ def matrix_from_sample(st, paper_mw, sample) -> np.ndarray:
 
 
 # ------------------------------------------------------------------------------ recordings
-_PAPER_OVERRIDES: list[bool] = []
-
-
-def paper_overrides_supported() -> bool:
-    """Whether the engine's recordings carry a paper colour and capacity of their own (the
-    'paper' section's 'color' and 'capacity'); asked once."""
-    if not _PAPER_OVERRIDES:
-        d = Recording(np.array([[0.0, 0.0, 100.0, 0.0, 0.0, 0.0]])).to_dict()
-        d["paper"].update(color=[0.5, 0.25, 0.125], capacity=0.125)
-        try:
-            spec = from_dict(d).resolve()[2]
-            ok = tuple(spec.color) == (0.5, 0.25, 0.125) and spec.capacity == 0.125
-        except (RecordingError, ParameterError):
-            ok = False
-        _PAPER_OVERRIDES.append(ok)
-    return _PAPER_OVERRIDES[0]
-
-
 def scene_overrides(st) -> dict:
     """The scene's settings as recording fields: they decide how a recording is rendered."""
     check_paper_size(st)
@@ -180,9 +161,8 @@ def scene_overrides(st) -> dict:
         "px_per_mm": float(st.px_per_mm),
         "preset": st.paper_preset,
     }
-    if paper_overrides_supported():
-        paper["color"] = [float(c) for c in st.paper_color]
-        paper["capacity"] = float(st.paper_capacity)
+    paper["color"] = [float(c) for c in st.paper_color]
+    paper["capacity"] = float(st.paper_capacity)
     return {
         "paper": paper,
         "brush": {"preset": st.brush_preset},
@@ -375,9 +355,7 @@ def show_blank(st):
 
 def blank_color(st) -> tuple:
     """The blank paper's colour as the engine will simulate it."""
-    if paper_overrides_supported():
-        return tuple(float(c) for c in st.paper_color)
-    return paper_from_preset(load_preset("paper", st.paper_preset)).color
+    return tuple(float(c) for c in st.paper_color)
 
 
 def write_image(img, rgb_bottom_up: np.ndarray):

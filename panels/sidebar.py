@@ -40,11 +40,8 @@ class HAIRY_BRUSH_PT_paper(_Panel, bpy.types.Panel):
         w, h = bridge.paper_pixels(st)
         layout.label(text=f"Image {w} x {h} px", icon="IMAGE_DATA")
         col = layout.column(align=True)
-        col.enabled = bridge.paper_overrides_supported()
         col.prop(st, "paper_color")
         col.prop(st, "paper_capacity")
-        if not col.enabled:
-            layout.label(text="Colour and capacity: the preset's", icon="INFO")
         layout.operator("hairy_brush.setup", icon="ADD")
         col = layout.column(align=True)
         col.prop(st, "paper_object")

@@ -19,6 +19,7 @@ from .jsonio import decode_text, parse_json, read_json
 from .params import (
     MAX_PAPER_PIXELS,
     MAX_PAPER_SIDE_PX,
+    PAPER_CAPACITY_RANGE,
     BrushGeometry,
     InkSpec,
     ParameterError,
@@ -92,6 +93,9 @@ class Recording:
     quality: dict = field(default_factory=dict)
     dips: list = field(default_factory=list)
     extra: dict = field(default_factory=dict)  # fields we keep but do not interpret
+    # the paper preset's colour (RGB, 0..1) and capacity (Sec. 6, Eq. 25), overridden; {} keeps
+    # the preset's
+    paper_overrides: dict = field(default_factory=dict)
 
     # ---------------------------------------------------------------- derived settings
     @property
@@ -112,7 +116,8 @@ class Recording:
             values.update(self.quality)
             q = QualityParams().with_values(values)
             geom = _geometry_override(geometry_from_preset(bp), self.brush.get("geometry"))
-            return q, geom, paper_from_preset(pp), ink_from_preset(ip)
+            paper = replace(paper_from_preset(pp), **self.paper_overrides)
+            return q, geom, paper, ink_from_preset(ip)
         except ParameterError as exc:
             raise RecordingError(str(exc)) from None
 
@@ -131,6 +136,7 @@ class Recording:
                 "height_mm": self.height_mm,
                 "px_per_mm": self.px_per_mm,
                 "preset": self.paper_preset,
+                **{k: list(v) if k == "color" else v for k, v in self.paper_overrides.items()},
             },
             "brush": dict(self.brush),
             "ink": dict(self.ink),
@@ -219,6 +225,7 @@ def from_dict(d) -> Recording:
     paper_preset = paper.get("preset", DEFAULT_PAPER)
     if not isinstance(paper_preset, str):
         raise RecordingError("'paper.preset' must be a preset name")
+    paper_overrides = _paper_overrides(paper)
     brush = _obj(d, "brush", "brush", required=False) or {"preset": DEFAULT_BRUSH}
     ink = _obj(d, "ink", "ink", required=False) or {"preset": DEFAULT_INK}
     for name, sec in (("brush", brush), ("ink", ink)):
@@ -307,9 +314,23 @@ def from_dict(d) -> Recording:
         quality,
         dips,
         {k: v for k, v in d.items() if k not in known_keys},
+        paper_overrides,
     )
     rec.resolve()  # presets exist and values are in range
     return rec
+
+
+def _paper_overrides(paper: dict) -> dict:
+    """The 'paper' section's own colour and capacity, checked."""
+    out = {}
+    if "color" in paper:
+        col = paper["color"]
+        if not isinstance(col, list) or len(col) != 3:
+            raise RecordingError("'paper.color' must be [r, g, b]")
+        out["color"] = tuple(_num(c, f"'paper.color[{k}]'", 0.0, 1.0) for k, c in enumerate(col))
+    if "capacity" in paper:
+        out["capacity"] = _num(paper["capacity"], "'paper.capacity'", *PAPER_CAPACITY_RANGE)
+    return out
 
 
 def loads(text) -> Recording:

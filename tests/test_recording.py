@@ -150,3 +150,29 @@ def test_cli_render_and_clear_error(tmp_path):
     )
     assert r.returncode == 2
     assert "quality.ab" in r.stderr and "Traceback" not in r.stderr
+
+
+def test_the_papers_colour_and_capacity_travel_with_the_recording():
+    import numpy as np
+
+    from sim.engine import Simulation
+    from sim.recording import Recording, RecordingError, from_dict
+
+    samples = np.array([[20.0, 20.0, 40.0, 0, 0, 0], [20.0, 20.0, 24.0, 0, 0, 0]])
+    rec = Recording(samples, width_mm=40, height_mm=40, px_per_mm=2.0)
+    d = rec.to_dict()
+    d["paper"].update(color=[0.9, 0.8, 0.6], capacity=0.25)
+    back = from_dict(d)
+    assert back.to_dict()["paper"]["color"] == [0.9, 0.8, 0.6]
+    spec = back.resolve()[2]
+    assert spec.color == (0.9, 0.8, 0.6) and spec.capacity == 0.25
+    blank = Simulation(back).image()
+    assert np.allclose(blank[0, 0], (0.9, 0.8, 0.6))
+    for bad, msg in (([1, 2], "must be"), ([0.5, 0.5, 2.0], "color"), ("x", "must be")):
+        d["paper"]["color"] = bad
+        with pytest.raises(RecordingError, match=msg):
+            from_dict(d)
+    d["paper"]["color"] = [1, 1, 1]
+    d["paper"]["capacity"] = -1
+    with pytest.raises(RecordingError, match="capacity"):
+        from_dict(d)

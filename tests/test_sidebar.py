@@ -288,17 +288,11 @@ def test_paper_colour_and_capacity_follow_the_preset_and_reach_the_engine(hb):
     assert st.paper_capacity == pytest.approx(raw.capacity)
     st.paper_preset = "smooth"
     assert st.paper_capacity == pytest.approx(1000.0)
-    paper = ext().bridge.scene_overrides(st)["paper"]
-    if ext().bridge.paper_overrides_supported():
-        st.paper_capacity = 0.3
-        st.paper_color = (0.9, 0.8, 0.7)
-        spec = ext().bridge.settings_recording(bpy.context.scene).resolve()[2]
-        assert spec.capacity == pytest.approx(0.3)
-        assert spec.color == pytest.approx((0.9, 0.8, 0.7), abs=1e-6)
-    else:  # the engine's recording has no field for them yet: the preset's are used
-        assert "color" not in paper and "capacity" not in paper
-        enabled = [e for e in drawn(bpy.types.HAIRY_BRUSH_PT_paper) if e[0] == "label"]
-        assert any("preset's" in e[1] for e in enabled)
+    st.paper_capacity = 0.3
+    st.paper_color = (0.9, 0.8, 0.7)
+    spec = ext().bridge.settings_recording(bpy.context.scene).resolve()[2]
+    assert spec.capacity == pytest.approx(0.3)
+    assert spec.color == pytest.approx((0.9, 0.8, 0.7), abs=1e-6)
 
 
 def test_the_recording_panel_reads_no_json(hb):
