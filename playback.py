@@ -8,6 +8,7 @@ from __future__ import annotations
 
 import hashlib
 import json
+from pathlib import Path
 
 import bpy
 import numpy as np
@@ -15,7 +16,7 @@ import numpy as np
 from . import bridge
 from .sim import placement
 from .sim.engine import Simulation
-from .sim.timeline import Timeline
+from .sim.timeline import Timeline, cache_key_of, load_checkpoints
 
 MAX_SNAPSHOT_EVERY = 64  # samples
 
@@ -61,6 +62,25 @@ def cache_key(scene) -> str:
 _FAILED: dict[str, tuple[str, str]] = {}  # scene -> (cache key, message) of a failed parse
 
 
+CACHE_EVERY = 256  # samples between the farm cache's checkpoints (see operators/bake_cache)
+
+
+def cache_folder(scene):
+    """Where the farm cache of ``scene`` lives, next to the saved .blend (None: not saved)."""
+    if not bpy.data.filepath:
+        return None
+    blend = Path(bpy.data.filepath)
+    safe = "".join(c if c.isalnum() or c in "-_." else "_" for c in scene.name)
+    return blend.parent / f"hairy_brush_cache_{blend.stem}" / safe
+
+
+def _load_cache(pb: Playback, scene):
+    """A fresh playback starts from the farm cache's checkpoints when they are current."""
+    folder = cache_folder(scene)
+    if folder is not None and cache_key_of(folder) == pb.key:
+        load_checkpoints(pb.timeline, folder)
+
+
 def playback_for(scene) -> Playback:
     """The scene's Playback, rebuilt only when the recording or a setting changed; a recording
     that failed to load fails again at once until it or a setting changes."""
@@ -77,6 +97,7 @@ def playback_for(scene) -> Playback:
             raise
         per = bridge.timeline(rec, scene)[1]  # frames per sample
         pb = Playback(rec, key, samples_per_frame=1.0 / per)
+        _load_cache(pb, scene)
         _PLAYBACKS[scene.name] = pb
     return pb
 

@@ -8,6 +8,7 @@ import bpy
 from .add_settings_preset import HAIRY_BRUSH_OT_add_settings_preset
 from .apply_preset import HAIRY_BRUSH_OT_apply_preset
 from .apply_to_mesh import HAIRY_BRUSH_OT_apply_to_mesh
+from .bake_cache import HAIRY_BRUSH_OT_bake_cache
 from .bake_samples import HAIRY_BRUSH_OT_bake_samples
 from .bake_sequence import HAIRY_BRUSH_OT_bake_sequence
 from .build_primitives import HAIRY_BRUSH_OT_build_primitives
@@ -28,6 +29,7 @@ CLASSES = (
     HAIRY_BRUSH_OT_dip,
     HAIRY_BRUSH_OT_build_primitives,
     HAIRY_BRUSH_OT_bake_sequence,
+    HAIRY_BRUSH_OT_bake_cache,
     HAIRY_BRUSH_OT_import_recording,
     HAIRY_BRUSH_OT_export_recording,
     HAIRY_BRUSH_OT_apply_to_mesh,

@@ -126,6 +126,7 @@ class HAIRY_BRUSH_PT_animation(_Panel, bpy.types.Panel):
         col = layout.column(align=True)
         col.prop(st, "sequence_dir")
         col.operator("hairy_brush.bake_sequence", icon="RENDER_ANIMATION")
+        col.operator("hairy_brush.bake_cache", icon="DISK_DRIVE")
         layout.operator("hairy_brush.apply_to_mesh", icon="MATERIAL")
 
 

@@ -176,3 +176,34 @@ def test_snapshots_stop_at_the_budget_and_seeks_stay_exact():
     sim = tl.seek(n // 2 + 3)
     want = Simulation(rec).run(n // 2 + 3)
     np.testing.assert_array_equal(sim.paper.ink, want.paper.ink)
+
+
+def test_checkpoints_on_disk_let_a_fresh_process_seek_anywhere_exactly(tmp_path):
+    from sim.timeline import cache_key_of, load_checkpoints, save_checkpoints
+
+    rec = long_recording()
+    n = len(rec.samples)
+    made = Timeline(Simulation(rec), every=32)
+    made.seek(n)
+    save_checkpoints(made, tmp_path / "cache", key="abc")
+    assert cache_key_of(tmp_path / "cache") == "abc"
+    assert cache_key_of(tmp_path / "nothing") is None
+    files = sorted((tmp_path / "cache").glob("checkpoint_*.npz"))
+    assert len(files) == len(made.snaps) > 3
+    for target in (n - 5, 40, n // 2 + 7, 3):
+        fresh = Timeline(Simulation(rec), every=32)  # as a render farm's worker starts
+        load_checkpoints(fresh, tmp_path / "cache")
+        sim = fresh.seek(target)
+        want = Simulation(rec).run(target)
+        for a in ("ink", "wet", "last"):
+            np.testing.assert_array_equal(getattr(sim.paper, a), getattr(want.paper, a))
+        assert sim.rng.bit_generator.state == want.rng.bit_generator.state
+    # a fresh worker stepped at most one interval of samples from the nearest checkpoint
+    fresh = Timeline(Simulation(rec), every=32)
+    load_checkpoints(fresh, tmp_path / "cache")
+    steps = []
+    fresh.sim.timings = {}
+    real_run = fresh.sim.run
+    fresh.sim.run = lambda until=None, progress=None: steps.append(until) or real_run(until)
+    fresh.seek(n - 5)
+    assert len(steps) <= 2
