@@ -17,6 +17,7 @@ from .export_recording import HAIRY_BRUSH_OT_export_recording
 from .fit_parameters import HAIRY_BRUSH_OT_fit_parameters
 from .import_recording import HAIRY_BRUSH_OT_import_recording
 from .paint import HAIRY_BRUSH_OT_paint
+from .relief import HAIRY_BRUSH_OT_relief
 from .setup import HAIRY_BRUSH_OT_setup
 from .simulate import HAIRY_BRUSH_OT_simulate
 from .write_character import HAIRY_BRUSH_OT_write_character
@@ -33,6 +34,7 @@ CLASSES = (
     HAIRY_BRUSH_OT_import_recording,
     HAIRY_BRUSH_OT_export_recording,
     HAIRY_BRUSH_OT_apply_to_mesh,
+    HAIRY_BRUSH_OT_relief,
     HAIRY_BRUSH_OT_write_character,
     HAIRY_BRUSH_OT_fit_parameters,
     HAIRY_BRUSH_OT_apply_preset,

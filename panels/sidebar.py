@@ -128,6 +128,11 @@ class HAIRY_BRUSH_PT_animation(_Panel, bpy.types.Panel):
         col.operator("hairy_brush.bake_sequence", icon="RENDER_ANIMATION")
         col.operator("hairy_brush.bake_cache", icon="DISK_DRIVE")
         layout.operator("hairy_brush.apply_to_mesh", icon="MATERIAL")
+        row = layout.row(align=True)
+        op = row.operator("hairy_brush.relief", text="Carve", icon="MOD_DISPLACE")
+        op.mode = "CARVE"
+        op = row.operator("hairy_brush.relief", text="Emboss")
+        op.mode = "EMBOSS"
 
 
 class HAIRY_BRUSH_PT_recording(_Panel, bpy.types.Panel):

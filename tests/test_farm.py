@@ -97,3 +97,58 @@ def test_frames_rendered_in_shuffled_order_by_separate_processes_equal_sequentia
     assert all(p.wait(timeout=300) == 0 for p in procs)
     for f in frames:
         np.testing.assert_array_equal(np.load(out / f"frame_{f}.npy"), sequential[f])
+
+
+# ----------------------------------------------------------------------------- relief (Sec. 9)
+def _grid_over_paper(n=120):
+    bpy.ops.mesh.primitive_grid_add(x_subdivisions=n, y_subdivisions=n, size=0.2)
+    return bpy.context.active_object  # UVs 0..1 over the 200 mm paper, as the paper image
+
+
+@pytest.mark.parametrize("mode,sign", [("CARVE", -1.0), ("EMBOSS", 1.0)])
+def test_relief_moves_the_surface_under_the_ink_only_by_the_depth(hb, mode, sign):
+    st = setup_scene(bpy, ppm=2.0)
+    keyframe_stroke(bpy, st, press=8.0)
+    bpy.ops.hairy_brush.bake_samples()
+    bpy.ops.hairy_brush.simulate()
+    grid = _grid_over_paper()
+    for ob in bpy.context.scene.objects:
+        ob.select_set(ob == grid)
+    assert bpy.ops.hairy_brush.relief(mode=mode, depth_mm=2.0) == {"FINISHED"}
+    dg = bpy.context.evaluated_depsgraph_get()
+    me = grid.evaluated_get(dg).to_mesh()
+    z = np.array([v.co.z for v in me.vertices])
+    xy = np.array([v.co[:2] for v in me.vertices])
+    grid.evaluated_get(dg).to_mesh_clear()
+    # what the modifier reads: the image's (linear) value against the bare paper's
+    raw = np.empty(len(st.paper_image.pixels), np.float32)
+    st.paper_image.pixels.foreach_get(raw)
+    lum = raw.reshape(400, 400, 4)[..., :3].mean(axis=2)
+    depth = 1.0 - lum / lum[0, 0]  # 0 on bare paper, 1 under full ink
+    px = np.clip(((xy + 0.1) * 1000 * 2.0).astype(int), 0, 399)
+    win = np.stack(
+        [
+            depth[np.clip(px[:, 1] + dy, 0, 399), np.clip(px[:, 0] + dx, 0, 399)]
+            for dy in (-1, 0, 1)
+            for dx in (-1, 0, 1)
+        ]
+    )
+    flat = win.max(axis=0) - win.min(axis=0) < 0.01  # the neighbourhood is even
+    inked, bare = flat & (win.min(axis=0) > 0.5), win.max(axis=0) < 1e-4
+    assert inked.sum() > 20 and bare.sum() > 1000
+    np.testing.assert_allclose(z[inked], sign * 0.002 * win.mean(axis=0)[inked], atol=1e-4)
+    np.testing.assert_allclose(z[bare], 0.0, atol=1e-6)
+    assert -sign * z.min() < 0.0021 and sign * z.max() < 0.0021  # never beyond the depth
+
+
+def test_relief_needs_a_uv_map(hb):
+    st = setup_scene(bpy)
+    me = bpy.data.meshes.new("NoUV")
+    me.from_pydata([(0, 0, 0), (1, 0, 0), (0, 1, 0)], [], [(0, 1, 2)])
+    o = bpy.data.objects.new("NoUV", me)
+    bpy.context.scene.collection.objects.link(o)
+    for ob in bpy.context.scene.objects:
+        ob.select_set(ob == o)
+    assert st.paper_image is not None
+    with pytest.raises(RuntimeError, match="has a UV map"):
+        bpy.ops.hairy_brush.relief()
