@@ -6,6 +6,7 @@ from __future__ import annotations
 import bpy
 
 from .. import bridge
+from . import polls
 
 INK_NODE = "HairyBrush Ink"
 
@@ -48,11 +49,6 @@ def add_ink(mat, img, uv_name: str):
     return True
 
 
-def _selected_meshes(context, st) -> list:
-    objs = context.selected_objects or []
-    return [o for o in objs if o.type == "MESH" and o != st.paper_object]
-
-
 def _socket(sockets, identifier):
     return next(s for s in sockets if s.identifier == identifier)
 
@@ -67,14 +63,7 @@ class HAIRY_BRUSH_OT_apply_to_mesh(bpy.types.Operator):
 
     @classmethod
     def poll(cls, context):
-        st = bridge.settings(context.scene)
-        if st.paper_image is None:
-            cls.poll_message_set("No paper image yet: run Setup and Simulate first")
-            return False
-        if not _selected_meshes(context, st):
-            cls.poll_message_set("Select one or more meshes (other than the paper)")
-            return False
-        return True
+        return polls.paper_image_and_meshes(cls, context)
 
     def execute(self, context):
         st = bridge.settings(context.scene)
@@ -82,7 +71,7 @@ class HAIRY_BRUSH_OT_apply_to_mesh(bpy.types.Operator):
         if img is None:
             self.report({"ERROR"}, "No paper image yet: run Setup and Simulate first")
             return {"CANCELLED"}
-        meshes = _selected_meshes(context, st)
+        meshes = polls.selected_meshes(context)
         if not meshes:
             self.report({"ERROR"}, "Select one or more meshes (other than the paper)")
             return {"CANCELLED"}

@@ -24,6 +24,23 @@ def recording(cls, context) -> bool:
     return True
 
 
+def selected_meshes(context) -> list:
+    """The selected meshes other than the paper plane."""
+    paper = bridge.settings(context.scene).paper_object
+    return [o for o in context.selected_objects or [] if o.type == "MESH" and o != paper]
+
+
+def paper_image_and_meshes(cls, context) -> bool:
+    """A paper image to read, and meshes to put it on."""
+    if bridge.settings(context.scene).paper_image is None:
+        cls.poll_message_set("No paper image yet: run Setup and Simulate first")
+        return False
+    if not selected_meshes(context):
+        cls.poll_message_set("Select one or more meshes (other than the paper)")
+        return False
+    return True
+
+
 def object_mode(cls, context) -> bool:
     if context.mode != "OBJECT":
         cls.poll_message_set("Switch to Object Mode first")

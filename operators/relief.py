@@ -14,7 +14,7 @@ import bpy
 
 from .. import bridge
 from ..sim import display
-from .apply_to_mesh import _selected_meshes
+from . import polls
 
 RELIEF = "HairyBrush Relief"
 DETAIL = "HairyBrush Relief Detail"
@@ -93,18 +93,11 @@ class HAIRY_BRUSH_OT_relief(bpy.types.Operator):
 
     @classmethod
     def poll(cls, context):
-        st = bridge.settings(context.scene)
-        if st.paper_image is None:
-            cls.poll_message_set("No paper image yet: run Setup and Simulate first")
-            return False
-        if not _selected_meshes(context, st):
-            cls.poll_message_set("Select one or more meshes (other than the paper)")
-            return False
-        return True
+        return polls.paper_image_and_meshes(cls, context)
 
     def execute(self, context):
         st = bridge.settings(context.scene)
-        meshes = _selected_meshes(context, st)
+        meshes = polls.selected_meshes(context)
         with_uv = [o for o in meshes if o.data.uv_layers]
         if not with_uv:
             self.report({"ERROR"}, "None of the selected meshes has a UV map to read the ink")
