@@ -129,7 +129,11 @@ def on_undo_redo(_scene, _data=None):
             if st.recording is None:
                 bridge.show_blank(st)
             else:
-                playback.show(scene, int(img[bridge.SHOWN_TAG]))
+                target = int(img[bridge.SHOWN_TAG])
+                sim = playback.show(scene, target, should_stop=_deadline(exact_frames()))
+                if sim.index < target:  # a long way from a snapshot: the rest from a timer
+                    frame = scene.frame_current + scene.frame_subframe
+                    _catch_up_later(scene.name, frame, target)
         except Exception as exc:  # a handler must not raise into Blender
             print(f"Virtual Hairy Brush: undo: {exc}")
 
