@@ -36,6 +36,7 @@ SAMPLES_TAG = "hairy_brush_samples"  # on a recording text: its samples and dips
 DIPS_TAG = "hairy_brush_dips"
 PRIMITIVE_TAG = "hairy_brush_primitive"
 MM = placement.MM
+MAX_INT_PROPERTY = 2**31 - 1  # Blender's IntProperty holds 32 bits
 # memory a paper pixel costs: the engine's buffers (ink 12, wetness 4, last step 4), the kept
 # display pixels (16) and Blender's float image (16)
 BYTES_PER_PIXEL = 52
@@ -168,7 +169,7 @@ def scene_overrides(st) -> dict:
         "brush": {"preset": st.brush_preset},
         "ink": {"preset": st.ink_preset},
         "quality": st.quality.as_dict(),
-        "seed": int(st.seed),
+        "seed": scene_seed(st),
     }
 
 
@@ -220,6 +221,12 @@ def recording_text(rec: Recording) -> str:
     return head[:-1] + ("," if d else "") + '"samples":[\n' + rows + "\n]}"
 
 
+def scene_seed(st) -> int:
+    """The seed the scene simulates with: Seed, or an imported recording's larger one."""
+    text = st.seed_of_recording
+    return int(text) if text.isdigit() else int(st.seed)
+
+
 def copy_settings_from_recording(st, rec: Recording):
     """After an import: show the recording's own settings in the sidebar. Everything is checked
     against what the settings can hold first, so a refused recording changes nothing."""
@@ -227,7 +234,7 @@ def copy_settings_from_recording(st, rec: Recording):
         "paper_width_mm": rec.width_mm,
         "paper_height_mm": rec.height_mm,
         "px_per_mm": rec.px_per_mm,
-        "seed": rec.seed,
+        "seed": rec.seed % (MAX_INT_PROPERTY + 1),
         "sample_rate_hz": rec.sample_rate_hz,
         "brush_preset": rec.brush.get("preset", st.brush_preset),
         "paper_preset": rec.paper_preset,
@@ -245,6 +252,7 @@ def copy_settings_from_recording(st, rec: Recording):
     for name, value in quality.items():
         setattr(st.quality, name, value)
     st.paper_color, st.paper_capacity = _paper.color, _paper.capacity
+    st.seed_of_recording = str(rec.seed) if rec.seed > MAX_INT_PROPERTY else ""
 
 
 def _check_fits(group, name: str, value):

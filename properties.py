@@ -158,6 +158,10 @@ def _paper_changed(self, _context):
     apply_paper_preset(self)
 
 
+def _seed_changed(self, _context):
+    self.seed_of_recording = ""  # the artist's own seed replaces an imported large one
+
+
 def _ink_changed(self, _context):
     apply_ink_preset(self)
 
@@ -337,8 +341,16 @@ class HAIRY_BRUSH_PG_settings(bpy.types.PropertyGroup):
         name="Seed",
         default=0,
         min=0,
+        update=_seed_changed,
         description="Seed of the simulation's one random generator: the same seed, the same "
         "artwork",
+    )
+    seed_of_recording: StringProperty(
+        name="Seed of the Recording",
+        default="",
+        options={"HIDDEN"},
+        description="An imported recording's seed too large for Seed (up to 2**64 - 1), used "
+        "until Seed is changed",
     )
     sync_frames: BoolProperty(
         name="Follow Frames",

@@ -213,6 +213,6 @@ class HAIRY_BRUSH_OT_fit_parameters(JobOperator, bpy.types.Operator):
             iterations=self.iterations,
             max_grid=self.max_grid,
             workers=1,  # Blender's executable is not a plain Python to fork workers from
-            seed=int(st.seed),
+            seed=bridge.scene_seed(st),
         )
         return self.run_job(context, FitJob(st, make_samples, settings, self.preset_name))

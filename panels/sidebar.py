@@ -119,6 +119,8 @@ class HAIRY_BRUSH_PT_animation(_Panel, bpy.types.Panel):
         col = layout.column(align=True)
         col.prop(st, "sample_rate_hz")
         col.prop(st, "seed")
+        if st.seed_of_recording:
+            col.label(text=f"Recording's seed {st.seed_of_recording} (change Seed to replace)")
         col.operator("hairy_brush.bake_samples", icon="KEYINGSET")
         layout.operator("hairy_brush.simulate", icon="BRUSH_DATA")
         layout.prop(st, "sync_frames")

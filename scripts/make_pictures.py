@@ -101,10 +101,50 @@ def imitation(chars="永心法风", n=256, passes=7):
     write_png(OUT / "imitate.png", np.concatenate(cols, axis=1))
 
 
+def overlay(chars, n=512, passes=None, quality=None, out=None):
+    """Each character as the defaults write it (or with a quality file), the font's outline
+    laid over it in red (its boundary), one PNG per character and a contact sheet."""
+    from sim.fit import load_quality
+    from sim.hanzi import find_char
+    from sim.imitate import coverage_mask, font_mask, write_character
+    from sim.outline import iou
+
+    q = load_quality(quality) if quality else {}
+    tmpl = Recording(
+        np.zeros((1, 6)), brush={"preset": "wolf_stiff"}, paper_preset="smooth", quality=q
+    )
+    out = Path(out or ROOT / "out" / "overlay")
+    out.mkdir(parents=True, exist_ok=True)
+    tiles, response = [], None
+    kw = {} if passes is None else {"passes": passes}
+    for ch in chars:
+        c = find_char(ch)
+        _, response, sim = write_character(c, n, tmpl, response=response, **kw)
+        font, ink = font_mask(c, n), coverage_mask(sim)
+        edge = font & ~(
+            np.roll(font, 1, 0) & np.roll(font, -1, 0) & np.roll(font, 1, 1) & np.roll(font, -1, 1)
+        )
+        img = sim.image().copy()
+        img[edge] = (0.9, 0.1, 0.1)
+        write_png(out / f"{ord(ch):x}.png", img)
+        tiles.append(img[::2, ::2])
+        print(f"{ch}: IoU {iou(ink, font):.3f}", flush=True)
+    rows = [
+        np.concatenate(tiles[i : i + 4] + [np.ones_like(tiles[0])] * (4 - len(tiles[i : i + 4])), 1)
+        for i in range(0, len(tiles), 4)
+    ]
+    write_png(out / "sheet.png", np.concatenate(rows, 0))
+
+
 def main():
     OUT.mkdir(parents=True, exist_ok=True)
     if "--imitation" in sys.argv:
         imitation()
+        return
+    if "--overlay" in sys.argv:  # --overlay CHARS [quality.json]: the defaults with the outline
+        i = sys.argv.index("--overlay")
+        rest = sys.argv[i + 1 :]
+        overlay(rest[0], quality=rest[1] if len(rest) > 1 else None)
         return
     rows = effects()
     imgs = []

@@ -13,6 +13,7 @@ and it dips again before every stroke (or after every ``dip_every_mm`` of writin
 
 from __future__ import annotations
 
+import os
 from dataclasses import dataclass, replace
 
 import numpy as np
@@ -79,9 +80,60 @@ def _settings(template: Recording, **changes) -> Recording:
     return replace(template, **{**kw, **changes})
 
 
+_CACHE: dict = {}
+
+
+def _cache_key(template: Recording, *args) -> str:
+    """The calibration's settings (the resolved brush, paper, ink and quality, the rate, the
+    seed, the calibration's own arguments) and the engine's source: a changed model never
+    reads an old response."""
+    import hashlib
+    from pathlib import Path
+
+    key = repr((template.resolve(), template.sample_rate_hz, template.seed, args))
+    h = hashlib.sha256(key.encode())
+    for f in sorted(Path(__file__).parent.glob("*.py")):
+        h.update(f.read_bytes())
+    return h.hexdigest()[:32]
+
+
+def _cache_file(key: str):
+    from pathlib import Path
+
+    root = os.environ.get("XDG_CACHE_HOME") or os.path.join(os.path.expanduser("~"), ".cache")
+    return Path(root) / "hairy_brush" / f"response-{key}.json"
+
+
 def calibrate(
     template: Recording, speed_mm_s: float = 60.0, presses: int = 7, ppm: float = CAL_PPM
 ) -> Response:
+    """The brush's response (``_calibrate``), cached per settings in the process and on disk
+    (``~/.cache/hairy_brush``; the key includes the engine's source, so a changed model is
+    measured again). The simulation is deterministic, so a cached response is the same one."""
+    import json
+
+    key = _cache_key(template, speed_mm_s, presses, ppm)
+    if key in _CACHE:
+        return _CACHE[key]
+    path = _cache_file(key)
+    try:
+        d = json.loads(path.read_text())
+        resp = Response(*(np.array(d[k], dtype=float) for k in ("press", "width", "lag")), d["v"])
+    except (OSError, ValueError, KeyError, TypeError):
+        resp = _calibrate(template, speed_mm_s, presses, ppm)
+        d = {k: getattr(resp, f"{k}_mm").tolist() for k in ("press", "width", "lag")}
+        try:
+            path.parent.mkdir(parents=True, exist_ok=True)
+            tmp = path.with_suffix(f".{os.getpid()}.tmp")
+            tmp.write_text(json.dumps({**d, "v": resp.speed_mm_s}))
+            os.replace(tmp, path)
+        except OSError:
+            pass  # a read-only home: measure each time
+    _CACHE[key] = resp
+    return resp
+
+
+def _calibrate(template: Recording, speed_mm_s: float, presses: int, ppm: float) -> Response:
     """Measure the brush's response by simulation: one straight stroke per press depth, each
     after a fresh dip, on one sheet; the width is read across the ink band in the stroke's
     steady middle, the lag between the base and the centroid of the current marks."""
@@ -202,6 +254,46 @@ def _timed(dense, width, step_mm: float, slow_corners: float):
     return pts, np.interp(si, s, width)
 
 
+SHARP_TURN = 1.4  # rad over +-1.5 mm: a turn this sharp (a hook, a 折) is two movements
+
+
+def _pieces(pts, step_mm: float) -> list[tuple[int, int]]:
+    """The stroke's movements: split where the path turns back on itself (more than
+    ``SHARP_TURN`` within +-1.5 mm, as at the foot of a hook), where a calligrapher stops, turns
+    the tip in the air and flicks out, instead of dragging the pressed hair round (which sweeps
+    a round blot). Each piece keeps at least 3 samples."""
+    if len(pts) < 8:
+        return [(0, len(pts))]
+    d = np.gradient(pts, axis=0)
+    heading = np.unwrap(np.arctan2(d[:, 1], d[:, 0]))
+    win = max(int(round(1.5 / step_mm)), 1)
+    pad = np.pad(heading, win, mode="edge")
+    turn = np.abs(pad[2 * win :] - pad[: -2 * win])
+    cuts, i = [], 3
+    while i < len(pts) - 3:
+        if turn[i] > SHARP_TURN:
+            j = i
+            while j + 1 < len(pts) - 3 and turn[j + 1] > SHARP_TURN:
+                j += 1
+            c = i + int(np.argmax(turn[i : j + 1]))
+            if not cuts or c - cuts[-1] >= 3:
+                cuts.append(c)
+            i = j + 1
+        i += 1
+    edges = [0, *cuts, len(pts)]
+    return [(edges[k], edges[k + 1]) for k in range(len(edges) - 1)]
+
+
+def _air(tg, wd, tn, ph, a, b, tang, step_mm) -> None:
+    """Travel in the air from ``a`` to ``b`` (mm)."""
+    k = max(int(np.linalg.norm(b - a) / (2 * step_mm)), 4)
+    t = np.linspace(0.0, 1.0, k)[:, None]
+    tg.append(a * (1 - t) + b * t)
+    wd.append(np.zeros(k))
+    tn.append(np.tile(tang, (k, 1)))
+    ph.append(np.zeros(k, dtype=int))
+
+
 def plan(
     char: dict,
     size_mm: float,
@@ -230,23 +322,22 @@ def plan(
         tang = np.stack([_smooth(tang[:, 0], 5), _smooth(tang[:, 1], 5)], axis=1)
         tang /= np.maximum(np.linalg.norm(tang, axis=1, keepdims=True), 1e-9)
         if prev is not None:  # travel in the air to the next stroke
-            k = max(int(np.linalg.norm(pts[0] - prev) / (2 * step_mm)), 4)
-            t = np.linspace(0.0, 1.0, k)[:, None]
-            tg.append(prev * (1 - t) + pts[0] * t)
-            wd.append(np.zeros(k))
-            tn.append(np.tile(tang[0], (k, 1)))
-            ph.append(np.zeros(k, dtype=int))
+            _air(tg, wd, tn, ph, prev, pts[0], tang[0], step_mm)
         n = sum(len(a) for a in tg)
         stroke_len = step_mm * (len(pts) - 1)
         if since_dip + stroke_len > dip_every:
             dips.append(n)
             since_dip = 0.0
         since_dip += stroke_len
-        tg += [np.tile(pts[0], (ENTRY_SAMPLES, 1)), pts, np.tile(pts[-1], (EXIT_SAMPLES, 1))]
-        wd += [np.full(ENTRY_SAMPLES, width[0]), width, np.full(EXIT_SAMPLES, width[-1])]
-        tn += [np.tile(tang[0], (ENTRY_SAMPLES, 1)), tang, np.tile(tang[-1], (EXIT_SAMPLES, 1))]
-        ph += [np.full(ENTRY_SAMPLES, 1), np.full(len(pts), 2), np.full(EXIT_SAMPLES, 3)]
-        strokes.append((n, n + ENTRY_SAMPLES + len(pts) + EXIT_SAMPLES))
+        for j, (i0, i1) in enumerate(_pieces(pts, step_mm)):
+            if j:  # a sharp turn: lift, turn the tip in the air, come down into the hook
+                _air(tg, wd, tn, ph, pts[i0 - 1], pts[i0], tang[i0], step_mm)
+            p, w, t = pts[i0:i1], width[i0:i1], tang[i0:i1]
+            tg += [np.tile(p[0], (ENTRY_SAMPLES, 1)), p, np.tile(p[-1], (EXIT_SAMPLES, 1))]
+            wd += [np.full(ENTRY_SAMPLES, w[0]), w, np.full(EXIT_SAMPLES, w[-1])]
+            tn += [np.tile(t[0], (ENTRY_SAMPLES, 1)), t, np.tile(t[-1], (EXIT_SAMPLES, 1))]
+            ph += [np.full(ENTRY_SAMPLES, 1), np.full(len(p), 2), np.full(EXIT_SAMPLES, 3)]
+        strokes.append((n, sum(len(a) for a in tg)))
         prev = pts[-1]
     return Plan(
         np.concatenate(tg),
@@ -310,6 +401,63 @@ def _lead_along(path, lag):
         past = np.maximum(q - s[-1], 0.0)
         out += past[:, None] * end_dir[None, :]
     return out
+
+
+ENTRY_TOUCH = 0.15  # share of the press the tip lands with; the belly presses as it goes
+TURN_EASE = 0.8  # press taken off at a reversal (a hook), less at a milder turn
+
+
+def _entry_ramp(path, width) -> np.ndarray:
+    """The press as a share of the planned press along the start of a stroke: the tip lands
+    (``ENTRY_TOUCH``) while the brush already moves along the stroke, and the belly presses
+    over the first stroke width of the way (a smoothstep), as a calligrapher enters - not a
+    stationary press, which splays the hair into a round blob."""
+    seg = np.linalg.norm(np.diff(path, axis=0), axis=1)
+    s = np.concatenate([[0.0], np.cumsum(seg)])
+    ramp = float(np.clip(0.5 * np.max(width[: max(len(width) // 3, 1)]), 0.5, 0.25 * s[-1]))
+    t = np.clip(s / max(ramp, 1e-6), 0.0, 1.0)
+    entry = ENTRY_TOUCH + (1.0 - ENTRY_TOUCH) * t * t * (3.0 - 2.0 * t)
+    return entry * _turn_ease(path, s)
+
+
+def _turn_ease(path, s) -> np.ndarray:
+    """Less press where the stroke turns back on itself (a hook, the sharp turn of a 折): a
+    calligrapher eases the belly off and turns on the tip there; pressed through a sharp turn
+    the hair sweeps round and leaves a round blot. 1 on the straight, down to 1 - TURN_EASE at a
+    reversal, over +-1.5 mm."""
+    if len(path) < 3 or s[-1] <= 0:
+        return np.ones(len(path))
+    d = np.gradient(path, axis=0)
+    heading = np.unwrap(np.arctan2(d[:, 1], d[:, 0]))
+    win = max(int(round(1.5 / max(s[-1] / (len(s) - 1), 1e-9))), 1)
+    pad = np.pad(heading, win, mode="edge")
+    turn = np.abs(pad[2 * win :] - pad[: -2 * win])
+    return 1.0 - TURN_EASE * np.clip((turn - 0.9) / 1.4, 0.0, 1.0)
+
+
+def _enter_and_leave(samples, pl, body, hover, hair, step_mm) -> None:
+    """The brush comes down moving along the movement's first direction, the tip touching where
+    the body begins, and lifts off moving on along the last direction (a flick, so that hooks
+    and left-falling strokes end in a point, not a blot from a lift on the spot)."""
+    a = body[0] - 1
+    while a >= 0 and pl.phase[a] == 1:
+        a -= 1
+    entry = np.arange(a + 1, body[0])
+    t0 = pl.tangent[body[0]]
+    f = np.arange(1, len(entry) + 1) / max(len(entry), 1)
+    back = (len(entry) - np.arange(1, len(entry) + 1)) * 0.5 * step_mm
+    samples[entry, :2] = samples[body[0], :2] - back[:, None] * t0
+    z_touch = max(samples[body[0], 2], hair - 0.2)  # the tip reaches the paper at the start
+    samples[entry, 2] = hover + (z_touch - hover) * f
+    b = body[-1] + 1
+    while b < len(pl.phase) and pl.phase[b] == 3:
+        b += 1
+    lift = np.arange(body[-1] + 1, b)
+    lift = np.flatnonzero(pl.phase[a:b] == 3) + a
+    t1 = pl.tangent[body[-1]]
+    f = np.arange(1, len(lift) + 1) / max(len(lift), 1)
+    samples[lift, :2] = samples[body[-1], :2] + (f * len(lift) * 0.5 * step_mm)[:, None] * t1
+    samples[lift, 2] = samples[body[-1], 2] + (hover - samples[body[-1], 2]) * np.sqrt(f)
 
 
 @dataclass
@@ -427,7 +575,7 @@ def write_character(
     size_mm: float | None = None,
     response: Response | None = None,
     dip_every_mm: float | None = None,
-    passes: int = 4,
+    passes: int = 3,
     progress=None,
     px_per_mm: float | None = None,
 ) -> tuple[Recording, Response, Simulation]:
@@ -477,19 +625,18 @@ def write_character(
     masks = _stroke_masks(char, sim.paper.H, sim.paper.W) if passes > 1 else None
 
     def fill(a, b, press, side):
-        """Samples a..b of one stroke: come down, write, lift off."""
+        """Samples a..b of one stroke: for each of its movements, come down, write, lift off
+        (``_enter_and_leave``)."""
         body = np.flatnonzero(pl.phase[a:b] == 2) + a
-        samples[body, :2] = _lead_along(pl.target[body], response.lag_for(press))
-        samples[body, :2] += side[:, None] * normal[body]
-        samples[body, 2] = hair - press
-        entry = np.flatnonzero(pl.phase[a:b] == 1) + a
-        f = np.arange(1, len(entry) + 1) / max(len(entry), 1)
-        samples[entry, :2] = samples[body[0], :2]
-        samples[entry, 2] = hover + (samples[body[0], 2] - hover) * f
-        lift = np.flatnonzero(pl.phase[a:b] == 3) + a
-        f = np.arange(1, len(lift) + 1) / max(len(lift), 1)
-        samples[lift, :2] = samples[body[-1], :2]
-        samples[lift, 2] = samples[body[-1], 2] + (hover - samples[body[-1], 2]) * f
+        j0 = 0
+        for run in np.split(body, np.flatnonzero(np.diff(body) > 1) + 1):
+            j1 = j0 + len(run)
+            p = press[j0:j1] * _entry_ramp(pl.target[run], pl.width[run])
+            samples[run, :2] = _lead_along(pl.target[run], response.lag_for(p))
+            samples[run, :2] += side[j0:j1, None] * normal[run]
+            samples[run, 2] = hair - p
+            _enter_and_leave(samples, pl, run, hover, hair, step_mm)
+            j0 = j1
         samples[a:b] = quantise(samples[a:b])  # as the saved recording will hold them
         return body
 

@@ -727,9 +727,20 @@ def test_a_refused_import_changes_nothing_and_overrides_survive(hb, tmp_path):
     d["seed"] = 3_000_000_000
     bad = tmp_path / "bad.json"
     bad.write_text(json.dumps(d))
-    with pytest.raises(RuntimeError, match="Seed 3000000000 is outside"):
+    # a seed larger than Blender's Seed holds is kept, and simulated with
+    assert bpy.ops.hairy_brush.import_recording(filepath=str(bad)) == {"FINISHED"}
+    assert ext().bridge.recording_from_scene(bpy.context.scene).seed == 3_000_000_000
+    st.seed = 5  # the artist's own seed replaces it
+    assert ext().bridge.recording_from_scene(bpy.context.scene).seed == 5
+    # a recording that does not fit the settings changes nothing
+    st.recording = None
+    before = (st.paper_width_mm, st.px_per_mm, st.seed)
+    d["paper"]["width_mm"] = 120.0
+    d["brush"] = {"preset": "no_such_brush"}
+    bad.write_text(json.dumps(d))
+    with pytest.raises(RuntimeError, match="no_such_brush"):
         bpy.ops.hairy_brush.import_recording(filepath=str(bad))
-    assert (st.paper_width_mm, st.px_per_mm) == (200.0, 2.0) and st.recording is None
+    assert (st.paper_width_mm, st.px_per_mm, st.seed) == before and st.recording is None
     # a brush geometry override in the recording is kept by simulate and export
     d["seed"] = 7
     d["brush"] = {"preset": "mixed", "geometry": {"hair_length_mm": 24.0}}
