@@ -217,6 +217,7 @@ def cmd_fit(args) -> int:
         max_grid=args.max_grid,
         stages=args.stages,
         seed=args.seed,
+        scheduler=args.scheduler,
     )
     chars = _chars(args.chars, args.data)
     image_recs = [load(rec) for rec in args.image_recording or []]
@@ -352,6 +353,12 @@ def _parser() -> argparse.ArgumentParser:
         opt = "--" + name.replace("_", "-")
         f.add_argument(opt, type=_whole(*SETTING_RANGES[name]), default=default, help=help_)
     f.add_argument("--stages", type=_stages, default=("qp1", "qp2"))
+    f.add_argument(
+        "--scheduler",
+        default=None,
+        help="evaluate on a Dask cluster: 'local' (a LocalCluster here) or a scheduler's "
+        "address (tcp://host:8786); needs pip install 'dask[distributed]'",
+    )
     f.add_argument("-q", "--quiet", action="store_true")
     common(f)
     f.set_defaults(func=cmd_fit)

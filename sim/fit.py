@@ -76,6 +76,9 @@ class FitSettings:
     seed: int = 0  # draws the grid subset
     stages: tuple = ("qp1", "qp2")
     only: tuple = ()  # fit just these parameters (the others keep the seed's values)
+    # evaluate on a Dask cluster: "local" (a LocalCluster here) or a scheduler's address; the
+    # result is the same as without, for the same workers (or starts)
+    scheduler: str | None = None
 
     def __post_init__(self):
         for name, (lo, hi) in SETTING_RANGES.items():
@@ -259,6 +262,15 @@ class _Pool:
             self.ex.shutdown()
 
 
+def _pool(samples, workers: int, scheduler: str | None):
+    """The local process pool, or a Dask cluster's (sim.cluster) when a scheduler is named."""
+    if scheduler is None:
+        return _Pool(samples, workers)
+    from .cluster import DaskPool
+
+    return DaskPool(samples, scheduler, workers, _init_worker)
+
+
 def _grid(lo, hi, d: int, limit: int, rng: np.random.Generator):
     """Grid points of the box [lo, hi] with d divisions per edge (corners of the subcubes); when
     there are more than ``limit``, a subset drawn by the fit's seeded generator."""
@@ -291,7 +303,7 @@ def fit(
     if seed_quality:
         checked = QualityParams().with_values(seed_quality).to_dict()
         seed.update({k: checked[k] for k in seed_quality})
-    pool = _Pool(samples, workers)
+    pool = _pool(samples, workers, settings.scheduler)
     rng = np.random.Generator(np.random.PCG64(settings.seed))
     evaluations = 0
     history = []
