@@ -445,7 +445,7 @@ def _enter_and_leave(samples, pl, body, hover, hair, step_mm) -> None:
     entry = np.arange(a + 1, body[0])
     t0 = pl.tangent[body[0]]
     f = np.arange(1, len(entry) + 1) / max(len(entry), 1)
-    back = (len(entry) - np.arange(1, len(entry) + 1)) * 0.5 * step_mm
+    back = (len(entry) + 1 - np.arange(1, len(entry) + 1)) * 0.5 * step_mm
     samples[entry, :2] = samples[body[0], :2] - back[:, None] * t0
     z_touch = max(samples[body[0], 2], hair - 0.2)  # the tip reaches the paper at the start
     samples[entry, 2] = hover + (z_touch - hover) * f

@@ -13,7 +13,14 @@ import pytest
 from sim.engine import Simulation
 from sim.fit import FitSettings, TrainingSample, fit, load_quality, render, target_function
 from sim.hanzi import DATA_DIR, find_char
-from sim.imitate import calibrate, coverage_mask, plan, write_character
+from sim.imitate import (
+    ENTRY_TOUCH,
+    _entry_ramp,
+    calibrate,
+    coverage_mask,
+    plan,
+    write_character,
+)
 from sim.outline import baseline_masks, distance_to_outline, fill, iou, parse_path, rasterise
 from sim.params import QP2, ParameterError
 from sim.recording import Recording, load
@@ -102,7 +109,21 @@ def test_press_follows_the_outline_width(response):
     pl = plan(ch, rec.width_mm, response.speed_mm_s / rec.sample_rate_hz)
     body = pl.phase == 2
     press = sim.geometry.hair_length_mm - rec.samples[body, 2]
-    assert np.corrcoef(pl.width[body], press)[0, 1] > 0.9  # presses where thick, eases where thin
+    idx = np.flatnonzero(body)
+    runs = np.split(idx, np.flatnonzero(np.diff(idx) > 1) + 1)
+    ease = np.concatenate([_entry_ramp(pl.target[r], pl.width[r]) for r in runs])
+    want = response.press_for(pl.width[body]) * ease
+    assert np.corrcoef(want, press)[0, 1] > 0.95  # presses where thick, eases where thin
+    # the tip lands moving along the stroke and the belly presses as it goes: every movement
+    # starts at a fraction of its planned press, and the sample before it is already moving
+    firsts = np.array([r[0] for r in runs])
+    planned = response.press_for(pl.width[firsts])
+    got = sim.geometry.hair_length_mm - rec.samples[firsts, 2]
+    assert np.all(got <= ENTRY_TOUCH * planned + 0.05)
+    step = np.linalg.norm(rec.samples[firsts, :2] - rec.samples[firsts - 1, :2], axis=1)
+    assert np.all(step > 0.1)
+    # the hook of 永's vertical stroke is two movements (a sharp turn: lift, turn, flick)
+    assert len(runs) > len(pl.strokes)
     # the brush is in the air between strokes and dips before every stroke by default
     assert np.all(rec.samples[pl.phase == 0, 2] > sim.geometry.hair_length_mm)
     assert len(rec.dips) == len(ch["medians"])
