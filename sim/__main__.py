@@ -112,6 +112,30 @@ def cmd_write(args) -> int:
     return 0
 
 
+def cmd_write_set(args) -> int:
+    """Many characters to a folder of PNGs and recordings, on this machine's processes or a
+    Dask cluster (the executor of ``fit --scheduler``)."""
+    import json
+
+    from .cluster import map_tasks, write_task
+    from .png import write_png
+
+    if not os.path.isdir(args.out_dir):
+        raise ParameterError(f"--out-dir {args.out_dir}: no such folder")
+    chars = _chars(args.chars, args.data)
+    template = _template(args)
+    tasks = [(c, f"{k:03d}", args.size, template, args.passes) for k, c in enumerate(chars)]
+    t0 = time.perf_counter()
+    workers = args.workers or os.cpu_count() or 1
+    done = None if args.quiet else (lambda n, total: _progress(n / total))
+    for name, rgb, rec in map_tasks(write_task, tasks, workers, args.scheduler, done):
+        write_png(os.path.join(args.out_dir, name + ".png"), rgb)
+        with open(os.path.join(args.out_dir, name + ".json"), "w", encoding="utf-8") as f:
+            json.dump(rec, f, separators=(",", ":"))
+    print(f"{args.out_dir}: {len(tasks)} characters, {time.perf_counter() - t0:.1f} s")
+    return 0
+
+
 def cmd_iou(args) -> int:
     """IoU against the outline and the five texture statistics (sim.texture) per character,
     then their means and one JSON line."""
@@ -331,6 +355,15 @@ def _parser() -> argparse.ArgumentParser:
     w.add_argument("-q", "--quiet", action="store_true")
     common(w)
     w.set_defaults(func=cmd_write)
+    ws = sub.add_parser("write-set", help="write many characters to a folder (PNG + recording)")
+    ws.add_argument("chars", nargs="+", help="hanzi-writer JSON files, or characters")
+    ws.add_argument("--out-dir", required=True, help="folder for NNN.png and NNN.json")
+    ws.add_argument("--size", type=size, default=512, help="image size N (the em box)")
+    ws.add_argument("--workers", type=_whole(0, 256), default=0, help="processes (0: all)")
+    ws.add_argument("--scheduler", default=None, help="a Dask cluster, as for fit")
+    ws.add_argument("-q", "--quiet", action="store_true")
+    common(ws)
+    ws.set_defaults(func=cmd_write_set)
     m = sub.add_parser("iou", help="IoU of written characters against the font outlines")
     m.add_argument("chars", nargs="+")
     m.add_argument("--size", type=size, default=512)

@@ -20,29 +20,75 @@ def _run_with_samples(task, fn, samples, init):
     return fn(task)
 
 
+def connect(scheduler: str, workers: int):
+    """(client, cluster or None): a LocalCluster of ``workers`` processes on loopback for
+    "local", else a client of the scheduler at that address."""
+    try:
+        from distributed import Client, LocalCluster
+    except ImportError:
+        raise ParameterError("--scheduler needs Dask: pip install 'dask[distributed]'") from None
+    cluster = None
+    try:
+        if scheduler == "local":
+            cluster = LocalCluster(
+                n_workers=max(workers, 1),
+                threads_per_worker=1,
+                host="127.0.0.1",
+                dashboard_address=None,
+            )
+            return Client(cluster, timeout=CONNECT_TIMEOUT_S), cluster
+        return Client(scheduler, timeout=CONNECT_TIMEOUT_S), None
+    except (OSError, TimeoutError, ValueError) as exc:
+        if cluster is not None:
+            cluster.close()
+        raise ParameterError(f"cannot reach the Dask scheduler at {scheduler}: {exc}") from None
+
+
+def map_tasks(fn, tasks, workers: int, scheduler: str | None = None, done=None) -> list:
+    """``[fn(t) for t in tasks]`` in this machine's processes, or on a Dask cluster when a
+    scheduler is named; results in the tasks' order. ``done(k, total)`` after each result."""
+    tasks = list(tasks)
+    out = [None] * len(tasks)
+    if scheduler is None:
+        from concurrent.futures import ProcessPoolExecutor, as_completed
+
+        with ProcessPoolExecutor(max(workers, 1)) as ex:
+            futures = {ex.submit(fn, t): k for k, t in enumerate(tasks)}
+            for n, fut in enumerate(as_completed(futures), 1):
+                out[futures[fut]] = fut.result()
+                if done is not None:
+                    done(n, len(tasks))
+        return out
+    from distributed import as_completed as dask_completed
+
+    client, cluster = connect(scheduler, workers)
+    try:
+        futures = client.map(fn, tasks, pure=False)
+        index = {f.key: k for k, f in enumerate(futures)}
+        for n, fut in enumerate(dask_completed(futures), 1):
+            out[index[fut.key]] = fut.result()
+            if done is not None:
+                done(n, len(tasks))
+    finally:
+        client.close()
+        if cluster is not None:
+            cluster.close()
+    return out
+
+
+def write_task(task):
+    """One character of a batch (``sim write-set``), written in a worker: (name, RGB image,
+    recording dict) - returned, not saved, as a cluster's workers may not share our disk."""
+    from .imitate import write_character
+
+    char, name, size, template, passes = task
+    rec, _resp, sim = write_character(char, size, template, passes=passes)
+    return name, sim.image8(), rec.to_dict()
+
+
 class DaskPool:
     def __init__(self, samples, scheduler: str, workers: int, init):
-        try:
-            from distributed import Client, LocalCluster
-        except ImportError:
-            raise ParameterError(
-                "--scheduler needs Dask: pip install 'dask[distributed]'"
-            ) from None
-        self._cluster = None
-        try:
-            if scheduler == "local":
-                self._cluster = LocalCluster(
-                    n_workers=max(workers, 1),
-                    threads_per_worker=1,
-                    host="127.0.0.1",
-                    dashboard_address=None,
-                )
-                self.client = Client(self._cluster, timeout=CONNECT_TIMEOUT_S)
-            else:
-                self.client = Client(scheduler, timeout=CONNECT_TIMEOUT_S)
-        except (OSError, TimeoutError, ValueError) as exc:
-            self.close()
-            raise ParameterError(f"cannot reach the Dask scheduler at {scheduler}: {exc}") from None
+        self.client, self._cluster = connect(scheduler, workers)
         self._samples = self.client.scatter(samples, broadcast=True)
         self._init = init
         init(samples)  # evaluations made here (the starting point) see them too
@@ -59,8 +105,6 @@ class DaskPool:
         return self.client.gather(futures)
 
     def close(self):
-        client = getattr(self, "client", None)
-        if client is not None:
-            client.close()
+        self.client.close()
         if self._cluster is not None:
             self._cluster.close()

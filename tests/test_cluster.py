@@ -33,3 +33,19 @@ def test_an_unreachable_scheduler_is_one_clear_error(monkeypatch):
     settings = FitSettings(rounds=1, iterations=1, workers=1, scheduler="tcp://127.0.0.1:9")
     with pytest.raises(ParameterError, match="cannot reach the Dask scheduler"):
         fit(samples, None, settings)
+
+
+def test_the_batch_writer_gives_the_same_files_on_a_dask_cluster(tmp_path):
+    from sim.__main__ import main
+
+    outs = []
+    for extra in ([], ["--scheduler", "local"]):
+        out = tmp_path / ("dask" if extra else "local")
+        out.mkdir()
+        argv = ["write-set", "一", "十", "--out-dir", str(out), "--size", "64", "--passes", "1"]
+        assert main([*argv, "--workers", "2", "-q", *extra]) == 0
+        outs.append(out)
+    names = sorted(p.name for p in outs[0].iterdir())
+    assert names == ["000.json", "000.png", "001.json", "001.png"]
+    for name in names:
+        assert (outs[0] / name).read_bytes() == (outs[1] / name).read_bytes()
