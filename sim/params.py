@@ -7,6 +7,7 @@ add-on) root, loaded by plain Python so that they are testable without Blender.
 
 from __future__ import annotations
 
+import copy
 import math
 import numbers
 import sys
@@ -232,6 +233,21 @@ def preset_names(kind: str, directory: Path | None = None) -> list[str]:
 _BAD_NAME_CHARS = ("/", "\\", "\x00")
 
 
+_PRESET_CACHE: dict = {}  # path -> ((mtime, size), data): a preset file is read once
+
+
+def _read_preset(path: Path, kind: str):
+    """A preset file's JSON values, read again only when the file changed (a copy each call,
+    so no caller changes what the next one gets)."""
+    st = path.stat()
+    stamp = (st.st_mtime_ns, st.st_size)
+    hit = _PRESET_CACHE.get(path)
+    if hit is None or hit[0] != stamp:
+        data = read_json(path, f"{kind} preset file", ParameterError, max_bytes=2**20)
+        hit = _PRESET_CACHE[path] = (stamp, data)
+    return copy.deepcopy(hit[1])
+
+
 def load_preset(kind: str, name: str, directory: Path | None = None) -> Preset:
     if kind not in PRESET_KINDS:
         raise ParameterError(f"unknown preset kind {kind!r}; known: {sorted(PRESET_KINDS)}")
@@ -241,7 +257,7 @@ def load_preset(kind: str, name: str, directory: Path | None = None) -> Preset:
         raise ParameterError(
             f"unknown {kind} preset {short_repr(name)}; available: {preset_names(kind, directory)}"
         )
-    data = read_json(path, f"{kind} preset file", ParameterError, max_bytes=2**20)
+    data = _read_preset(path, kind)
     if not isinstance(data, dict) or data.get("kind") != kind:
         raise ParameterError(f"{path.name}: must be a JSON object whose 'kind' is {kind!r}")
     for key, typ in (("label", str), ("description", str), ("quality", dict)):

@@ -65,10 +65,13 @@ class RecordingError(ValueError):
 
 @dataclass
 class Dip:
+    """A dip before a sample; a field a recording leaves out is the paper's default dip's: "a
+    full dip in black ink" (depth 1, black), as wet as the default ink loads."""
+
     before_sample: int
     depth: float = 1.0
     color: tuple = (0.0, 0.0, 0.0)
-    wetness: float = 0.9
+    wetness: float = InkSpec.wetness
 
     def to_dict(self):
         return {
@@ -124,8 +127,7 @@ class Recording:
     def dips_or_default(self) -> list:
         if self.dips:
             return self.dips
-        # "a default dip is a full dip in black ink"
-        return [Dip(0, 1.0, (0.0, 0.0, 0.0), InkSpec().wetness)]
+        return [Dip(0)]  # the default dip (see Dip)
 
     def to_dict(self) -> dict:
         d = {
@@ -197,9 +199,52 @@ def _obj(d, key, where, required=True):
     return v
 
 
+KNOWN_KEYS = {
+    "format",
+    "version",
+    "paper",
+    "brush",
+    "ink",
+    "quality",
+    "sample_rate_hz",
+    "seed",
+    "samples",
+    "dips",
+}
+
+
 def from_dict(d) -> Recording:
+    """A checked Recording from a recording's JSON values; RecordingError names what is wrong."""
     if not isinstance(d, dict):
         raise RecordingError("a recording must be a JSON object")
+    _check_format(d)
+    width, height, ppm, paper_preset, paper_overrides = _paper(d)
+    brush, ink, quality = _presets_and_quality(d)
+    if "sample_rate_hz" not in d:
+        raise RecordingError("missing field 'sample_rate_hz'")
+    rate = _num(d["sample_rate_hz"], "'sample_rate_hz'", 1.0, 10000.0)
+    seed = _num(d.get("seed", 0), "'seed'", 0, MAX_SEED, integer=True)
+    arr = _samples(d, max(width, height))
+    rec = Recording(
+        samples=arr,
+        width_mm=width,
+        height_mm=height,
+        px_per_mm=ppm,
+        sample_rate_hz=rate,
+        seed=seed,
+        brush=brush,
+        paper_preset=paper_preset,
+        ink=ink,
+        quality=quality,
+        dips=_dips(d, len(arr)),
+        extra={k: v for k, v in d.items() if k not in KNOWN_KEYS},
+        paper_overrides=paper_overrides,
+    )
+    rec.resolve()  # presets exist and values are in range
+    return rec
+
+
+def _check_format(d: dict):
     if d.get("format") != FORMAT:
         raise RecordingError(f"field 'format' must be {FORMAT!r}, got {d.get('format')!r}")
     if "version" not in d:
@@ -209,6 +254,10 @@ def from_dict(d) -> Recording:
         raise RecordingError(
             f"field 'version' {version} is not supported (this engine reads {VERSION})"
         )
+
+
+def _paper(d: dict):
+    """(width mm, height mm, px per mm, preset, overrides) of the 'paper' section."""
     paper = _obj(d, "paper", "paper")
     for k in ("width_mm", "height_mm", "px_per_mm"):
         if k not in paper:
@@ -222,10 +271,14 @@ def from_dict(d) -> Recording:
             f"paper of {wpx} x {hpx} px is too large: at most {MAX_PAPER_SIDE_PX} px a side "
             f"(reduce 'paper.px_per_mm' or the paper's size)"
         )
-    paper_preset = paper.get("preset", DEFAULT_PAPER)
-    if not isinstance(paper_preset, str):
+    preset = paper.get("preset", DEFAULT_PAPER)
+    if not isinstance(preset, str):
         raise RecordingError("'paper.preset' must be a preset name")
-    paper_overrides = _paper_overrides(paper)
+    return width, height, ppm, preset, _paper_overrides(paper)
+
+
+def _presets_and_quality(d: dict):
+    """The 'brush' and 'ink' sections and the 'quality' values, checked."""
     brush = _obj(d, "brush", "brush", required=False) or {"preset": DEFAULT_BRUSH}
     ink = _obj(d, "ink", "ink", required=False) or {"preset": DEFAULT_INK}
     for name, sec in (("brush", brush), ("ink", ink)):
@@ -237,10 +290,11 @@ def from_dict(d) -> Recording:
         if k not in known:
             raise RecordingError(f"unknown quality parameter 'quality.{k}' (known: {list(known)})")
         _num(v, f"'quality.{k}'", 0.0, 1.0)
-    if "sample_rate_hz" not in d:
-        raise RecordingError("missing field 'sample_rate_hz'")
-    rate = _num(d["sample_rate_hz"], "'sample_rate_hz'", 1.0, 10000.0)
-    seed = _num(d.get("seed", 0), "'seed'", 0, MAX_SEED, integer=True)
+    return brush, ink, quality
+
+
+def _samples(d: dict, paper_side_mm: float) -> np.ndarray:
+    """The 'samples' as an (N, 6) array, every value checked."""
     if "samples" not in d:
         raise RecordingError("missing field 'samples'")
     samples = d["samples"]
@@ -257,9 +311,9 @@ def from_dict(d) -> Recording:
                     f"'samples[{i}][{k}]' must be a finite number, got {short_repr(v)}"
                 )
     arr = np.asarray(samples, dtype=float)
-    if np.any(np.abs(arr[:, :2]) > 10 * max(width, height)):
-        i = int(np.argmax(np.any(np.abs(arr[:, :2]) > 10 * max(width, height), axis=1)))
-        raise RecordingError(f"'samples[{i}]': x, y are far outside the paper")
+    far = np.any(np.abs(arr[:, :2]) > 10 * paper_side_mm, axis=1)
+    if far.any():
+        raise RecordingError(f"'samples[{int(np.argmax(far))}]': x, y are far outside the paper")
     if np.any(np.abs(arr[:, 2]) > Z_LIMIT_MM):
         i = int(np.argmax(np.abs(arr[:, 2]) > Z_LIMIT_MM))
         raise RecordingError(f"'samples[{i}][2]' (z) must lie within +-{Z_LIMIT_MM} mm")
@@ -268,6 +322,11 @@ def from_dict(d) -> Recording:
         raise RecordingError(
             f"'samples[{i}]': deflections d, q must lie within +-{ANGLE_LIMIT_DEG} deg"
         )
+    return arr
+
+
+def _dips(d: dict, n_samples: int) -> list:
+    """The 'dips', checked, in sample order."""
     dips_raw = d.get("dips", [])
     if not isinstance(dips_raw, list):
         raise RecordingError("'dips' must be a list")
@@ -280,44 +339,16 @@ def from_dict(d) -> Recording:
             raise RecordingError(f"'{where}' must be an object")
         if "before_sample" not in dp:
             raise RecordingError(f"missing field '{where}.before_sample'")
-        bs = _num(dp["before_sample"], f"'{where}.before_sample'", 0, len(samples), integer=True)
-        depth = _num(dp.get("depth", 1.0), f"'{where}.depth'", 0.0, 1.0)
-        wet = _num(dp.get("wetness", 0.9), f"'{where}.wetness'", 0.0, 1.0)
-        col = dp.get("color", [0.0, 0.0, 0.0])
+        bs = _num(dp["before_sample"], f"'{where}.before_sample'", 0, n_samples, integer=True)
+        depth = _num(dp.get("depth", Dip.depth), f"'{where}.depth'", 0.0, 1.0)
+        wet = _num(dp.get("wetness", Dip.wetness), f"'{where}.wetness'", 0.0, 1.0)
+        col = dp.get("color", list(Dip.color))
         if not isinstance(col, list) or len(col) != 3:
             raise RecordingError(f"'{where}.color' must be [r, g, b]")
         col = tuple(_num(c, f"'{where}.color[{k}]'", 0.0, 1.0) for k, c in enumerate(col))
         dips.append(Dip(bs, depth, col, wet))
     dips.sort(key=lambda x: x.before_sample)
-    known_keys = {
-        "format",
-        "version",
-        "paper",
-        "brush",
-        "ink",
-        "quality",
-        "sample_rate_hz",
-        "seed",
-        "samples",
-        "dips",
-    }
-    rec = Recording(
-        arr,
-        width,
-        height,
-        ppm,
-        rate,
-        seed,
-        brush,
-        paper_preset,
-        ink,
-        quality,
-        dips,
-        {k: v for k, v in d.items() if k not in known_keys},
-        paper_overrides,
-    )
-    rec.resolve()  # presets exist and values are in range
-    return rec
+    return dips
 
 
 def _paper_overrides(paper: dict) -> dict:
