@@ -315,8 +315,39 @@ def _stages(text: str) -> tuple:
     return stages
 
 
-def _parser() -> argparse.ArgumentParser:
+def _add_fit(sub, size, common):
+    """The ``fit`` command's options."""
     from .fit import SETTING_RANGES
+
+    f = sub.add_parser("fit", help="fit the quality parameters (Sec. 7.2, Eq. 28)")
+    f.add_argument("--chars", nargs="*", default=[], help="training characters (stroke data)")
+    f.add_argument("--image", nargs="*", help="training images (PNG) ...")
+    f.add_argument("--image-recording", nargs="*", help="... and their recordings")
+    f.add_argument("-o", "--output", required=True, help="preset JSON to write")
+    f.add_argument("--size", type=size, default=96, help="training image size")
+    f.add_argument("--seed-preset", default=None, help="brush preset name or quality JSON")
+    for name, default, help_ in (
+        ("divisions", 1, None),
+        ("rounds", 2, None),
+        ("iterations", 6, None),
+        ("workers", 0, "processes (0: all cores)"),
+        ("max_grid", 64, None),
+    ):
+        opt = "--" + name.replace("_", "-")
+        f.add_argument(opt, type=_whole(*SETTING_RANGES[name]), default=default, help=help_)
+    f.add_argument("--stages", type=_stages, default=("qp1", "qp2"))
+    f.add_argument(
+        "--scheduler",
+        default=None,
+        help="evaluate on a Dask cluster: 'local' (a LocalCluster here) or a scheduler's "
+        "address (tcp://host:8786); needs pip install 'dask[distributed]'",
+    )
+    f.add_argument("-q", "--quiet", action="store_true")
+    common(f)
+    f.set_defaults(func=cmd_fit)
+
+
+def _parser() -> argparse.ArgumentParser:
     from .imitate import MAX_PASSES, MIN_SHEET_PX
 
     seed = _whole(0, MAX_SEED)
@@ -369,32 +400,7 @@ def _parser() -> argparse.ArgumentParser:
     m.add_argument("--size", type=size, default=512)
     common(m)
     m.set_defaults(func=cmd_iou)
-    f = sub.add_parser("fit", help="fit the quality parameters (Sec. 7.2, Eq. 28)")
-    f.add_argument("--chars", nargs="*", default=[], help="training characters (stroke data)")
-    f.add_argument("--image", nargs="*", help="training images (PNG) ...")
-    f.add_argument("--image-recording", nargs="*", help="... and their recordings")
-    f.add_argument("-o", "--output", required=True, help="preset JSON to write")
-    f.add_argument("--size", type=size, default=96, help="training image size")
-    f.add_argument("--seed-preset", default=None, help="brush preset name or quality JSON")
-    for name, default, help_ in (
-        ("divisions", 1, None),
-        ("rounds", 2, None),
-        ("iterations", 6, None),
-        ("workers", 0, "processes (0: all cores)"),
-        ("max_grid", 64, None),
-    ):
-        opt = "--" + name.replace("_", "-")
-        f.add_argument(opt, type=_whole(*SETTING_RANGES[name]), default=default, help=help_)
-    f.add_argument("--stages", type=_stages, default=("qp1", "qp2"))
-    f.add_argument(
-        "--scheduler",
-        default=None,
-        help="evaluate on a Dask cluster: 'local' (a LocalCluster here) or a scheduler's "
-        "address (tcp://host:8786); needs pip install 'dask[distributed]'",
-    )
-    f.add_argument("-q", "--quiet", action="store_true")
-    common(f)
-    f.set_defaults(func=cmd_fit)
+    _add_fit(sub, size, common)
     b = sub.add_parser("bench", help="speed benchmark: a table, then one JSON line")
     b.add_argument("--quick", action="store_true", help="one repetition instead of three")
     b.set_defaults(func=cmd_bench)
