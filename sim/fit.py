@@ -165,15 +165,31 @@ def render(rec: Recording, quality: dict) -> np.ndarray:
     return Simulation(from_dict(d)).run().image()
 
 
+TEXTURE_WEIGHT = 0.05  # the texture term's weight against Eq. 28 (per pixel) in the Qp2 stage
+
+
 def target_function(quality: dict, samples=None, stage: str | None = None) -> float:
-    """Eq. 28 divided by the number of pixels: mean per-pixel |dr| + |dg| + |db|."""
+    """Eq. 28 divided by the number of pixels: mean per-pixel |dr| + |dg| + |db|. In the Qp2
+    stage (texture samples) a texture term is added: TEXTURE_WEIGHT times (1 - the texture
+    score, sim.texture.score) of each result against REAL_WRITING, the five statistics of
+    real brush writing. Sec. 7.2 fits Qp2 to scanned texture samples with Eq. 28; no licensed
+    scans can ship with the project, so comparing the statistics measured on such scans is the
+    honest form of that class of training (an image target S^i still adds its Eq. 28)."""
+    from .texture import score, texture_stats
+
     samples = _for_stage(_SAMPLES if samples is None else samples, stage)
-    total, pixels = 0.0, 0
+    total, pixels, tex = 0.0, 0, []
     for s in samples:
         c = render(s.recording, quality)
         total += float(np.abs(s.target - c).sum(dtype=np.float64))
         pixels += s.target.shape[0] * s.target.shape[1]
-    return total / max(pixels, 1)
+        if stage == "qp2":
+            try:
+                tex.append(1.0 - score(texture_stats(c)))
+            except ValueError:  # no ink at all: as far from real writing as it gets
+                tex.append(1.0)
+    eq28 = total / max(pixels, 1)
+    return eq28 + TEXTURE_WEIGHT * float(np.mean(tex)) if tex else eq28
 
 
 # ---------------------------------------------------------------- steepest descent (Sec. 7.2)

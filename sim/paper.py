@@ -147,6 +147,7 @@ class Paper:
         col = np.concatenate([mk.col for mk in marks]).astype(np.float32, copy=False)
         col = col.reshape(-1).view(_RGB)
         skip = _dry_brush(marks, gamma, hair_u, q)
+        grain = (1.0 - GRAIN_DEPTH * paper_grain(full)).astype(np.float32)  # the sheet's grain
         rank, visits = _visit_ranks(locs, hw * ww)
         dried = (visits > 0).reshape(hw, ww)
         bounds = [0, loc.size]
@@ -155,6 +156,7 @@ class Paper:
             perm = np.argsort(rank, kind="stable")
             bounds = np.r_[0, np.cumsum(np.bincount(rank, minlength=top + 1))].tolist()
             loc, full, wet_tau, skip = loc[perm], full[perm], wet_tau[perm], skip[perm]
+            grain = grain[perm]
             col = np.take(col, perm)
         col = col.view(np.float32).reshape(-1, 3)
         wf = w.reshape(-1)
@@ -168,9 +170,9 @@ class Paper:
             new = ab * lam + (1 - ab) * wet_tau[sel]
             new = np.maximum(new - np.where(k == 0, drystep, 0), 0.0)
             np.put(wf, li, new)
-            cr = np.where(skip[sel], 0.0, np.minimum(new, 1.0)).astype(np.float32)
+            cr = np.where(skip[sel], 0.0, np.minimum(new, 1.0) * grain[sel]).astype(np.float32)
             old = np.take(inkv, fi).view(np.float32).reshape(-1, 3)
-            # Eq. 26: cr col_tau + (1 - cr) col_old, as old + cr (col_tau - old)
+            # Eq. 26 (Cr with the grain): cr col_tau + (1 - cr) col_old, as old + cr (col_tau - old)
             old += cr[:, None] * (col[sel] - old)
             np.put(inkv, fi, old.reshape(-1).view(_RGB))
         w = np.where(dried, w, np.maximum(w - drystep, 0.0))
@@ -259,6 +261,24 @@ class Paper:
         self.ink[...] = snap["ink"]
         self.last[...] = snap["last"]
         self.step = snap["step"]
+
+
+GRAIN_DEPTH = 0.5  # share of the ink a pixel's grain can refuse per visit (model addition)
+
+
+def paper_grain(index) -> np.ndarray:
+    """Model addition (not in the paper): the sheet's grain, a fixed value in [0, 1) per pixel
+    (a hash of the pixel's index in the sheet, so the same pixel has the same grain in every
+    step, in a snapshot and in a replay; no generator is drawn, so the brush's draws are
+    unchanged). A pixel where the grain is high takes less of each visit's colour (Eq. 26's
+    Cr scaled by 1 - GRAIN_DEPTH * grain): inside a stroke, where the hair passes many times,
+    the ink still builds up to the brush's colour, unevenly; at the edge, where it passes once
+    or twice, some pixels stay pale - a ragged, fibrous edge and uneven tone on any paper."""
+    x = np.asarray(index, dtype=np.uint64) + np.uint64(0x9E3779B97F4A7C15)
+    x = (x ^ (x >> np.uint64(30))) * np.uint64(0xBF58476D1CE4E5B9)
+    x = (x ^ (x >> np.uint64(27))) * np.uint64(0x94D049BB133111EB)
+    x = x ^ (x >> np.uint64(31))
+    return (x >> np.uint64(40)).astype(np.float64) / float(1 << 24)
 
 
 def _dry_brush(marks, gamma, hair_u, q) -> np.ndarray:

@@ -6,6 +6,8 @@ deposit to a Paper: ``types.MethodType(reference_deposit, paper)``."""
 
 import numpy as np
 
+from sim.paper import GRAIN_DEPTH, paper_grain
+
 _NEIGHBOURS = [(-1, -1), (-1, 0), (-1, 1), (0, -1), (0, 1), (1, -1), (1, 0), (1, 1)]
 
 
@@ -47,7 +49,10 @@ def reference_deposit(self, marks, gamma, hair_u, q, dt: float, step: int, satur
         hb = hair_u.shape[1]
         b = np.clip(((mk.lateral + 1.0) * 0.5 * hb).astype(np.int64), 0, hb - 1)
         skip = hair_u[mk.primitive, b] < p0
-        cr = np.where(skip, 0.0, np.minimum(new, 1.0)).astype(np.float32)
+        # model addition: the sheet's grain scales Cr (sim.paper.paper_grain)
+        grain = 1.0 - GRAIN_DEPTH * paper_grain((r + y0) * self.W + (c + x0))
+        cr = np.minimum(new, 1.0).astype(np.float32) * grain.astype(np.float32)
+        cr = np.where(skip, 0.0, cr).astype(np.float32)
         old = ink[r, c]
         # Eq. 26: cr col_tau + (1 - cr) col_old, as old + cr (col_tau - old)
         ink[r, c] = old + cr[:, None] * (mk.col.astype(np.float32) - old)

@@ -99,7 +99,9 @@ def test_saturation_bleeds_on_raw_xuan_not_on_smooth_paper():
         ink = sim.paper.ink[..., 0]
         cover[paper] = ((ink > 0.02).sum(), ((ink > 0.02) & (ink < 0.5)).sum())
     assert cover["raw_xuan"][0] > 1.08 * cover["smooth"][0]
-    assert cover["raw_xuan"][1] > 200 and cover["smooth"][1] < 20
+    # a halo of pale ink on raw xuan; on smooth paper only the grain's few pale edge pixels
+    # (sim.paper.paper_grain), an order of magnitude fewer
+    assert cover["raw_xuan"][1] > 200 and cover["smooth"][1] < 0.1 * cover["raw_xuan"][1]
 
 
 def test_heavy_pressure_splits_a_soft_brush_light_pressure_does_not():

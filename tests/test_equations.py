@@ -10,7 +10,7 @@ from sim.brush import HairyBrush
 from sim.dynamics import REF_RATE, V_REF
 from sim.inertia import InertiaPredictor
 from sim.mark import Mark, compute_marks
-from sim.paper import Paper
+from sim.paper import GRAIN_DEPTH, Paper, paper_grain
 from sim.params import BrushGeometry, InkSpec, QualityParams
 
 DT = 1.0 / REF_RATE  # per-step equations apply unscaled at the reference rate
@@ -208,11 +208,15 @@ def test_eq24_eq26_absorption_and_colour():
     hair = np.full((1, 48), 0.5)
     mk = _one_pixel_mark(0.8, [0.5, 0.5, 0.5])
     paper.deposit([mk], np.array([1.0]), hair, q, DT, 1)
+    # Cr = min(wet, 1) scaled by the sheet's grain at the pixel (model addition, sim.paper)
+    g = 1.0 - GRAIN_DEPTH * float(paper_grain(1 * 4 + 1))
+    assert 1.0 - GRAIN_DEPTH <= g <= 1.0
     assert paper.wet[1, 1] == pytest.approx(0.4)  # .5 * 0 + .5 * .8
-    assert paper.ink[1, 1, 0] == pytest.approx(0.2)  # .5 * .4 + 0 * .6
+    first = 0.5 * 0.4 * g
+    assert paper.ink[1, 1, 0] == pytest.approx(first, rel=1e-5)  # .5 * .4g + 0 * (1 - .4g)
     paper.deposit([mk], np.array([1.0]), hair, q, DT, 2)
     assert paper.wet[1, 1] == pytest.approx(0.6)
-    assert paper.ink[1, 1, 0] == pytest.approx(0.5 * 0.6 + 0.2 * 0.4)
+    assert paper.ink[1, 1, 0] == pytest.approx(first + 0.6 * g * (0.5 - first), rel=1e-5)
 
 
 def test_eq27_dry_brush_probability():

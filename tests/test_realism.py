@@ -1,0 +1,63 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
+"""Issue 16: the model's texture mechanisms and the writer's clean entries, asserted on
+outcomes (not on timings)."""
+
+import numpy as np
+
+import sim.paper
+from sim.engine import Simulation
+from sim.paper import GRAIN_DEPTH, paper_grain
+from sim.recording import Dip, Recording
+from sim.strokes import stroke
+from sim.texture import perimeter, texture_stats
+
+
+def test_paper_grain_is_fixed_and_spread():
+    idx = np.arange(200_000)
+    g = paper_grain(idx)
+    assert np.array_equal(g, paper_grain(idx.copy()))  # the same pixel, the same grain
+    assert 0.0 <= g.min() and g.max() < 1.0 and abs(g.mean() - 0.5) < 0.01
+    assert abs(np.corrcoef(g[:-1], g[1:])[0, 1]) < 0.02  # neighbours independent
+
+
+def _stroke(monkeypatch, depth: float):
+    monkeypatch.setattr(sim.paper, "GRAIN_DEPTH", depth)
+    s = stroke([[10.0, 20.0], [70.0, 20.0]], press_mm=10.0, hair_length_mm=28.0)
+    rec = Recording(
+        s,
+        width_mm=80.0,
+        height_mm=40.0,
+        px_per_mm=6.0,
+        brush={"preset": "wolf_stiff"},
+        paper_preset="smooth",
+        dips=[Dip(0, 1.0, (0.0, 0.0, 0.0), 0.9)],
+    )
+    return Simulation(rec).run()
+
+
+def test_paper_grain_makes_the_edge_ragged_and_keeps_the_body(monkeypatch):
+    # the same stroke, seed and draws: with the grain the band's edge is longer (ragged), the
+    # ink inside less even, and the band keeps its body
+    clean = _stroke(monkeypatch, 0.0)
+    grainy = _stroke(monkeypatch, GRAIN_DEPTH)
+    m0, m1 = clean.paper.ink[..., 0] > 0.5, grainy.paper.ink[..., 0] > 0.5
+    assert perimeter(m1) > 1.02 * perimeter(m0)
+    assert np.count_nonzero(m1) > 0.95 * np.count_nonzero(m0)
+    t0, t1 = texture_stats(clean.image()), texture_stats(grainy.image())
+    assert t1.ragged_edge > 1.4 * t0.ragged_edge
+
+
+def test_qp2_stage_adds_the_texture_term():
+    # Sec. 7.2's texture class: in the Qp2 stage the fit's target adds the distance of the
+    # result's five statistics from real writing's; the shape stage is Eq. 28 alone
+    from sim.fit import TEXTURE_WEIGHT, TrainingSample, render, target_function
+    from sim.texture import score
+
+    s = stroke([[8, 12], [36, 18]], press_mm=9.0, speed_mm_s=70, hover_mm=4.0)
+    rec = Recording(s, width_mm=44, height_mm=30, px_per_mm=3.0, brush={"preset": "wolf_stiff"})
+    img = render(rec, {})
+    samples = [TrainingSample(rec, img, kind="both")]
+    assert target_function({}, samples, "qp1") == 0.0
+    want = TEXTURE_WEIGHT * (1.0 - score(texture_stats(img)))
+    assert want > 0.0
+    assert target_function({}, samples, "qp2") == want
