@@ -568,6 +568,59 @@ def _check_sheet(size_mm: float, ppm: float) -> None:
         )
 
 
+def _correct(response, press, side, want, got, centre, valid):
+    """The next pass's press and sideways placement: where the reading is this stroke's own,
+    a share of the width error through the response's slope, and of the band's offset; smoothed
+    along the stroke."""
+    w_env = np.maximum.accumulate(response.width_mm)
+    slope_tab = np.gradient(w_env, response.press_mm)
+    p_max = float(response.press_mm[-1])
+    mean_slope = 0.5 * (w_env[-1] - w_env[0]) / max(p_max - float(response.press_mm[0]), 1e-6)
+    slope = np.maximum(np.interp(press, response.press_mm, slope_tab), mean_slope)
+    dp = np.where(valid, PRACTICE_GAIN * (want - got) / slope, 0.0)
+    dp = np.where(valid & (got == 0) & (want > 0), 0.5, dp)
+    press = np.clip(press + _smooth(dp, 5), 0.0, p_max)
+    side = side - _smooth(np.where(valid & (got > 0), PRACTICE_GAIN * centre, 0.0), 5)
+    return press, side
+
+
+def _practise_stroke(sim, a, b, passes, fill, own, ctx) -> None:
+    """Write samples a..b (one stroke) with ``fill(a, b, press, side)``; with passes > 1,
+    practise it: write, read the band, correct, take it back (a snapshot), write again; the
+    pass that best fills the stroke's own outline ``own`` stays."""
+    pl, response, step_mm, reach = ctx
+    body = np.flatnonzero(pl.phase[a:b] == 2) + a
+    want = pl.width[body]
+    press = response.press_for(want)
+    side = np.zeros(len(body))
+    if passes == 1:
+        fill(a, b, press, side)
+        sim.run(until=b)
+        return
+    snap = sim.snapshot()
+    inked_before = _coverage(sim, own.rows, own.cols)
+    best = None
+    for k in range(passes):
+        if k:
+            sim.restore(snap)
+        fill(a, b, press, side)
+        before = _practise(sim, a, b, body, want, step_mm, pl, reach)
+        got, centre, valid = measure_band(sim, pl.target[body], pl.tangent[body], reach, before)
+        # the pass that best fills the stroke's own outline stays (new ink against it)
+        new = _coverage(sim, own.rows, own.cols) & ~inked_before
+        inter = np.count_nonzero(new & own.inside)
+        err = -inter / max(np.count_nonzero(new | own.inside), 1)
+        if best is None or err < best[0]:
+            best = (err, press.copy(), side.copy(), k)
+        if k == passes - 1:
+            break
+        press, side = _correct(response, press, side, want, got, centre, valid)
+    if best[3] != k:  # the last pass was not the best: write the best again
+        sim.restore(snap)
+        fill(a, b, best[1], best[2])
+        sim.run(until=b)
+
+
 def write_character(
     char: dict,
     n_px: int,
@@ -612,10 +665,6 @@ def write_character(
         template, samples=samples, width_mm=size, height_mm=size, px_per_mm=ppm, dips=dips
     )
     hover = hair + HOVER_MM
-    w_env = np.maximum.accumulate(response.width_mm)
-    slope_tab = np.gradient(w_env, response.press_mm)
-    p_max = float(response.press_mm[-1])
-    mean_slope = 0.5 * (w_env[-1] - w_env[0]) / max(p_max - float(response.press_mm[0]), 1e-6)
     normal = np.stack([-pl.tangent[:, 1], pl.tangent[:, 0]], axis=1)
     samples[:, :2] = pl.target
     samples[:, 2] = hover
@@ -642,42 +691,8 @@ def write_character(
 
     for n_stroke, (a, b) in enumerate(pl.strokes):
         sim.run(until=a)  # travel in the air up to the stroke
-        body = np.flatnonzero(pl.phase[a:b] == 2) + a
-        want = pl.width[body]
-        press = response.press_for(want)
-        side = np.zeros(len(body))
-        snap = sim.snapshot() if passes > 1 else None
-        if passes > 1:
-            own = masks[n_stroke]
-            inked_before = _coverage(sim, own.rows, own.cols)
-        best = None
-        for k in range(passes):
-            if k:
-                sim.restore(snap)
-            fill(a, b, press, side)
-            if passes == 1:
-                sim.run(until=b)
-                break
-            before = _practise(sim, a, b, body, want, step_mm, pl, reach)
-            got, centre, valid = measure_band(sim, pl.target[body], pl.tangent[body], reach, before)
-            # the pass that best fills the stroke's own outline stays (new ink against it)
-            new = _coverage(sim, own.rows, own.cols) & ~inked_before
-            inter = np.count_nonzero(new & own.inside)
-            err = -inter / max(np.count_nonzero(new | own.inside), 1)
-            if best is None or err < best[0]:
-                best = (err, press.copy(), side.copy(), k)
-            if k == passes - 1:
-                break
-            # correct where the reading is this stroke's own; smooth along the stroke
-            slope = np.maximum(np.interp(press, response.press_mm, slope_tab), mean_slope)
-            dp = np.where(valid, PRACTICE_GAIN * (want - got) / slope, 0.0)
-            dp = np.where(valid & (got == 0) & (want > 0), 0.5, dp)
-            press = np.clip(press + _smooth(dp, 5), 0.0, p_max)
-            side = side - _smooth(np.where(valid & (got > 0), PRACTICE_GAIN * centre, 0.0), 5)
-        if passes > 1 and best[3] != k:  # the last pass was not the best: write the best again
-            sim.restore(snap)
-            fill(a, b, best[1], best[2])
-            sim.run(until=b)
+        own = masks[n_stroke] if passes > 1 else None
+        _practise_stroke(sim, a, b, passes, fill, own, (pl, response, step_mm, reach))
         if progress is not None:
             progress(b / N)
     sim.run()
