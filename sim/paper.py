@@ -49,8 +49,10 @@ class Paper:
         color=(1.0, 1.0, 1.0),
         capacity: float = 1.0,
         dry_per_step: float = 0.0,
+        grain_seed: int = 0,
     ):
         self.W, self.H = int(width_px), int(height_px)
+        self.grain_seed = int(grain_seed)  # which sheet: the recording's seed (paper_grain)
         self.ppm = float(px_per_mm)
         self.color = np.asarray(color, dtype=np.float32)
         self.capacity = float(capacity)
@@ -147,7 +149,8 @@ class Paper:
         col = np.concatenate([mk.col for mk in marks]).astype(np.float32, copy=False)
         col = col.reshape(-1).view(_RGB)
         skip = _dry_brush(marks, gamma, hair_u, q)
-        grain = (1.0 - GRAIN_DEPTH * paper_grain(full)).astype(np.float32)  # the sheet's grain
+        # the sheet's grain (model addition, see paper_grain)
+        grain = (1.0 - GRAIN_DEPTH * paper_grain(full, self.grain_seed)).astype(np.float32)
         rank, visits = _visit_ranks(locs, hw * ww)
         dried = (visits > 0).reshape(hw, ww)
         bounds = [0, loc.size]
@@ -266,7 +269,7 @@ class Paper:
 GRAIN_DEPTH = 0.5  # share of the ink a pixel's grain can refuse per visit (model addition)
 
 
-def paper_grain(index) -> np.ndarray:
+def paper_grain(index, seed: int = 0) -> np.ndarray:
     """Model addition (not in the paper): the sheet's grain, a fixed value in [0, 1) per pixel
     (a hash of the pixel's index in the sheet, so the same pixel has the same grain in every
     step, in a snapshot and in a replay; no generator is drawn, so the brush's draws are
@@ -274,10 +277,13 @@ def paper_grain(index) -> np.ndarray:
     Cr scaled by 1 - GRAIN_DEPTH * grain): inside a stroke, where the hair passes many times,
     the ink still builds up to the brush's colour, unevenly; at the edge, where it passes once
     or twice, some pixels stay pale - a ragged, fibrous edge and uneven tone on any paper."""
-    x = np.asarray(index, dtype=np.uint64) + np.uint64(0x9E3779B97F4A7C15)
+    # the seed picks the sheet (the recording's seed: the one seeded generator's, so the same
+    # recording and seed give the same sheet, another seed another one)
+    offset = (0x9E3779B97F4A7C15 + int(seed) * 0xD1B54A32D192ED03) % 2**64
+    x = np.atleast_1d(np.asarray(index, dtype=np.uint64)) + np.uint64(offset)  # wraps mod 2**64
     x = (x ^ (x >> np.uint64(30))) * np.uint64(0xBF58476D1CE4E5B9)
     x = (x ^ (x >> np.uint64(27))) * np.uint64(0x94D049BB133111EB)
-    x = x ^ (x >> np.uint64(31))
+    x = (x ^ (x >> np.uint64(31))).reshape(np.shape(index))
     return (x >> np.uint64(40)).astype(np.float64) / float(1 << 24)
 
 

@@ -50,7 +50,7 @@ def reference_deposit(self, marks, gamma, hair_u, q, dt: float, step: int, satur
         b = np.clip(((mk.lateral + 1.0) * 0.5 * hb).astype(np.int64), 0, hb - 1)
         skip = hair_u[mk.primitive, b] < p0
         # model addition: the sheet's grain scales Cr (sim.paper.paper_grain)
-        grain = 1.0 - GRAIN_DEPTH * paper_grain((r + y0) * self.W + (c + x0))
+        grain = 1.0 - GRAIN_DEPTH * paper_grain((r + y0) * self.W + (c + x0), self.grain_seed)
         cr = np.minimum(new, 1.0).astype(np.float32) * grain.astype(np.float32)
         cr = np.where(skip, 0.0, cr).astype(np.float32)
         old = ink[r, c]

@@ -61,3 +61,13 @@ def test_qp2_stage_adds_the_texture_term():
     want = TEXTURE_WEIGHT * (1.0 - score(texture_stats(img)))
     assert want > 0.0
     assert target_function({}, samples, "qp2") == want
+
+
+def test_the_papers_grain_is_the_recordings_seeds_sheet():
+    from sim.paper import paper_grain
+
+    idx = np.arange(10_000)
+    a, b = paper_grain(idx, 0), paper_grain(idx, 7)
+    np.testing.assert_array_equal(a, paper_grain(idx, 0))  # the same sheet every time
+    assert np.mean(a != b) > 0.99  # another seed, another sheet
+    assert 0.45 < a.mean() < 0.55 and a.min() >= 0.0 and a.max() < 1.0
