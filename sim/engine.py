@@ -162,47 +162,45 @@ class Simulation:
 
     # -------------------------------------------------------------- snapshots
     def snapshot(self) -> dict:
+        """The whole simulation as it is now, to ``restore`` any time later."""
         self._deposit_pending()
-        return {
-            "index": self.index,
-            "brush": self.brush.snapshot(),
-            "paper": self.paper.snapshot(),
-            "rng": self.rng.bit_generator.state,
-            "predictor": self.predictor.state(),
-        }
+        return self._state(self.paper.snapshot())
 
     def hold(self) -> dict:
         """The simulation as it is now, to ``take_back`` later; unlike a snapshot it copies no
         paper up front: the paper keeps each tile as it was before its first change."""
         self._deposit_pending()
-        return {
-            "index": self.index,
-            "brush": self.brush.snapshot(),
-            "paper": self.paper.hold(),
-            "rng": self.rng.bit_generator.state,
-            "predictor": self.predictor.state(),
-        }
+        return self._state(self.paper.hold())
+
+    def restore(self, snap: dict):
+        self._set_state(snap)
+        self.paper.restore(snap["paper"])
 
     def take_back(self, hold: dict):
         """Back exactly to ``hold()``; the hold ends."""
-        self._pending = []
-        self.index = hold["index"]
-        self.brush.restore(hold["brush"])
+        self._set_state(hold)
         self.paper.give_back(hold["paper"])
-        self.rng.bit_generator.state = hold["rng"]
-        self.predictor.set_state(hold["predictor"])
 
     def let_go(self, hold: dict):
         """End a hold without going back."""
         self.paper.release(hold["paper"])
 
-    def restore(self, snap: dict):
+    def _state(self, paper) -> dict:
+        return {
+            "index": self.index,
+            "brush": self.brush.snapshot(),
+            "paper": paper,
+            "rng": self.rng.bit_generator.state,
+            "predictor": self.predictor.state(),
+        }
+
+    def _set_state(self, state: dict):
+        """Everything of a snapshot or hold but the paper."""
         self._pending = []
-        self.index = snap["index"]
-        self.brush.restore(snap["brush"])
-        self.paper.restore(snap["paper"])
-        self.rng.bit_generator.state = snap["rng"]
-        self.predictor.set_state(snap["predictor"])
+        self.index = state["index"]
+        self.brush.restore(state["brush"])
+        self.rng.bit_generator.state = state["rng"]
+        self.predictor.set_state(state["predictor"])
 
 
 def render(recording: Recording, until: int | None = None, progress=None) -> np.ndarray:
