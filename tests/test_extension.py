@@ -810,3 +810,21 @@ def test_a_broken_recording_is_parsed_once_and_frame_changes_stay_bounded(hb, mo
     sc.frame_set(45)
     pb = ext().playback.playback_for(sc)
     assert 0 < pb.sim.index < ext().bridge.samples_at_frame(pb.rec, sc, 45)
+
+
+def test_a_paper_larger_than_free_memory_an_invalid_preset_and_a_utf16_file_get_one_message(
+    hb, tmp_path, monkeypatch
+):
+    st = bpy.context.scene.hairy_brush
+    monkeypatch.setattr(ext().bridge, "available_memory", lambda: 100 * 2**20)
+    with pytest.raises(RuntimeError, match="MB of memory and 100 MB are free"):
+        bpy.ops.hairy_brush.setup()
+    assert st.paper_object is None  # nothing was made
+    monkeypatch.undo()
+    st["brush_preset"] = 999  # an enum value no item has, as a hand-edited .blend can hold
+    with pytest.raises(RuntimeError, match="brush preset"):
+        bpy.ops.hairy_brush.setup()
+    path = tmp_path / "utf16.json"
+    path.write_text('{"format": "hairy-brush-recording"}', encoding="utf-16")
+    with pytest.raises(RuntimeError, match="save it as UTF-8"):
+        bpy.ops.hairy_brush.import_recording(filepath=str(path))
