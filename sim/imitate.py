@@ -15,6 +15,7 @@ from __future__ import annotations
 
 import os
 from dataclasses import dataclass, replace
+from typing import NamedTuple
 
 import numpy as np
 
@@ -31,6 +32,8 @@ ENTRY_SAMPLES = 8
 EXIT_SAMPLES = 8
 MAX_PASSES = 50
 MIN_SHEET_PX = 8
+# what the brush does at a sample of a plan (Plan.phase)
+IN_THE_AIR, ENTERING, WRITING, LIFTING = 0, 1, 2, 3
 
 
 @dataclass
@@ -218,12 +221,22 @@ def _smooth(v, k: int) -> np.ndarray:
     return np.convolve(pad, w, mode="valid")
 
 
+class Pass(NamedTuple):
+    """One practice pass of a stroke: how far its ink is from the outline (lower is better),
+    the press and sideways placement it was written with, and its number."""
+
+    error: float
+    press: np.ndarray
+    side: np.ndarray
+    number: int
+
+
 @dataclass
 class Plan:
     """Per sample of a character's writing: where the ink should land (paper mm), how wide the
-    stroke is there, the way of travel, and what the brush does: 0 = in the air, 1 = coming
-    down onto a stroke, 2 = writing, 3 = lifting off. ``dips`` are the samples before which the
-    brush dips again."""
+    stroke is there, the way of travel, and what the brush does: IN_THE_AIR, ENTERING (coming
+    down onto a stroke), WRITING, LIFTING (off the stroke's end). ``dips`` are the samples
+    before which the brush dips again."""
 
     target: np.ndarray  # (N, 2)
     width: np.ndarray  # (N,)
@@ -291,7 +304,7 @@ def _air(tg, wd, tn, ph, a, b, tang, step_mm) -> None:
     tg.append(a * (1 - t) + b * t)
     wd.append(np.zeros(k))
     tn.append(np.tile(tang, (k, 1)))
-    ph.append(np.zeros(k, dtype=int))
+    ph.append(np.full(k, IN_THE_AIR))
 
 
 def plan(
@@ -336,7 +349,11 @@ def plan(
             tg += [np.tile(p[0], (ENTRY_SAMPLES, 1)), p, np.tile(p[-1], (EXIT_SAMPLES, 1))]
             wd += [np.full(ENTRY_SAMPLES, w[0]), w, np.full(EXIT_SAMPLES, w[-1])]
             tn += [np.tile(t[0], (ENTRY_SAMPLES, 1)), t, np.tile(t[-1], (EXIT_SAMPLES, 1))]
-            ph += [np.full(ENTRY_SAMPLES, 1), np.full(len(p), 2), np.full(EXIT_SAMPLES, 3)]
+            ph += [
+                np.full(ENTRY_SAMPLES, ENTERING),
+                np.full(len(p), WRITING),
+                np.full(EXIT_SAMPLES, LIFTING),
+            ]
         strokes.append((n, sum(len(a) for a in tg)))
         prev = pts[-1]
     return Plan(
@@ -440,7 +457,7 @@ def _enter_and_leave(samples, pl, body, hover, hair, step_mm) -> None:
     the body begins, and lifts off moving on along the last direction (a flick, so that hooks
     and left-falling strokes end in a point, not a blot from a lift on the spot)."""
     a = body[0] - 1
-    while a >= 0 and pl.phase[a] == 1:
+    while a >= 0 and pl.phase[a] == ENTERING:
         a -= 1
     entry = np.arange(a + 1, body[0])
     t0 = pl.tangent[body[0]]
@@ -450,10 +467,10 @@ def _enter_and_leave(samples, pl, body, hover, hair, step_mm) -> None:
     z_touch = max(samples[body[0], 2], hair - 0.2)  # the tip reaches the paper at the start
     samples[entry, 2] = hover + (z_touch - hover) * f
     b = body[-1] + 1
-    while b < len(pl.phase) and pl.phase[b] == 3:
+    while b < len(pl.phase) and pl.phase[b] == LIFTING:
         b += 1
     lift = np.arange(body[-1] + 1, b)
-    lift = np.flatnonzero(pl.phase[a:b] == 3) + a
+    lift = np.flatnonzero(pl.phase[a:b] == LIFTING) + a
     t1 = pl.tangent[body[-1]]
     f = np.arange(1, len(lift) + 1) / max(len(lift), 1)
     samples[lift, :2] = samples[body[-1], :2] + (f * len(lift) * 0.5 * step_mm)[:, None] * t1
@@ -589,7 +606,7 @@ def _practise_stroke(sim, a, b, passes, fill, own, ctx) -> None:
     practise it: write, read the band, correct, take it back (a snapshot), write again; the
     pass that best fills the stroke's own outline ``own`` stays."""
     pl, response, step_mm, reach = ctx
-    body = np.flatnonzero(pl.phase[a:b] == 2) + a
+    body = np.flatnonzero(pl.phase[a:b] == WRITING) + a
     want = pl.width[body]
     press = response.press_for(want)
     side = np.zeros(len(body))
@@ -610,14 +627,14 @@ def _practise_stroke(sim, a, b, passes, fill, own, ctx) -> None:
         new = _coverage(sim, own.rows, own.cols) & ~inked_before
         inter = np.count_nonzero(new & own.inside)
         err = -inter / max(np.count_nonzero(new | own.inside), 1)
-        if best is None or err < best[0]:
-            best = (err, press.copy(), side.copy(), k)
+        if best is None or err < best.error:
+            best = Pass(err, press.copy(), side.copy(), k)
         if k == passes - 1:
             break
         press, side = _correct(response, press, side, want, got, centre, valid)
-    if best[3] != k:  # the last pass was not the best: write the best again
+    if best.number != k:  # the last pass was not the best: write the best again
         sim.restore(snap)
-        fill(a, b, best[1], best[2])
+        fill(a, b, best.press, best.side)
         sim.run(until=b)
 
 
@@ -676,7 +693,7 @@ def write_character(
     def fill(a, b, press, side):
         """Samples a..b of one stroke: for each of its movements, come down, write, lift off
         (``_enter_and_leave``)."""
-        body = np.flatnonzero(pl.phase[a:b] == 2) + a
+        body = np.flatnonzero(pl.phase[a:b] == WRITING) + a
         j0 = 0
         for run in np.split(body, np.flatnonzero(np.diff(body) > 1) + 1):
             j1 = j0 + len(run)
