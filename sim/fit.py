@@ -287,6 +287,37 @@ def _pool(samples, workers: int, scheduler: str | None):
     return DaskPool(samples, scheduler, workers, _init_worker)
 
 
+@dataclass
+class _Round:
+    """One round of Sec. 7.2 in the cube [lo, hi]: the grid's points evaluated, steepest
+    descents from the best of them (and from the best so far), the best result kept."""
+
+    names: tuple
+    lo: np.ndarray
+    hi: np.ndarray
+    fixed: dict
+    stage: str
+    settings: FitSettings
+    starts: int
+
+    def run(self, pool, rng, best_x, best_f):
+        """(best x, best Eq. 28, evaluations made)."""
+        names, lo, hi, fixed, stage = self.names, self.lo, self.hi, self.fixed, self.stage
+        d = max(int(self.settings.divisions), 1)
+        grid = _grid(lo, hi, d, self.settings.max_grid, rng)
+        fs = pool.map(_eval_task, [(names, g.tolist(), fixed, stage) for g in grid])
+        evaluations = len(grid)
+        cands = [(f, i, g) for i, (f, g) in enumerate(zip(fs, grid, strict=True))]
+        cands.sort(key=lambda c: (c[0], c[1]))
+        starts_x = [(best_x, best_f)] + [(g, f) for f, _, g in cands[: self.starts - 1]]
+        tasks = [(names, x.tolist(), lo, hi, fixed, self.settings, f, stage) for x, f in starts_x]
+        for x, f, ev in pool.map(_descend_task, tasks):
+            evaluations += ev
+            if f < best_f:
+                best_f, best_x = f, np.asarray(x)
+        return best_x, best_f, evaluations
+
+
 def _grid(lo, hi, d: int, limit: int, rng: np.random.Generator):
     """Grid points of the box [lo, hi] with d divisions per edge (corners of the subcubes); when
     there are more than ``limit``, a subset drawn by the fit's seeded generator."""
@@ -346,21 +377,10 @@ def fit(
             best_f = target_function(_values(names, best_x, fixed), samples, stage)
             evaluations += 1
             for rnd in range(settings.rounds):
-                grid = _grid(lo, hi, d, settings.max_grid, rng)
-                fs = pool.map(_eval_task, [(names, g.tolist(), fixed, stage) for g in grid])
-                evaluations += len(grid)
-                cands = [(f, i, g) for i, (f, g) in enumerate(zip(fs, grid, strict=True))]
-                cands.sort(key=lambda c: (c[0], c[1]))
-                starts_x = [(best_x, best_f)] + [(g, f) for f, _, g in cands[: starts - 1]]
-                tasks = [
-                    (names, x.tolist(), lo, hi, fixed, settings, f, stage) for x, f in starts_x
-                ]
-                results = pool.map(_descend_task, tasks)
                 prev = best_f
-                for x, f, ev in results:
-                    evaluations += ev
-                    if f < best_f:
-                        best_f, best_x = f, np.asarray(x)
+                job = _Round(names, lo, hi, fixed, stage, settings, starts)
+                best_x, best_f, ev = job.run(pool, rng, best_x, best_f)
+                evaluations += ev
                 history.append(
                     {
                         "stage": stage,
