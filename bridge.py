@@ -236,9 +236,9 @@ def copy_settings_from_recording(st, rec: Recording):
         "px_per_mm": rec.px_per_mm,
         "seed": rec.seed % (MAX_INT_PROPERTY + 1),
         "sample_rate_hz": rec.sample_rate_hz,
-        "brush_preset": rec.brush.get("preset", st.brush_preset),
-        "paper_preset": rec.paper_preset,
-        "ink_preset": rec.ink.get("preset", st.ink_preset),
+        "brush_preset": rec.preset_name("brush"),
+        "paper_preset": rec.preset_name("paper"),
+        "ink_preset": rec.preset_name("ink"),
     }
     q, _geom, _paper, _ink = rec.resolve()
     _check_fits(st, "paper_capacity", _paper.capacity)

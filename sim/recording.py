@@ -109,12 +109,19 @@ class Recording:
     def height_px(self) -> int:
         return max(1, int(round(self.height_mm * self.px_per_mm)))
 
+    def preset_name(self, kind: str) -> str:
+        """The name of the recording's brush, paper or ink preset (one way for all three)."""
+        if kind == "paper":
+            return self.paper_preset
+        section, default = (
+            (self.brush, DEFAULT_BRUSH) if kind == "brush" else (self.ink, DEFAULT_INK)
+        )
+        return section.get("preset", default)
+
     def resolve(self):
         """(QualityParams, BrushGeometry, PaperSpec, InkSpec) from presets plus overrides."""
         try:
-            bp = load_preset("brush", self.brush.get("preset", DEFAULT_BRUSH))
-            pp = load_preset("paper", self.paper_preset)
-            ip = load_preset("ink", self.ink.get("preset", DEFAULT_INK))
+            bp, pp, ip = (load_preset(k, self.preset_name(k)) for k in ("brush", "paper", "ink"))
             values = quality_from_presets(bp, pp)
             values.update(self.quality)
             q = QualityParams().with_values(values)
