@@ -7,6 +7,7 @@ import bpy
 from bl_operators.presets import AddPresetBase
 
 from ..sim.params import QualityParams
+from . import polls
 
 PRESET_SUBDIR = "hairy_brush/settings"
 NO_PRESET_LABEL = "Your Presets"  # the menu's label while none of the user's presets is active
@@ -36,10 +37,7 @@ class HAIRY_BRUSH_OT_add_settings_preset(AddPresetBase, bpy.types.Operator):
 
     @classmethod
     def poll(cls, context):
-        if context.scene is None:
-            cls.poll_message_set("No scene")
-            return False
-        return True
+        return polls.scene(cls, context)
 
     def execute(self, context):
         if self.remove_active:

@@ -16,6 +16,7 @@ from ..properties import (
     preset_label,
 )
 from ..sim.params import ParameterError, QualityParams, load_preset
+from . import polls
 
 PROPERTY = {"brush": "brush_preset", "paper": "paper_preset", "ink": "ink_preset"}
 
@@ -45,10 +46,7 @@ class HAIRY_BRUSH_OT_apply_preset(bpy.types.Operator):
 
     @classmethod
     def poll(cls, context):
-        if context.scene is None:
-            cls.poll_message_set("No scene")
-            return False
-        return True
+        return polls.scene(cls, context)
 
     def execute(self, context):
         st = bridge.settings(context.scene)

@@ -7,6 +7,13 @@ from __future__ import annotations
 from .. import bridge
 
 
+def scene(cls, context) -> bool:
+    if context.scene is None:
+        cls.poll_message_set("No scene")
+        return False
+    return True
+
+
 def brush_and_paper(cls, context) -> bool:
     st = bridge.settings(context.scene)
     try:
