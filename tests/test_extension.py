@@ -62,6 +62,20 @@ def keyframe_stroke(bpy, st, press=4.0, y=0.0, frames=(1, 8, 40, 48)):
         b.keyframe_insert("location", frame=f)
 
 
+def mesh_without_uv(bpy, name="NoUV"):
+    """A one-triangle mesh object with no UV map, in the scene."""
+    me = bpy.data.meshes.new(name)
+    me.from_pydata([(0, 0, 0), (1, 0, 0), (0, 1, 0)], [], [(0, 1, 2)])
+    obj = bpy.data.objects.new(name, me)
+    bpy.context.scene.collection.objects.link(obj)
+    return obj
+
+
+def select_only(*objs):
+    for ob in bpy.context.scene.objects:
+        ob.select_set(ob in objs)
+
+
 def undo_step(bpy, message):
     # Blender's UI pushes an undo step after each REGISTER/UNDO operator; a script does it here
     with bpy.context.temp_override(window=bpy.context.window_manager.windows[0]):
@@ -413,12 +427,7 @@ def test_apply_to_mesh_puts_the_ink_over_the_meshs_own_material(hb):
     a = next(s for s in mix.inputs if s.identifier == "A_Color")
     assert tuple(a.default_value)[:3] == pytest.approx((0.6, 0.4, 0.3))
     # a mesh without UVs gets a clear error
-    me = bpy.data.meshes.new("NoUV")
-    me.from_pydata([(0, 0, 0), (1, 0, 0), (0, 1, 0)], [], [(0, 1, 2)])
-    o = bpy.data.objects.new("NoUV", me)
-    bpy.context.scene.collection.objects.link(o)
-    for ob in bpy.context.scene.objects:
-        ob.select_set(ob == o)
+    select_only(mesh_without_uv(bpy))
     with pytest.raises(RuntimeError, match="has no UV map"):
         bpy.ops.hairy_brush.apply_to_mesh()
 

@@ -16,7 +16,14 @@ from conftest import ADDON, ROOT
 
 bpy = pytest.importorskip("bpy")
 
-from test_extension import ext, keyframe_stroke, pixels, setup_scene  # noqa: E402
+from test_extension import (  # noqa: E402
+    ext,
+    keyframe_stroke,
+    mesh_without_uv,
+    pixels,
+    select_only,
+    setup_scene,
+)
 
 from sim.engine import Simulation  # noqa: E402
 
@@ -143,12 +150,7 @@ def test_relief_moves_the_surface_under_the_ink_only_by_the_depth(hb, mode, sign
 
 def test_relief_needs_a_uv_map(hb):
     st = setup_scene(bpy)
-    me = bpy.data.meshes.new("NoUV")
-    me.from_pydata([(0, 0, 0), (1, 0, 0), (0, 1, 0)], [], [(0, 1, 2)])
-    o = bpy.data.objects.new("NoUV", me)
-    bpy.context.scene.collection.objects.link(o)
-    for ob in bpy.context.scene.objects:
-        ob.select_set(ob == o)
+    select_only(mesh_without_uv(bpy))
     assert st.paper_image is not None
     with pytest.raises(RuntimeError, match="has a UV map"):
         bpy.ops.hairy_brush.relief()

@@ -12,7 +12,15 @@ from types import SimpleNamespace
 
 import numpy as np
 import pytest
-from test_extension import HAIR, ext, keyframe_stroke, pixels, setup_scene
+from test_extension import (
+    HAIR,
+    ext,
+    keyframe_stroke,
+    mesh_without_uv,
+    pixels,
+    select_only,
+    setup_scene,
+)
 
 bpy = pytest.importorskip("bpy")
 
@@ -188,12 +196,8 @@ def test_a_mesh_without_uvs_is_skipped_and_the_others_get_the_ink(hb, capfd):
     st = setup_scene(bpy)
     bpy.ops.mesh.primitive_uv_sphere_add()
     sphere = bpy.context.active_object
-    me = bpy.data.meshes.new("NoUV")
-    me.from_pydata([(0, 0, 0), (1, 0, 0), (0, 1, 0)], [], [(0, 1, 2)])
-    no_uv = bpy.data.objects.new("NoUV", me)
-    bpy.context.scene.collection.objects.link(no_uv)
-    for ob in bpy.context.scene.objects:
-        ob.select_set(ob in (sphere, no_uv))
+    no_uv = mesh_without_uv(bpy)
+    select_only(sphere, no_uv)
     capfd.readouterr()
     assert bpy.ops.hairy_brush.apply_to_mesh() == {"FINISHED"}
     assert "Skipped 'NoUV': no UV map" in capfd.readouterr().out
