@@ -16,6 +16,7 @@ from .mark import cut_marks, fill_marks
 from .paper import DRY_RATE, Paper
 from .params import HOVER_MM
 from .recording import Recording
+from .surface import CHART_SHAPE
 
 # samples whose marks are filled in together by ``run`` (the brush never reads the paper, so its
 # dynamics can run ahead of the paper; each step's deposit still comes in order)
@@ -32,8 +33,12 @@ class PendingDeposit(NamedTuple):
 
 
 class Simulation:
-    def __init__(self, recording: Recording):
+    def __init__(self, recording: Recording, surface=None):
+        """``surface``: a ``sim.surface.SurfacePaper`` when the paper is a 3D surface (the
+        samples are then on its chart and every mark is splatted into its texture); None for
+        the flat paper, which is the chart itself."""
         self.rec = recording
+        self.surface = surface
         self.q, self.geometry, self.paper_spec, self.ink = recording.resolve()
         self.dt = 1.0 / recording.sample_rate_hz
         self.rng = np.random.Generator(np.random.PCG64(recording.seed))
@@ -53,7 +58,7 @@ class Simulation:
         self.last_marks = []
         self._pending: list[PendingDeposit] = []  # moved but not yet deposited (see run)
         self.timings = None  # a dict to keep the seconds spent in every stage (the benchmark)
-        first = recording.samples[0]
+        first = self._sample(0)
         self.brush.place(
             np.r_[first[:2], max(first[2], self.geometry.hair_length_mm + HOVER_MM), first[3:]]
         )
@@ -90,15 +95,15 @@ class Simulation:
         t0 = time.perf_counter()
         self._dip_now()
         i = self.index
-        sample = self.rec.samples[i]
-        s = self.predictor(sample)  # Eq. 9
+        s = self.predictor(self._sample(i))  # Eq. 9
         vel = self.predictor.velocity
         b = self.brush
         b.move(s, vel, self.dt)  # Sec. 5.2
         t0 = self._tick("brush", t0)
         sec = b.sections()
         t0 = self._tick("sweep", t0)
-        cut = cut_marks(b, sec, b.rows_ink(sec), self.paper.ppm, self.paper.shape)
+        shape = self.paper.shape if self.surface is None else CHART_SHAPE
+        cut = cut_marks(b, sec, b.rows_ink(sec), self.paper.ppm, shape)
         t0 = self._tick("cut", t0)
         area, height = cut.sizes(b.m) if cut is not None else (np.zeros(b.m), np.zeros(b.m))
         speed = float(np.linalg.norm(vel[:3]))
@@ -116,6 +121,11 @@ class Simulation:
         self.index += 1
         self._tick("brush", t0)
 
+    def _sample(self, i: int) -> np.ndarray:
+        """Sample i as the brush takes it: on a surface, on the chart (see sim.surface)."""
+        sample = self.rec.samples[i]
+        return sample if self.surface is None else self.surface.engine_sample(i, sample)
+
     def _tick(self, stage: str, t0: float) -> float:
         """Add the time since t0 to ``stage`` when timings are kept; returns now."""
         now = time.perf_counter()
@@ -131,8 +141,14 @@ class Simulation:
         marks_per_step = fill_marks([p.cut for p in self._pending], self.paper.ppm)
         t0 = self._tick("mark pixels", t0)
         for p, marks in zip(self._pending, marks_per_step, strict=True):
-            self.paper.deposit(marks, p.gamma, p.hair_u, self.q, self.dt, p.step)  # Eq. 24-27
-            self.last_marks = marks
+            if self.surface is None:
+                self.paper.deposit(marks, p.gamma, p.hair_u, self.q, self.dt, p.step)  # Eq. 24-27
+                self.last_marks = marks
+                continue
+            groups = self.surface.splat(marks, p.step - 1) or [[]]  # texels under the marks
+            for group in groups:  # far apart in the texture (a seam): a window each
+                self.paper.deposit(group, p.gamma, p.hair_u, self.q, self.dt, p.step)
+            self.last_marks = [mk for group in groups for mk in group]
         self._pending = []
         self._tick("paper", t0)
 

@@ -1,0 +1,590 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
+"""Writing on a 3D surface (issue 17; the paper's Sec. 9 "3D writing effects"): any UV-mapped
+triangle mesh is the paper, as plain arrays (no bpy), and every geometric question is answered
+here.
+
+The design, in three parts:
+
+1. **The local frame.** Each sample is taken where the brush's axis meets the surface (the
+   closest surface point when the axis misses it): the point P, the smooth normal N there (the
+   paper's z: the brush's height above the surface and its tilts are measured against it) and a
+   tangent T (B = N x T). T is carried from sample to sample by the smallest rotation that keeps
+   it tangent (parallel transport, ``transport``); the first sample's T is the surface's x axis
+   projected on the tangent plane. The engine's sample is the brush's pose in that frame, so the
+   brush model, which only knows a flat paper at z = 0, is unchanged: it writes on the tangent
+   plane at P.
+2. **The chart.** The brush's dynamics need one continuous plane to move on, so the surface is
+   *developed* along the writing: the chart position c of a sample's point is the previous one
+   plus the step P_i - P_(i-1) seen in the previous frame (``develop``). On a flat surface this
+   is the plane itself, exactly; on a curved one it unrolls the surface along the path (as a
+   sheet laid on a vase). The recording keeps the chart samples (its usual ``samples``) and, per
+   sample, the frame (c, P, T, N) in ``surface.frames``; replay reads them, so it is bit for bit.
+3. **Where the ink lands** (``SurfacePaper.splat``). The marks are rasterised on the chart's own
+   pixel grid at the paper's px/mm, then splatted into the texels whose 3D points lie under
+   them: every texel knows its 3D point (``texel_points``: each UV triangle rasterised in the
+   texture, plus a pad of PAD_TEXELS around it for filtering), a spatial hash finds the texels
+   near P, and each is projected on the tangent plane and takes the chart pixel it falls in.
+   So the UV map's stretch is exact (a texel's ink is decided in the surface's own millimetres)
+   and seams are free (a mark straddling a seam inks the texels of both islands, whatever their
+   place in the texture). The work per sample is the texels near the mark, never the texture.
+
+What is approximate: a mark is the brush's cut by the tangent plane at P, projected along N onto
+the surface (a decal): on a surface curving with radius R a mark of radius r is off by about
+r^2 / (2R) in depth and (r/R)^2 in size (1% for a 5 mm mark on a 50 mm vase). Texels take the
+chart pixel under their centre (nearest): where the UVs give fewer texels a millimetre than the
+paper's px/mm, edges alias. The paper's physics (absorption, drying, the saturation spreading of
+``sim.paper``) runs on the texture's grid: its spreading is measured in texels, so it is
+anisotropic where the UVs stretch and stops at seams (ink does not bleed from one island into
+the next).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field, replace
+
+import numpy as np
+
+from .frames import angles_from_matrix, rotation_matrix
+
+PAD_TEXELS = 1.5  # texels around each UV triangle that get its 3D points (filtering at seams)
+FRAME_WIDTH = 11  # a frame: chart cx, cy; point P; tangent T; normal N (mm, unit vectors)
+FRAME_DECIMALS = 5  # as a recording's samples (sim.recording.SAMPLE_DECIMALS)
+CHART_SIDES = 11.0  # the chart's origin, in paper sides from its own 0 (samples reach 10)
+CHART_SHAPE = (1 << 30, 1 << 30)  # the chart's pixel grid is unbounded for the marks
+NORMAL_DOT_MIN = 0.0  # a texel whose normal faces away from the frame's is on another side
+DEPTH_TOL_MM = 0.5  # plus half the mark's radius: how far off the tangent plane a texel may be
+GROUP_TILE = 64  # texture tiles by which one sample's texels are grouped for the paper
+
+
+class SurfaceError(ValueError):
+    """The mesh cannot be paper, or a recording's surface frames are malformed."""
+
+
+@dataclass(frozen=True)
+class Surface:
+    """A triangle mesh in millimetres with one UV per triangle corner."""
+
+    verts: np.ndarray  # (V, 3) mm
+    tris: np.ndarray  # (T, 3) vertex indices
+    uvs: np.ndarray  # (T, 3, 2) texture coordinates, 0..1
+    face_normals: np.ndarray = field(repr=False)  # (T, 3)
+    vert_normals: np.ndarray = field(repr=False)  # (V, 3) area-weighted, unit
+    area_mm2: float = 0.0
+    uv_area: float = 0.0  # of the unit texture square the UV triangles cover
+
+    @property
+    def corners(self) -> np.ndarray:
+        """(T, 3, 3) the triangles' corner positions, mm."""
+        return self.verts[self.tris]
+
+
+def surface_from_arrays(verts_mm, tris, uvs, name: str = "The mesh") -> Surface:
+    """A checked Surface; SurfaceError says in one sentence what keeps ``name`` from being
+    paper (no triangles, no UV map, UVs of no area, an edge of more than two faces)."""
+    verts = np.asarray(verts_mm, dtype=float).reshape(-1, 3)
+    tris = np.asarray(tris, dtype=np.int64).reshape(-1, 3)
+    if tris.shape[0] == 0:
+        raise SurfaceError(f"{name} has no faces to write on")
+    if uvs is None:
+        raise SurfaceError(f"{name} has no UV map: add one (UV > Unwrap) to write on it")
+    uvs = np.asarray(uvs, dtype=float).reshape(-1, 3, 2)
+    if not (np.isfinite(verts).all() and np.isfinite(uvs).all()):
+        raise SurfaceError(f"{name} has coordinates that are not numbers")
+    _check_manifold(tris, name)
+    c = verts[tris]
+    cross = np.cross(c[:, 1] - c[:, 0], c[:, 2] - c[:, 0])
+    area = np.linalg.norm(cross, axis=1) / 2
+    d1, d2 = uvs[:, 1] - uvs[:, 0], uvs[:, 2] - uvs[:, 0]
+    uv_area = float(np.abs(d1[:, 0] * d2[:, 1] - d1[:, 1] * d2[:, 0]).sum() / 2)
+    if area.sum() <= 1e-9:
+        raise SurfaceError(f"{name} has no area")
+    if uv_area <= 1e-9:
+        raise SurfaceError(f"{name}'s UV map has no area: unwrap it (UV > Unwrap)")
+    fn = cross / np.where(area > 0, 2 * area, 1.0)[:, None]
+    vn = np.zeros_like(verts)
+    for k in range(3):
+        np.add.at(vn, tris[:, k], cross)
+    vn /= np.maximum(np.linalg.norm(vn, axis=1), 1e-30)[:, None]
+    return Surface(verts, tris, uvs, fn, vn, float(area.sum()), uv_area)
+
+
+def _check_manifold(tris: np.ndarray, name: str):
+    """SurfaceError when an edge belongs to more than two triangles (the surface has no single
+    side there, so no local frame)."""
+    e = np.sort(np.concatenate([tris[:, [0, 1]], tris[:, [1, 2]], tris[:, [2, 0]]]), axis=1)
+    _keys, counts = np.unique(e, axis=0, return_counts=True)
+    bad = int((counts > 2).sum())
+    if bad:
+        raise SurfaceError(
+            f"{name} is not manifold: {bad} edge(s) belong to more than two faces, so it has "
+            "no single side to write on: clean it up (Mesh > Clean Up) or pick another mesh"
+        )
+
+
+def texture_side_mm(surface: Surface) -> float:
+    """The side (mm) of a square texture whose texels have, on average over the surface, the
+    paper's size: the surface's area over the part of the texture its UVs cover."""
+    return math.sqrt(surface.area_mm2 / surface.uv_area)
+
+
+# ------------------------------------------------------------------------------ queries
+@dataclass(frozen=True)
+class Hit:
+    tri: int
+    bary: np.ndarray  # (3,)
+    point: np.ndarray  # (3,) mm
+    distance: float  # along the ray (ray_hit) or to the point (closest_point)
+
+
+def ray_hit(surface: Surface, origin, direction) -> Hit | None:
+    """The first surface point on the ray origin + t direction, t >= 0 (Moller-Trumbore over
+    all triangles at once); None when the ray misses."""
+    o = np.asarray(origin, dtype=float)
+    d = np.asarray(direction, dtype=float)
+    c = surface.corners
+    e1, e2 = c[:, 1] - c[:, 0], c[:, 2] - c[:, 0]
+    p = np.cross(d, e2)
+    det = np.einsum("ij,ij->i", e1, p)
+    ok = np.abs(det) > 1e-12
+    inv = np.where(ok, 1.0 / np.where(ok, det, 1.0), 0.0)
+    s = o - c[:, 0]
+    u = np.einsum("ij,ij->i", s, p) * inv
+    qv = np.cross(s, e1)
+    v = (qv @ d) * inv
+    t = np.einsum("ij,ij->i", e2, qv) * inv
+    eps = 1e-9
+    hit = ok & (u >= -eps) & (v >= -eps) & (u + v <= 1 + eps) & (t >= 0)
+    if not hit.any():
+        return None
+    i = int(np.flatnonzero(hit)[np.argmin(t[hit])])
+    bary = np.array([1 - u[i] - v[i], u[i], v[i]])
+    return Hit(i, bary, o + t[i] * d, float(t[i]))
+
+
+def closest_point(surface: Surface, point) -> Hit:
+    """The surface point nearest ``point`` (every triangle at once: the projection on its plane
+    when inside, else the nearest point of its three edges)."""
+    p = np.asarray(point, dtype=float)
+    c = surface.corners
+    cands, barys = [], []
+    n = surface.face_normals
+    proj = p - np.einsum("ij,ij->i", p - c[:, 0], n)[:, None] * n
+    b = _barycentric(c, proj)
+    inside = (b >= -1e-12).all(axis=1)
+    cands.append(np.where(inside[:, None], proj, np.inf))
+    barys.append(b)
+    for a, bb in ((0, 1), (1, 2), (2, 0)):
+        e = c[:, bb] - c[:, a]
+        t = np.clip(np.einsum("ij,j->i", e, p) - np.einsum("ij,ij->i", e, c[:, a]), 0, None)
+        t = np.minimum(t / np.maximum(np.einsum("ij,ij->i", e, e), 1e-30), 1.0)
+        cands.append(c[:, a] + t[:, None] * e)
+        w = np.zeros((len(c), 3))
+        w[:, a], w[:, bb] = 1 - t, t
+        barys.append(w)
+    pts = np.stack(cands)  # (4, T, 3)
+    dist = np.linalg.norm(pts - p, axis=2)
+    dist = np.where(np.isfinite(dist), dist, np.inf)
+    k, i = np.unravel_index(int(np.argmin(dist)), dist.shape)
+    return Hit(int(i), np.asarray(barys[k][i]), pts[k, i], float(dist[k, i]))
+
+
+def _barycentric(c: np.ndarray, p: np.ndarray) -> np.ndarray:
+    """(T, 3) barycentric coordinates of points p (T, 3) in the triangles c (T, 3, 3)."""
+    v0, v1, v2 = c[:, 1] - c[:, 0], c[:, 2] - c[:, 0], p - c[:, 0]
+    d00, d01, d11 = (np.einsum("ij,ij->i", a, b) for a, b in ((v0, v0), (v0, v1), (v1, v1)))
+    d20, d21 = np.einsum("ij,ij->i", v2, v0), np.einsum("ij,ij->i", v2, v1)
+    den = d00 * d11 - d01 * d01
+    den = np.where(np.abs(den) > 1e-30, den, 1.0)
+    v = (d11 * d20 - d01 * d21) / den
+    w = (d00 * d21 - d01 * d20) / den
+    return np.stack([1 - v - w, v, w], axis=1)
+
+
+def normal_at(surface: Surface, hit: Hit) -> np.ndarray:
+    """The smooth (vertex-interpolated) unit normal at a hit."""
+    n = hit.bary @ surface.vert_normals[surface.tris[hit.tri]]
+    ln = np.linalg.norm(n)
+    return n / ln if ln > 1e-12 else surface.face_normals[hit.tri]
+
+
+# ------------------------------------------------------------------------------ frames
+def transport(tangent, normal) -> np.ndarray:
+    """The tangent carried onto the plane normal to ``normal`` by the smallest rotation (the
+    part along the normal removed); the surface's x (else y) axis when it is lost."""
+    n = np.asarray(normal, dtype=float)
+    for t in (np.asarray(tangent, dtype=float), np.array([1.0, 0, 0]), np.array([0, 1.0, 0])):
+        t = t - (t @ n) * n
+        ln = np.linalg.norm(t)
+        if ln > 0.3:
+            return t / ln
+    raise SurfaceError("a surface normal is not a number")  # pragma: no cover - unreachable
+
+
+def quantise(a) -> np.ndarray:
+    """Frames exactly as a saved recording holds them (see sim.recording.quantise)."""
+    a = np.asarray(a, dtype=float)
+    return np.array([round(float(v), FRAME_DECIMALS) for v in a.ravel()]).reshape(a.shape)
+
+
+def frame_parts(frame):
+    """(c (2,), P, T, B, N) of a frame row."""
+    f = np.asarray(frame, dtype=float)
+    n = f[8:11]
+    t = f[5:8]
+    return f[:2], f[2:5], t, np.cross(n, t), n
+
+
+def new_frame(surface: Surface, hit: Hit, prev=None, origin_xy=(0.0, 0.0)) -> np.ndarray:
+    """The frame at ``hit``: the tangent carried from the previous frame, the chart position
+    developed from it. The first frame's tangent is the surface's x axis on the tangent plane
+    and its chart position ``origin_xy`` + the point's coordinates along T and B (so a flat
+    surface's chart is its own plane)."""
+    n = normal_at(surface, hit)
+    if prev is None:
+        t = transport(np.array([1.0, 0.0, 0.0]), n)
+        c = np.asarray(origin_xy, dtype=float) + [hit.point @ t, hit.point @ np.cross(n, t)]
+    else:
+        c0, p0, t0, b0, _n0 = frame_parts(prev)
+        step = hit.point - p0
+        c = c0 + np.array([step @ t0, step @ b0])
+        t = transport(t0, n)
+    return quantise(np.r_[c, hit.point, t, n])
+
+
+def local_sample(frame, base_mm, rot) -> np.ndarray:
+    """The engine's 6-DOF sample of a brush (base point, rotation 3x3 in the surface's space)
+    in the frame's local coordinates: x, y on the chart, z above the tangent plane."""
+    c, p, t, b, n = frame_parts(frame)
+    F = np.stack([t, b, n], axis=1)
+    F = F / np.linalg.norm(F, axis=0)
+    rel = F.T @ (np.asarray(base_mm, dtype=float) - p)
+    d, q, r = angles_from_matrix(F.T @ np.asarray(rot, dtype=float))
+    return np.array([c[0] + rel[0], c[1] + rel[1], rel[2], d, q, r])
+
+
+def pose_from_sample(frame, sample) -> tuple[np.ndarray, np.ndarray]:
+    """(base point, rotation) in the surface's space of a local sample (local_sample's
+    inverse)."""
+    c, p, t, b, n = frame_parts(frame)
+    F = np.stack([t, b, n], axis=1)
+    F = F / np.linalg.norm(F, axis=0)
+    s = np.asarray(sample, dtype=float)
+    base = p + F @ np.array([s[0] - c[0], s[1] - c[1], s[2]])
+    return base, F @ rotation_matrix(*s[3:6])
+
+
+def axis_hit(surface: Surface, base_mm, rot) -> Hit:
+    """Where the brush's axis (its -z, from the base) meets the surface; the closest surface
+    point when it does not."""
+    hit = ray_hit(surface, base_mm, -np.asarray(rot, dtype=float)[:, 2])
+    return hit if hit is not None else closest_point(surface, base_mm)
+
+
+def develop(surface: Surface, bases, rots, origin_xy) -> tuple[np.ndarray, np.ndarray]:
+    """Baked brush poses (N bases in mm, N rotations, in the surface's space) -> the engine's
+    chart samples (N, 6) and their frames (N, FRAME_WIDTH); see new_frame for origin_xy."""
+    frames = np.empty((len(bases), FRAME_WIDTH))
+    samples = np.empty((len(bases), 6))
+    prev = None
+    for i, (base, rot) in enumerate(zip(bases, rots, strict=True)):
+        prev = frames[i] = new_frame(surface, axis_hit(surface, base, rot), prev, origin_xy)
+        samples[i] = local_sample(prev, base, rot)
+    return samples, frames
+
+
+def follow(surface: Surface, prev, xy) -> np.ndarray:
+    """The frame of a sample painted at chart position ``xy`` after the frame ``prev``: the
+    surface point nearest the spot of prev's tangent plane at xy (live painting)."""
+    c, p, t, b, _n = frame_parts(prev)
+    guess = p + (xy[0] - c[0]) * t + (xy[1] - c[1]) * b
+    return new_frame(surface, closest_point(surface, guess), prev)
+
+
+def chart_xy(frame, point) -> tuple[float, float]:
+    """The chart position of a surface point near the frame (the mouse's, while painting)."""
+    c, p, t, b, _n = frame_parts(frame)
+    d = np.asarray(point, dtype=float) - p
+    return float(c[0] + d @ t), float(c[1] + d @ b)
+
+
+def frames_from_dict(d, n_samples: int) -> np.ndarray | None:
+    """A recording's ``surface`` section (its frames), checked; None for flat paper."""
+    if d is None:
+        return None
+    rows = d.get("frames") if isinstance(d, dict) else None
+    if not isinstance(rows, list):
+        raise SurfaceError("'surface.frames' must be a list of frames")
+    if len(rows) != n_samples:
+        raise SurfaceError(f"'surface.frames' has {len(rows)} frames for {n_samples} samples")
+    try:
+        a = np.asarray(rows, dtype=float)
+    except (TypeError, ValueError):
+        raise SurfaceError("'surface.frames' must hold lists of 11 numbers") from None
+    if a.shape != (n_samples, FRAME_WIDTH) or not np.isfinite(a).all():
+        raise SurfaceError("'surface.frames' must hold lists of 11 finite numbers")
+    return a
+
+
+# ------------------------------------------------------------------------------ texels
+@dataclass(frozen=True)
+class TexelPoints:
+    """The 3D point (and face normal) of every texel a UV triangle (or its pad) covers."""
+
+    index: np.ndarray  # (K,) flat texel index row * W + col, rows from the bottom (v = 0)
+    xyz: np.ndarray  # (K, 3) mm
+    normal: np.ndarray  # (K, 3)
+    W: int
+    H: int
+
+
+def texel_points(surface: Surface, W: int, H: int, chunk: int = 1 << 21) -> TexelPoints:
+    """Rasterise the UV triangles into the W x H texture: a texel's centre gets the 3D point
+    of the triangle it lies in (by its barycentric coordinates), or within PAD_TEXELS of, the
+    triangle it lies deepest in winning."""
+    uvp = surface.uvs * np.array([W, H]) - 0.5  # texel centres at integers
+    lo = np.floor(uvp.min(axis=1) - PAD_TEXELS).astype(np.int64) + 1
+    hi = np.ceil(uvp.max(axis=1) + PAD_TEXELS).astype(np.int64)
+    lo = np.maximum(lo, 0)
+    hi = np.minimum(hi, [W, H])
+    nx = np.maximum(hi[:, 0] - lo[:, 0], 0)
+    ny = np.maximum(hi[:, 1] - lo[:, 1], 0)
+    best = np.full(W * H, -np.inf)
+    owner = np.full(W * H, -1, dtype=np.int64)
+    bary_of = np.zeros((W * H, 3))
+    counts = nx * ny
+    tri_order = np.arange(len(counts))
+    start = 0
+    while start < len(counts):  # groups of triangles of about ``chunk`` candidate texels
+        cum = np.cumsum(counts[start:])
+        stop = start + max(int(np.searchsorted(cum, chunk)), 1)
+        sel = tri_order[start:stop]
+        _rasterise(uvp, sel, lo, nx, counts, W, best, owner, bary_of)
+        start = stop
+    idx = np.flatnonzero(owner >= 0)
+    tri = owner[idx]
+    xyz = np.einsum("kj,kjd->kd", bary_of[idx], surface.corners[tri])
+    return TexelPoints(idx, xyz, surface.face_normals[tri], W, H)
+
+
+def _rasterise(uvp, sel, lo, nx, counts, W, best, owner, bary_of):
+    """One group of triangles' candidate texels: keep each texel's deepest triangle."""
+    n = counts[sel]
+    tri = np.repeat(sel, n)
+    k = np.arange(int(n.sum())) - np.repeat(np.cumsum(n) - n, n)
+    x = lo[tri, 0] + k % nx[tri]
+    y = lo[tri, 1] + k // nx[tri]
+    p = np.stack([x, y], axis=1).astype(float)
+    a, b, c = uvp[tri, 0], uvp[tri, 1], uvp[tri, 2]
+    v0, v1, v2 = b - a, c - a, p - a
+    den = v0[:, 0] * v1[:, 1] - v0[:, 1] * v1[:, 0]
+    good = np.abs(den) > 1e-14
+    den = np.where(good, den, 1.0)
+    wb = (v2[:, 0] * v1[:, 1] - v2[:, 1] * v1[:, 0]) / den
+    wc = (v0[:, 0] * v2[:, 1] - v0[:, 1] * v2[:, 0]) / den
+    bary = np.stack([1 - wb - wc, wb, wc], axis=1)
+    # signed distance (texels) to each edge: barycentric x the corner's height over the edge
+    e = np.stack([c - b, a - c, b - a], axis=1)
+    heights = np.abs(den)[:, None] / np.maximum(np.linalg.norm(e, axis=2), 1e-14)
+    depth = np.where(good, (bary * heights).min(axis=1), -np.inf)
+    keep = depth >= -PAD_TEXELS
+    flat = (y * W + x)[keep]
+    depth, tri, bary = depth[keep], tri[keep], bary[keep]
+    order = np.lexsort((depth, flat))  # per texel, the deepest last
+    flat, depth, tri, bary = flat[order], depth[order], tri[order], bary[order]
+    last = np.r_[flat[1:] != flat[:-1], True]
+    flat, depth, tri, bary = flat[last], depth[last], tri[last], bary[last]
+    better = depth > best[flat]
+    f = flat[better]
+    best[f], owner[f], bary_of[f] = depth[better], tri[better], bary[better]
+
+
+class SpatialHash:
+    """Points binned in cubes of ``cell`` mm: the points near a place in time proportional to
+    the points there."""
+
+    def __init__(self, xyz: np.ndarray, cell: float):
+        self.cell = float(cell)
+        ijk = np.floor(xyz / self.cell).astype(np.int64)
+        self.lo = ijk.min(axis=0) if len(ijk) else np.zeros(3, np.int64)
+        self.dims = (ijk.max(axis=0) - self.lo + 1) if len(ijk) else np.ones(3, np.int64)
+        keys = self._key(ijk)
+        self.order = np.argsort(keys, kind="stable")
+        self.keys = keys[self.order]
+
+    def _key(self, ijk):
+        r = ijk - self.lo
+        return (r[:, 0] * self.dims[1] + r[:, 1]) * self.dims[2] + r[:, 2]
+
+    def query(self, centre, radius: float) -> np.ndarray:
+        """Indices of the points in the cubes that meet the ball (a superset of the ball)."""
+        c = np.asarray(centre, dtype=float)
+        a = np.maximum(np.floor((c - radius) / self.cell).astype(np.int64), self.lo)
+        b = np.minimum(np.floor((c + radius) / self.cell).astype(np.int64), self.lo + self.dims - 1)
+        if (b < a).any():
+            return np.zeros(0, dtype=np.int64)
+        axes = [np.arange(a[k], b[k] + 1) for k in range(3)]
+        grid = np.stack(np.meshgrid(*axes, indexing="ij"), axis=-1).reshape(-1, 3)
+        keys = self._key(grid)
+        s = np.searchsorted(self.keys, keys, "left")
+        e = np.searchsorted(self.keys, keys, "right")
+        n = e - s
+        if n.sum() == 0:
+            return np.zeros(0, dtype=np.int64)
+        pos = np.repeat(s - (np.cumsum(n) - n), n) + np.arange(int(n.sum()))
+        return self.order[pos]
+
+
+# ------------------------------------------------------------------------------ the paper
+class SurfacePaper:
+    """What the engine needs to write on a surface: the frames of the recording's samples,
+    the chart's origin, and the splat of a sample's chart marks into the texture."""
+
+    def __init__(self, surface: Surface, frames, W: int, H: int, ppm: float, side_mm: float):
+        self.surface = surface
+        self.frames = list(np.asarray(frames, dtype=float)) if frames is not None else []
+        self.ppm = float(ppm)
+        self.texels = texel_points(surface, W, H)
+        self.W = W
+        # the chart is offset so that its pixels are never negative (samples reach 10 sides)
+        self.offset = math.ceil(CHART_SIDES * side_mm * self.ppm) / self.ppm
+        self.hash = SpatialHash(self.texels.xyz, max(2.0, 4.0 / self.ppm))
+
+    def frame(self, i: int, sample) -> np.ndarray:
+        """Sample i's frame; a sample painted live gets one from the previous frame."""
+        while len(self.frames) <= i:
+            if not self.frames:
+                raise SurfaceError("a surface recording's first sample has no frame")
+            self.frames.append(follow(self.surface, self.frames[-1], sample[:2]))
+        return self.frames[i]
+
+    def engine_sample(self, i: int, sample) -> np.ndarray:
+        """Sample i on the offset chart the marks are rasterised in."""
+        self.frame(i, sample)
+        s = np.array(sample, dtype=float)
+        s[:2] += self.offset
+        return s
+
+    def splat(self, marks, i: int) -> list[list]:
+        """Sample i's chart marks as texture marks, in groups of texels far enough apart (a
+        mark straddling a seam lands in two places of the texture) that the paper takes each
+        group as its own window; [] when no texel is under the marks."""
+        marks = [mk for mk in marks if mk.rows.size]
+        if not marks:
+            return []
+        c, p, t, b, n = frame_parts(self.frames[i])
+        c = c + self.offset
+        ppm = self.ppm
+        x0 = min(mk.ix0 for mk in marks) / ppm
+        y0 = min(mk.iy0 for mk in marks) / ppm
+        x1 = max(mk.ix0 + mk.shape[1] for mk in marks) / ppm
+        y1 = max(mk.iy0 + mk.shape[0] for mk in marks) / ppm
+        mid = np.array([(x0 + x1) / 2, (y0 + y1) / 2])
+        radius = math.hypot(x1 - x0, y1 - y0) / 2 + 1.0 / ppm
+        tol = DEPTH_TOL_MM + radius / 2
+        q = p + (mid[0] - c[0]) * t + (mid[1] - c[1]) * b
+        cand = self.hash.query(q, radius + tol)
+        d = self.texels.xyz[cand] - p
+        ok = (np.abs(d @ n) <= tol) & (self.texels.normal[cand] @ n > NORMAL_DOT_MIN)
+        cand, d = cand[ok], d[ok]
+        col = np.floor((c[0] + d @ t) * ppm).astype(np.int64)
+        row = np.floor((c[1] + d @ b) * ppm).astype(np.int64)
+        out = []
+        for mk in marks:
+            tm = self._texture_mark(mk, row, col, self.texels.index[cand])
+            if tm is not None:
+                out.append(tm)
+        return group_marks(out)
+
+    def _texture_mark(self, mk, row, col, texel):
+        """One chart mark as the texels that fall in its inked pixels (None: none do)."""
+        h, w = mk.shape
+        r, cc = row - mk.iy0, col - mk.ix0
+        inwin = (r >= 0) & (r < h) & (cc >= 0) & (cc < w)
+        if not inwin.any():
+            return None
+        lut = np.full(h * w, -1, dtype=np.int64)
+        lut[mk.rows * w + mk.cols] = np.arange(mk.rows.size)
+        k = lut[r[inwin] * w + cc[inwin]]
+        hit = k >= 0
+        if not hit.any():
+            return None
+        k = k[hit]
+        tex = texel[inwin][hit]
+        ty, tx = tex // self.W, tex % self.W
+        iy0, ix0 = int(ty.min()), int(tx.min())
+        return _replace_pixels(
+            mk, iy0, ix0, ty - iy0, tx - ix0, k, (int(ty.max()) - iy0 + 1, int(tx.max()) - ix0 + 1)
+        )
+
+
+def _replace_pixels(mk, iy0, ix0, rows, cols, k, shape):
+    """A copy of the mark at other pixels, each with the ink of the mark's pixel k."""
+    return replace(
+        mk,
+        iy0=iy0,
+        ix0=ix0,
+        rows=rows,
+        cols=cols,
+        wet=mk.wet[k],
+        col=mk.col[k],
+        lateral=mk.lateral[k],
+        shape=shape,
+    )
+
+
+def group_marks(marks) -> list[list]:
+    """Split texture marks into groups whose GROUP_TILE tiles do not touch (each mark cut at
+    the gaps): the paper deposits each group in its own window, so a mark on both sides of a
+    seam costs its texels, not the texture between them."""
+    if not marks:
+        return []
+    tiles = {}
+    for mk in marks:
+        ty = (mk.rows + mk.iy0) // GROUP_TILE
+        tx = (mk.cols + mk.ix0) // GROUP_TILE
+        for key in set(zip(ty.tolist(), tx.tolist(), strict=True)):
+            tiles.setdefault(key, None)
+    label = _tile_components(list(tiles))
+    if len(set(label.values())) == 1:
+        return [marks]
+    groups: dict[int, list] = {}
+    for mk in marks:
+        ty = (mk.rows + mk.iy0) // GROUP_TILE
+        tx = (mk.cols + mk.ix0) // GROUP_TILE
+        lab = np.array([label[k] for k in zip(ty.tolist(), tx.tolist(), strict=True)])
+        for g in np.unique(lab).tolist():
+            sel = lab == g
+            groups.setdefault(g, []).append(_subset(mk, sel))
+    return [groups[g] for g in sorted(groups)]
+
+
+def _tile_components(tiles: list) -> dict:
+    """Connected components (8-neighbourhood, so groups are at least a tile apart)."""
+    label, left = {}, set(tiles)
+    comp = 0
+    for t0 in tiles:
+        if t0 in label:
+            continue
+        stack = [t0]
+        label[t0] = comp
+        left.discard(t0)
+        while stack:
+            y, x = stack.pop()
+            for dy in (-1, 0, 1):
+                for dx in (-1, 0, 1):
+                    nb = (y + dy, x + dx)
+                    if nb in left:
+                        left.discard(nb)
+                        label[nb] = comp
+                        stack.append(nb)
+        comp += 1
+    return label
+
+
+def _subset(mk, sel):
+    rows, cols = mk.rows[sel] + mk.iy0, mk.cols[sel] + mk.ix0
+    iy0, ix0 = int(rows.min()), int(cols.min())
+    shape = (int(rows.max()) - iy0 + 1, int(cols.max()) - ix0 + 1)
+    k = np.flatnonzero(sel)
+    return _replace_pixels(mk, iy0, ix0, rows - iy0, cols - ix0, k, shape)

@@ -1,0 +1,275 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
+"""Writing on a 3D surface (issue 17), the engine's part: frames, chart, texels and the splat
+of the marks (sim.surface), without Blender."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from sim import surface as sf
+from sim.engine import Simulation
+from sim.frames import rotation_matrix
+from sim.recording import Recording, from_dict
+
+L = 30.0  # the default brush's hair length (mm), as the engine reads it below
+PPM = 3.0
+
+
+def grid(size=100.0, n=8, angle_deg=0.0, scale=1.0 / 100.0, centre=(0.5, 0.5)):
+    """A flat n x n grid of size mm centred on the origin in z = 0; its UVs are the plane's
+    turned by angle_deg and scaled by ``scale`` (UV units a mm) about ``centre``."""
+    xs = np.linspace(-size / 2, size / 2, n + 1)
+    X, Y = np.meshgrid(xs, xs)
+    verts = np.stack([X.ravel(), Y.ravel(), np.zeros(X.size)], axis=1)
+    a = np.radians(angle_deg)
+    rot = np.array([[np.cos(a), -np.sin(a)], [np.sin(a), np.cos(a)]])
+    uv_of = np.asarray(centre) + (verts[:, :2] @ rot.T) * scale
+    tris = []
+    for j in range(n):
+        for i in range(n):
+            a0, b0 = j * (n + 1) + i, j * (n + 1) + i + 1
+            c0, d0 = b0 + n + 1, a0 + n + 1
+            tris += [(a0, b0, c0), (a0, c0, d0)]
+    tris = np.array(tris)
+    return sf.surface_from_arrays(verts, tris, uv_of[tris]), rot, scale, centre
+
+
+def cylinder(radius=40.0, height=120.0, n=48, m=4):
+    """An open cylinder about the z axis; u = angle / 360 deg, so its seam is at angle 0."""
+    ang = 2 * np.pi * np.arange(n) / n
+    rows = [
+        (radius * np.cos(a), radius * np.sin(a), height * j / m) for j in range(m + 1) for a in ang
+    ]
+    verts = np.array(rows)
+    tris, uvs = [], []
+    for j in range(m):
+        for i in range(n):
+            a, b = j * n + i, j * n + (i + 1) % n
+            c, d = b + n, a + n
+            u0, u1, v0, v1 = i / n, (i + 1) / n, j / m, (j + 1) / m
+            tris += [(a, b, c), (a, c, d)]
+            uvs += [[(u0, v0), (u1, v0), (u1, v1)], [(u0, v0), (u1, v1), (u0, v1)]]
+    return sf.surface_from_arrays(verts, np.array(tris), np.array(uvs))
+
+
+def around(angles_deg, press, radius=40.0, z=60.0):
+    """Brush poses upright against a cylinder's side (axis along the normal), pressing press
+    (mm) at the given angles."""
+    bases, rots = [], []
+    for a, p in zip(np.radians(angles_deg), press, strict=True):
+        n = np.array([np.cos(a), np.sin(a), 0.0])
+        bases.append(np.array([0.0, 0.0, z]) + n * (radius + L - p))
+        x = np.array([-np.sin(a), np.cos(a), 0.0])
+        rots.append(np.stack([x, np.cross(n, x), n], axis=1))
+    return np.array(bases), np.array(rots)
+
+
+def stroke_press(n: int, press=3.0, lead=12) -> np.ndarray:
+    p = np.full(n, -5.0)
+    p[lead:-lead] = press
+    return p
+
+
+def simulate_on(surface, bases, rots, ppm=PPM, origin=None):
+    side = sf.texture_side_mm(surface)
+    origin = (side / 2, side / 2) if origin is None else origin
+    samples, frames = sf.develop(surface, bases, rots, origin)
+    d = Recording(samples, width_mm=side, height_mm=side, px_per_mm=ppm).to_dict()
+    d["surface"] = {"frames": frames.tolist()}
+    rec = from_dict(d)
+    frames = sf.frames_from_dict(rec.extra["surface"], len(rec.samples))
+    sp = sf.SurfacePaper(surface, frames, rec.width_px, rec.height_px, ppm, side)
+    return Simulation(rec, surface=sp).run(), sp
+
+
+def ink_of(sim) -> np.ndarray:
+    """Ink density (H, W), bottom row first."""
+    return sim.paper.ink.mean(axis=2)
+
+
+# ----------------------------------------------------------------------------- geometry
+def test_ray_and_closest_point_on_a_cylinder():
+    s = cylinder()
+    hit = sf.ray_hit(s, [0.0, -100.0, 60.0], [0.0, 1.0, 0.0])
+    assert hit is not None and abs(hit.point[1] + 40.0) < 1e-9  # a vertex of the polygon
+    assert sf.ray_hit(s, [0.0, -100.0, 60.0], [0.0, -1.0, 0.0]) is None
+    c = sf.closest_point(s, [0.0, -70.0, 200.0])  # above the rim: the rim's nearest point
+    assert abs(c.point[2] - 120.0) < 1e-9 and c.point[1] < -39.0
+    n = sf.normal_at(s, hit)
+    np.testing.assert_allclose(n, [0.0, -1.0, 0.0], atol=1e-9)
+
+
+def test_local_sample_is_the_pose_relative_to_the_frame_and_back():
+    g = grid()[0]
+    base = np.array([5.0, -3.0, 26.0])
+    rot = rotation_matrix(10.0, -15.0, 30.0)  # tilted and turned about its axis
+    frame = sf.new_frame(g, sf.axis_hit(g, base, rot), None, (50.0, 50.0))
+    sample = sf.local_sample(frame, base, rot)  # on a flat surface: the plane's own sample
+    np.testing.assert_allclose(sample, [55.0, 47.0, 26.0, 10.0, -15.0, 30.0], atol=1e-4)
+    s = cylinder()  # on a curved one: relative to the normal where the axis meets it
+    bases, rots = around([-90.0], [3.0])
+    rots = rots @ rotation_matrix(10.0, -15.0, 30.0)
+    hit = sf.axis_hit(s, bases[0], rots[0])
+    frame = sf.new_frame(s, hit, None, (100.0, 100.0))
+    sample = sf.local_sample(frame, bases[0], rots[0])
+    n = sf.normal_at(s, hit)
+    tilt = np.degrees(np.arccos(rots[0][:, 2] @ n))
+    d, q = np.radians(sample[3:5])
+    assert abs(np.degrees(np.arccos(np.cos(d) * np.cos(q))) - tilt) < 1e-3
+    assert abs(sample[2] - (bases[0] - hit.point) @ n) < 1e-3
+    base, back = sf.pose_from_sample(frame, sample)
+    np.testing.assert_allclose(base, bases[0], atol=1e-3)
+    np.testing.assert_allclose(back, rots[0], atol=1e-4)
+
+
+def test_the_tangent_is_carried_without_twist_and_the_chart_unrolls_the_cylinder():
+    s = cylinder()
+    bases, rots = around(np.linspace(-150, -30, 61), np.full(61, 3.0))
+    samples, frames = sf.develop(s, bases, rots, (0.0, 0.0))
+    T = frames[:, 5:8]
+    assert np.abs(T[:, 2]).max() < 1e-4  # stays horizontal around the cylinder
+    # the chart's x grows by the arc length (the polygon's chord per step), y stays
+    step = np.diff(frames[:, 0])
+    arc = 40.0 * np.radians(2.0) * np.cos(np.pi / 48)
+    np.testing.assert_allclose(step, arc, rtol=0.03)
+    np.testing.assert_allclose(frames[:, 1], frames[0, 1], atol=1e-4)
+    np.testing.assert_allclose(samples[:, 2], L - 3.0, atol=0.2)  # pressing 3 mm everywhere
+    np.testing.assert_allclose(samples[:, 3:5], 0.0, atol=1e-3)  # upright against the normal
+
+
+def test_texel_points_follow_the_uv_map_and_pad_the_islands():
+    s, rot, scale, centre = grid(angle_deg=30.0, scale=0.4 / 100)
+    W = 200
+    tp = sf.texel_points(s, W, W)
+    uv = (np.stack([tp.index % W, tp.index // W], axis=1) + 0.5) / W
+    xy = ((uv - centre) / scale) @ rot  # the inverse of the UV map
+    np.testing.assert_allclose(tp.xyz[:, :2], xy, atol=1e-9)
+    # every texel inside the UV square has a point; the pad reaches PAD_TEXELS beyond
+    inside = np.abs(xy).max(axis=1) <= 50.0
+    assert inside.sum() > 0.95 * 0.16 * W * W
+    assert np.abs(xy).max() > 50.0 and np.abs(xy).max() < 50.0 + 2 * sf.PAD_TEXELS / (0.4 * W / 100)
+
+
+def test_meshes_that_cannot_be_paper_get_one_message():
+    s = cylinder()
+    with pytest.raises(sf.SurfaceError, match="no UV map"):
+        sf.surface_from_arrays(s.verts, s.tris, None, "Mesh 'Cube'")
+    with pytest.raises(sf.SurfaceError, match="UV map has no area"):
+        sf.surface_from_arrays(s.verts, s.tris, np.zeros_like(s.uvs), "Mesh 'Cube'")
+    fin = np.array([[0, 1, 2], [0, 1, 3], [0, 1, 4]])  # three faces on one edge
+    v = np.array([[0, 0, 0], [1, 0, 0], [0, 1, 0], [0, -1, 0], [0, 0, 1.0]])
+    with pytest.raises(sf.SurfaceError, match="not manifold: 1 edge"):
+        sf.surface_from_arrays(v, fin, np.random.default_rng(0).random((3, 3, 2)), "Mesh 'Fin'")
+    with pytest.raises(sf.SurfaceError, match="frames for 3 samples"):
+        sf.frames_from_dict({"frames": [[0.0] * 11]}, 3)
+
+
+# ----------------------------------------------------------------------------- the ink
+def test_a_flat_grid_with_turned_scaled_uvs_takes_the_planes_ink_through_its_uvs():
+    s, rot, scale, centre = grid(angle_deg=30.0, scale=0.4 / 100)
+    n = 150
+    x = np.linspace(20.0, 80.0, n)
+    y = 50.0 + 12.0 * np.sin(np.linspace(0, np.pi, n))
+    z = L - stroke_press(n, 2.5)
+    plane_samples = np.stack([x, y, z, np.zeros(n), np.full(n, -8.0), np.zeros(n)], axis=1)
+    plane = Simulation(
+        Recording(plane_samples, width_mm=100.0, height_mm=100.0, px_per_mm=PPM)
+    ).run()
+    bases = plane_samples[:, :3] - [50.0, 50.0, 0.0]
+    rots = np.array([rotation_matrix(*p[3:]) for p in plane_samples])
+    sim, sp = simulate_on(s, bases, rots, origin=(50.0, 50.0))
+    np.testing.assert_allclose(sim.rec.samples, plane_samples, atol=1e-4)  # the chart is the plane
+    tp = sp.texels
+    inside = np.abs(tp.xyz[:, :2]).max(axis=1) < 50.0
+    px = np.floor((tp.xyz[inside, :2] + 50.0) * PPM).astype(int)
+    on_plane = ink_of(plane)[px[:, 1], px[:, 0]]
+    on_grid = ink_of(sim).ravel()[tp.index[inside]]
+    a, b = on_plane > 0.3, on_grid > 0.3
+    assert a.sum() > 500
+    assert (a & b).sum() / (a | b).sum() > 0.93  # the same mark, texel for texel
+    assert np.abs(on_plane - on_grid).mean() < 0.02
+    assert ink_of(sim).ravel()[tp.index[~inside]].max() < 0.9  # only the pad around the edge
+
+
+def test_a_stroke_around_a_cylinder_inks_only_under_its_path_with_constant_width():
+    s = cylinder()
+    n = 160
+    ang = np.linspace(-160.0, -20.0, n)
+    sim, sp = simulate_on(s, *around(ang, stroke_press(n, 3.0)))
+    tp = sp.texels
+    inked = ink_of(sim).ravel()[tp.index] > 0.3
+    X = tp.xyz[inked]
+    a = np.degrees(np.arctan2(X[:, 1], X[:, 0]))
+    assert inked.sum() > 300
+    assert a.min() > -165 and a.max() < -15  # along the path only
+    assert np.abs(np.hypot(X[:, 0], X[:, 1]) - 40.0).max() < 0.5  # on the surface itself
+    centre = np.abs(X[:, 2] - 60.0)
+    assert centre.max() < 6.0  # within the brush's half width of the path
+    # the same width all along the middle of the stroke (in the surface's millimetres)
+    bins = np.arange(-130.0, -50.0, 10.0)
+    widths = [np.ptp(X[(a >= b0) & (a < b0 + 10), 2]) for b0 in bins]
+    assert min(widths) > 2.0 and max(widths) - min(widths) < 0.5
+
+
+def test_a_stroke_across_the_seam_has_no_gap():
+    s = cylinder()
+    n = 160
+    ang = np.linspace(-50.0, 50.0, n)  # u = 0 and u = 1 meet at angle 0
+    sim, sp = simulate_on(s, *around(ang, stroke_press(n, 3.0)))
+    tp = sp.texels
+    ink = ink_of(sim).ravel()[tp.index]
+    inked = ink > 0.3
+    X = tp.xyz[inked]
+    a = np.degrees(np.arctan2(X[:, 1], X[:, 0]))
+    u = (tp.index % tp.W)[inked] / tp.W
+    assert (u < 0.1).any() and (u > 0.9).any()  # both islands' sides of the seam
+    # every degree of the stroke's middle has ink, the seam's too
+    covered = np.histogram(a, bins=np.arange(-30.0, 30.0, 1.0))[0]
+    assert covered.min() > 0
+    # and the texels at the seam's two sides (u just above 0, just below 1) are as dark
+    near = np.abs(X[:, 2] - 60.0) < 1.0
+    left = ink[inked][near & (np.abs(a) < 2.0) & (u < 0.5)]
+    right = ink[inked][near & (np.abs(a) < 2.0) & (u > 0.5)]
+    assert left.size and right.size and abs(left.mean() - right.mean()) < 0.1
+
+
+def test_replay_is_bit_for_bit_and_a_snapshot_resumes_exactly():
+    s = cylinder()
+    n = 90
+    bases, rots = around(np.linspace(-30.0, 30.0, n), stroke_press(n, 3.0, lead=8))
+    a, sp = simulate_on(s, bases, rots)
+    side = sf.texture_side_mm(s)
+    rec = from_dict(a.rec.to_dict())  # through the file's values
+    frames = sf.frames_from_dict(rec.extra["surface"], len(rec.samples))
+    b = Simulation(rec, sf.SurfacePaper(s, frames, rec.width_px, rec.height_px, PPM, side))
+    b.run(40)
+    snap = b.snapshot()
+    b.run()
+    assert np.array_equal(a.paper.ink, b.paper.ink) and np.array_equal(a.paper.wet, b.paper.wet)
+    b.restore(snap)
+    b.run()
+    assert np.array_equal(a.paper.ink, b.paper.ink)
+
+
+def test_live_samples_get_frames_that_follow_the_surface():
+    s = cylinder()
+    bases, rots = around([-90.0], [-5.0])
+    samples, frames = sf.develop(s, bases, rots, (100.0, 100.0))
+    sp = sf.SurfacePaper(s, frames, 64, 64, PPM, 100.0)
+    arc = 40.0 * np.radians(30.0)  # 30 degrees along the chart's x
+    for k in range(1, 31):
+        sp.frame(k, [samples[0, 0] + arc * k / 30, samples[0, 1]])
+    p = sp.frames[30][2:5]
+    ang = np.degrees(np.arctan2(p[1], p[0]))
+    assert abs(ang - (-60.0)) < 1.5 and abs(p[2] - 60.0) < 1e-3
+    assert abs(np.hypot(p[0], p[1]) - 40.0) < 0.5
+
+
+def test_work_per_sample_is_the_texels_near_the_mark():
+    s = cylinder()
+    bases, rots = around([-90.0], [3.0])
+    sim, sp = simulate_on(s, np.repeat(bases, 3, 0), np.repeat(rots, 3, 0), ppm=6.0)
+    c, p, *_ = sf.frame_parts(sp.frames[-1])
+    near = sp.hash.query(p, 10.0)
+    assert 0 < near.size < 0.02 * sp.texels.index.size
