@@ -1,0 +1,383 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
+"""Imitating a picture (Sec. 9, "automatic imitation"): from a picture of writing to a
+recording of the brush writing it.
+
+1. The ink (``picture_ink``): the picture fitted into the em box, the paper's uneven level
+   divided out, Otsu's threshold, specks and pin-holes cleaned.
+2. The strokes (``picture_strokes``): the ink's skeleton as chains between junctions, spurs
+   pruned, chains that continue each other by direction joined across junctions; each with its
+   half-width along it (the distance transform).
+3. Direction and order (here), as calligraphy is taught: a stroke runs left to right when it
+   lies flat, else top to bottom, except that a stroke that rises to the right starts at its
+   thicker end (where the brush entered: a rising 提 or a flat 撇, whose tail is a point);
+   strokes go top to bottom, left to right, a horizontal before the stroke that crosses it or
+   hangs from it, and after one that stands on it.
+4. Character data (here): each stroke's median, and as its outline the picture's own ink round
+   it (the ink within its width of its median, the rest of the ink to the nearest stroke),
+   traced into polygons; so ``imitate.write_character`` presses as wide as the picture's
+   strokes and practises each stroke against the picture's ink.
+
+Everything here is numpy only (it runs in Blender)."""
+
+from __future__ import annotations
+
+import time
+from dataclasses import dataclass
+
+import numpy as np
+
+from . import picture_morph as M
+from .outline import EM, TOP, discs
+from .picture_ink import Ink, PictureError, find_ink, grey_of, load_picture
+from .picture_strokes import Stroke, find_strokes
+
+FLAT = np.tan(np.radians(30.0))  # a stroke whose chord rises less than this lies flat
+STEEP = np.tan(np.radians(60.0))
+THICKER = 1.3  # an end this much thicker than the other is where the brush entered
+POINTED = 1.8  # a flat stroke must end this much thinner to be a 撇 (a 横 ends pressed)
+ROW = 0.05  # strokes starting within this share of the em box of each other are one row
+TUBE = (1.15, 1.5)  # a stroke's own ink: within this times its half-width, plus pixels
+MEDIAN_EPS = 2.0  # px at 512: the median simplified this closely
+OUTLINE_EPS = 0.6  # px: the outline's polygons simplified this closely
+MAX_OUTLINE_POINTS = 1500  # per stroke (sim.hanzi takes up to 2000)
+MAX_MEDIAN_POINTS = 200  # per stroke (sim.hanzi takes up to 256)
+MAX_STROKES = 64
+
+
+@dataclass
+class Imitation:
+    """What was read off a picture: its ink, the strokes in writing order (each running the
+    way it is written), each stroke's own ink, the character data for the writer, and the
+    seconds the reading took."""
+
+    ink: Ink
+    strokes: list
+    regions: list
+    char: dict
+    seconds: float
+
+
+# ------------------------------------------------------------------- direction and order
+def _end_widths(s: Stroke) -> tuple[float, float]:
+    """Mean half-width over 10-30 % of the way in from each end."""
+    n = len(s.radius)
+    a, b = max(int(0.1 * n), 0), max(int(0.3 * n), 1)
+    return float(s.radius[a:b].mean()), float(s.radius[n - b : n - a].mean())
+
+
+def orient(s: Stroke) -> Stroke:
+    """The stroke running the way it is written (see the module's docstring)."""
+    d = s.pts[-1] - s.pts[0]
+    dx, dy = float(d[0]), float(d[1])
+    first, last = _end_widths(s)
+    if abs(dy) <= STEEP * abs(dx) and dx * dy < 0:  # rises to the right (image y is down)
+        low_left_first = dx > 0
+        w_ll, w_ur = (first, last) if low_left_first else (last, first)
+        if w_ll > THICKER * w_ur:  # a 提: entered at the lower left
+            forward = low_left_first
+        elif w_ur > (POINTED if abs(dy) <= FLAT * abs(dx) else THICKER) * w_ll:  # a 撇
+            forward = not low_left_first
+        else:  # flat: left to right; steeper: top to bottom
+            forward = (dx > 0) if abs(dy) <= FLAT * abs(dx) else (dy > 0)
+    elif abs(dy) <= FLAT * abs(dx):
+        forward = dx > 0
+    else:
+        forward = dy > 0
+    if forward:
+        return s
+    return Stroke(s.pts[::-1].copy(), s.radius[::-1].copy(), s.through, s.touches, s.joints)
+
+
+def is_flat(s: Stroke) -> bool:
+    d = s.pts[-1] - s.pts[0]
+    return abs(float(d[1])) <= FLAT * abs(float(d[0]))
+
+
+def _must_precede(a: Stroke, b: Stroke) -> bool:
+    """A flat stroke ``a`` comes before a standing one ``b`` that crosses it or starts on it;
+    ``b`` comes first when it ends on ``a``."""
+    if not is_flat(a) or is_flat(b):
+        return False
+    for node in a.through:
+        if node in b.through:
+            return True
+        if node in b.touches:
+            return _starts_at(b, node)
+    return False
+
+
+def writing_order(strokes: list, n: int) -> list[int]:
+    """Top to bottom, left to right (rows of ROW of the em box; a flat stroke first in its
+    row), with ``_must_precede`` kept; a cycle of rules is broken by the top-left stroke."""
+    k = len(strokes)
+    after = {i: set() for i in range(k)}
+    for i in range(k):
+        for j in range(k):
+            if i != j and _must_precede(strokes[i], strokes[j]):
+                after[j].add(i)
+    for i in range(k):  # a stroke standing on a flat one goes before it
+        for j in range(k):
+            if i != j and _stands_on(strokes[i], strokes[j]):
+                after[j].add(i)
+
+    def key(i):
+        x, y = strokes[i].pts[0]
+        return (int(y // (ROW * n)), 0 if is_flat(strokes[i]) else 1, float(x))
+
+    order, placed = [], set()
+    while len(order) < k:
+        free = [i for i in range(k) if i not in placed and after[i] <= placed]
+        pick = min(free or [i for i in range(k) if i not in placed], key=key)
+        order.append(pick)
+        placed.add(pick)
+    return order
+
+
+def _starts_at(s: Stroke, node: int) -> bool:
+    c = s.joints[node]
+    return bool(np.linalg.norm(s.pts[0] - c) <= np.linalg.norm(s.pts[-1] - c))
+
+
+def _stands_on(b: Stroke, a: Stroke) -> bool:
+    """Standing stroke ``b`` comes before flat stroke ``a``: it ends on it (the foot of 王's
+    vertical), or both start at one corner (口's left side before its top)."""
+    if not is_flat(a) or is_flat(b):
+        return False
+    for node in b.touches:
+        if node in a.through and not _starts_at(b, node):
+            return True
+        if node in a.touches and _starts_at(b, node) and _starts_at(a, node):
+            return True
+    return False
+
+
+# ----------------------------------------------------------------- each stroke's own ink
+def stroke_regions(strokes: list, mask: np.ndarray) -> list[np.ndarray]:
+    """Each stroke's own ink: the ink within its width of its median (strokes overlap at
+    crossings), and the ink no stroke reaches so goes to the nearest stroke."""
+    n = mask.shape[0]
+    tubes = [discs(s.pts + 0.5, s.radius * TUBE[0] + TUBE[1], n) & mask for s in strokes]
+    rest = mask & ~np.any(tubes, axis=0) if tubes else mask
+    if rest.any():
+        owner = np.zeros(mask.shape, dtype=np.int32)
+        for i, s in enumerate(strokes):
+            iy = np.clip(np.round(s.pts[:, 1]).astype(int), 0, n - 1)
+            ix = np.clip(np.round(s.pts[:, 0]).astype(int), 0, n - 1)
+            owner[iy, ix] = i + 1
+        _, ry, rx = M.nearest_feature(owner > 0)
+        near = owner[np.maximum(ry, 0), np.maximum(rx, 0)]
+        for i in range(len(strokes)):
+            tubes[i] |= rest & (near == i + 1)
+    return tubes
+
+
+def trace_outline(region: np.ndarray) -> list[np.ndarray]:
+    """The boundary of a pixel region as closed polygons along the pixels' edges (image
+    pixels, x right, y down); filled even-odd by pixel centres they give the region back."""
+    r = np.pad(np.asarray(region, dtype=bool), 1)
+    edges = []
+    for (dy, dx), (a, b) in (
+        ((-1, 0), ((0, 0), (1, 0))),  # top edge, left to right
+        ((0, 1), ((1, 0), (1, 1))),  # right edge, downwards
+        ((1, 0), ((1, 1), (0, 1))),  # bottom edge, right to left
+        ((0, -1), ((0, 1), (0, 0))),  # left edge, upwards
+    ):
+        ys, xs = np.nonzero(r & ~np.roll(r, (-dy, -dx), axis=(0, 1)))
+        for y, x in zip(ys.tolist(), xs.tolist(), strict=True):
+            edges.append(((x + a[0] - 1, y + a[1] - 1), (x + b[0] - 1, y + b[1] - 1)))
+    out_of: dict = {}
+    for e in edges:
+        out_of.setdefault(e[0], []).append(e[1])
+    polys = []
+    while out_of:
+        start = next(iter(out_of))
+        loop, cur = [start], start
+        while True:
+            nxt = out_of[cur].pop()
+            if not out_of[cur]:
+                del out_of[cur]
+            if nxt == start:
+                break
+            loop.append(nxt)
+            cur = nxt
+        if len(loop) >= 3:
+            polys.append(np.array(loop, dtype=np.float64))
+    return polys
+
+
+def simplify(poly: np.ndarray, eps: float, closed: bool = True) -> np.ndarray:
+    """Douglas-Peucker on a closed polygon (or an open polyline): its points within ``eps``
+    of the original."""
+    n = len(poly)
+    if n <= 3:
+        return poly
+    far = int(np.argmax(np.linalg.norm(poly - poly[0], axis=1))) if closed else n - 1
+    keep = np.zeros(n, dtype=bool)
+    keep[[0, far]] = True
+    stack = [(0, far), (far, n)] if closed else [(0, n - 1)]
+    while stack:
+        i, j = stack.pop()
+        a, b = poly[i], poly[j % n]
+        if j - i < 2:
+            continue
+        seg = poly[i + 1 : j]
+        ab = b - a
+        L = float(np.linalg.norm(ab))
+        if L < 1e-9:
+            d = np.linalg.norm(seg - a, axis=1)
+        else:
+            d = np.abs(ab[0] * (seg[:, 1] - a[1]) - ab[1] * (seg[:, 0] - a[0])) / L
+        k = int(np.argmax(d))
+        if d[k] > eps:
+            m = i + 1 + k
+            keep[m] = True
+            stack += [(i, m), (m, j)]
+    return poly[keep]
+
+
+# -------------------------------------------------------------------- character data
+def _to_data(pts: np.ndarray, n: int) -> np.ndarray:
+    return np.stack([pts[:, 0] * EM / n, TOP - pts[:, 1] * EM / n], axis=1)
+
+
+def _svg(polys: list, n: int) -> str:
+    parts = []
+    for p in polys:
+        d = _to_data(p, n)
+        parts.append("M " + " L ".join(f"{x:.1f} {y:.1f}" for x, y in d) + " Z")
+    return " ".join(parts)
+
+
+def outline_svg(region: np.ndarray, n: int) -> str:
+    """A stroke's own ink as an SVG path in data units, within the point budget."""
+    polys = trace_outline(region)
+    eps = OUTLINE_EPS
+    while True:
+        simple = [q for q in (simplify(p, eps) for p in polys) if len(q) >= 3]
+        if sum(len(q) for q in simple) <= MAX_OUTLINE_POINTS or eps > 8:
+            return _svg(simple, n)
+        eps *= 1.6
+
+
+def _median(s: Stroke, n: int) -> list:
+    """The stroke's centre line as a polyline within MEDIAN_EPS of it (the skeleton's jitter
+    gone, its corners kept), in data units."""
+    eps = MEDIAN_EPS * n / 512
+    pts = simplify(s.pts, eps, closed=False)
+    while len(pts) > MAX_MEDIAN_POINTS:
+        eps *= 1.5
+        pts = simplify(s.pts, eps, closed=False)
+    return [[round(float(x), 1), round(float(y), 1)] for x, y in _to_data(pts, n)]
+
+
+def read_strokes(ink: Ink) -> tuple[list, list, dict]:
+    """The strokes of a picture's ink in writing order, their own ink, and the character data
+    for the writer."""
+    n = ink.mask.shape[0]
+    found = [orient(s) for s in find_strokes(ink.mask)]
+    found = [s for s in found if len(s.pts) >= 2 and s.radius.max() > 0]
+    if not found:
+        raise PictureError("no strokes found in the picture's ink")
+    if len(found) > MAX_STROKES:
+        raise PictureError(
+            f"the picture's ink makes {len(found)} strokes; at most {MAX_STROKES} (one character)"
+        )
+    strokes = [found[i] for i in writing_order(found, n)]
+    regions = stroke_regions(strokes, ink.mask)
+    keep = [i for i, r in enumerate(regions) if r.sum() >= 4]
+    strokes, regions = [strokes[i] for i in keep], [regions[i] for i in keep]
+    char = {
+        "strokes": [outline_svg(r, n) for r in regions],
+        "medians": [_median(s, n) for s in strokes],
+    }
+    return strokes, regions, char
+
+
+def read_picture(source, n: int = 512, name: str | None = None) -> Imitation:
+    """Read a picture (a PNG path, or an image array (H, W[, C])) into an Imitation on an
+    n x n em box. PictureError (or PNGError) for a picture this cannot imitate."""
+    t0 = time.perf_counter()
+    if isinstance(source, (str, bytes)) or hasattr(source, "__fspath__"):
+        grey = load_picture(source)
+        name = name or str(source)
+    else:
+        grey = grey_of(source, name or "the picture")
+    ink = find_ink(grey, n, name or "the picture")
+    strokes, regions, char = read_strokes(ink)
+    return Imitation(ink, strokes, regions, char, time.perf_counter() - t0)
+
+
+def imitate(
+    source,
+    template,
+    n_px: int = 512,
+    size_mm: float | None = None,
+    passes: int = 3,
+    progress=None,
+    px_per_mm: float | None = None,
+    response=None,
+):
+    """Read a picture and write it with the brush (``imitate.write_character``: press from the
+    picture's widths, practice passes against the picture's own ink). Returns the recording,
+    the response, the finished simulation and the Imitation."""
+    from .imitate import write_character
+
+    if progress is not None:
+        progress(0.0, "reading the picture")
+    im = read_picture(source, n_px)
+    if progress is not None:
+        progress(0.05, f"{len(im.strokes)} strokes found; writing")
+
+    def writing(frac, *details):
+        if progress is not None:
+            progress(0.05 + 0.95 * frac, *details)
+
+    rec, resp, sim = write_character(
+        im.char,
+        n_px,
+        template,
+        size_mm=size_mm,
+        response=response,
+        passes=passes,
+        progress=writing,
+        px_per_mm=px_per_mm,
+    )
+    return rec, resp, sim, im
+
+
+# ------------------------------------------------------------------ against known data
+def order_agreement(found: dict, known: dict, n: int = 512) -> dict:
+    """How the strokes read off a picture agree with the character's known strokes: each found
+    stroke is matched to the known stroke whose outline holds most of its median; ``pairs``
+    is the share of pairs of found strokes (matched to different known ones) written in the
+    known order, ``directions`` the share of matched strokes running the known way, ``same``
+    whether the found strokes are the known ones in the known order."""
+    from .outline import fill, resample, stroke_polygons, to_image
+
+    masks = [fill([to_image(p, n) for p in polys], n) for polys in stroke_polygons(known)]
+    match, runs = [], []
+    for med in found["medians"]:
+        pts = to_image(resample(np.array(med, dtype=float), 4.0)[0], n)
+        iy = np.clip(pts[:, 1].astype(int), 0, n - 1)
+        ix = np.clip(pts[:, 0].astype(int), 0, n - 1)
+        share = [float(m[iy, ix].mean()) for m in masks]
+        k = int(np.argmax(share))
+        match.append(k if share[k] >= 0.5 else -1)
+        kp, s = resample(np.array(known["medians"][k], dtype=float), 4.0)
+        ends = np.array([med[0], med[-1]], dtype=float)
+        near = np.argmin(np.linalg.norm(kp[None] - ends[:, None], axis=2), axis=1)
+        runs.append(s[near[1]] > s[near[0]])
+    pairs = [
+        (match[i] < match[j])
+        for i in range(len(match))
+        for j in range(i + 1, len(match))
+        if match[i] >= 0 and match[j] >= 0 and match[i] != match[j]
+    ]
+    matched = [r for r, m in zip(runs, match, strict=True) if m >= 0]
+    return {
+        "found": len(match),
+        "known": len(masks),
+        "pairs": float(np.mean(pairs)) if pairs else 1.0,
+        "directions": float(np.mean(matched)) if matched else 0.0,
+        "same": match == list(range(len(masks))),
+    }

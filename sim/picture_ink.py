@@ -1,0 +1,142 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
+"""The ink of a picture of writing (dark writing on a light ground), numpy only: the picture is
+fitted into the em box (a square, the paper's colour round it), the paper's uneven level
+(light, shading, stains) divided out, the ink's darkness thresholded by Otsu's method, specks
+removed and pin-holes filled. A picture that holds no writing is refused with one message."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from . import picture_morph as M
+from .params import ParameterError
+from .texture import _gaussian, otsu
+
+MAX_PICTURE_SIDE = 8192
+MAX_PICTURE_PIXELS = 32 * 2**20
+MIN_PICTURE_SIDE = 16
+TILES = 8  # the paper's level is read in tiles of 1/TILES of the picture's side
+MIN_CONTRAST = 0.15  # darkness the darkest ink must reach over the paper
+MIN_SEPARATION = 0.7  # Otsu's between-class share of the darkness's variance
+INK_SHARE = (0.002, 0.45)  # of the em box: less is no writing, more is not writing on paper
+MAX_PIECES = 64  # separate pieces of ink (after specks are removed)
+SPECK = 2e-4  # a piece of ink smaller than this share of the em box is a speck
+PIN_HOLE = 4e-4  # a hole in the ink smaller than this share of the em box is filled
+
+
+class PictureError(ParameterError):
+    """The picture holds no writing this can imitate (blank, dark, a photo, ...)."""
+
+
+@dataclass
+class Ink:
+    """The picture's ink on the em box's n x n grid (top row first)."""
+
+    mask: np.ndarray  # (n, n) bool
+    darkness: np.ndarray  # (n, n) float in [0, 1]: 0 paper, 1 black
+    threshold: float
+    separation: float  # Otsu's between-class variance over the total: how two-toned it is
+
+
+def grey_of(img, name: str = "the picture") -> np.ndarray:
+    """Luminance in [0, 1] of a picture (H, W[, C]) of uint8 or floats in [0, 1], C in 1..4; an
+    alpha channel is laid over white paper."""
+    a = np.asarray(img)
+    if a.ndim == 2:
+        a = a[..., None]
+    if a.ndim != 3 or a.shape[2] not in (1, 2, 3, 4) or a.size == 0:
+        raise PictureError(f"{name} is not an image (shape {tuple(np.shape(img))})")
+    a = a.astype(np.float64) / 255.0 if a.dtype == np.uint8 else a.astype(np.float64)
+    if not np.isfinite(a).all():
+        raise PictureError(f"{name} has pixels that are not numbers")
+    a = np.clip(a, 0.0, 1.0)
+    c = a.shape[2]
+    alpha = a[..., -1] if c in (2, 4) else 1.0
+    lum = a[..., :3] @ np.array([0.2126, 0.7152, 0.0722]) if c >= 3 else a[..., 0]
+    return lum * alpha + (1.0 - alpha)
+
+
+def load_picture(path) -> np.ndarray:
+    """A PNG file's luminance (``sim.png``, bounded); PNGError for a damaged or huge file."""
+    from .png import read_png
+
+    return grey_of(read_png(path, MAX_PICTURE_SIDE, MAX_PICTURE_PIXELS), str(path))
+
+
+def _square(grey: np.ndarray, n: int) -> np.ndarray:
+    """The picture centred in a square of its paper's colour, resampled to n x n."""
+    h, w = grey.shape
+    s = max(h, w)
+    out = np.full((s, s), float(np.quantile(grey, 0.9)))
+    out[(s - h) // 2 : (s - h) // 2 + h, (s - w) // 2 : (s - w) // 2 + w] = grey
+    return M.resize(out, n, n)
+
+
+def _check_ground(grey: np.ndarray, name: str) -> None:
+    h, w = grey.shape
+    if min(h, w) < MIN_PICTURE_SIDE:
+        raise PictureError(f"{name} is {w} x {h} px; at least {MIN_PICTURE_SIDE} px a side")
+    if float(np.median(grey)) < 0.3:
+        raise PictureError(
+            f"{name} is mostly dark (median brightness {np.median(grey):.2f}); it needs dark "
+            "writing on a light ground"
+        )
+
+
+def _clean(mask: np.ndarray) -> np.ndarray:
+    """Specks removed, pin-holes (flying white inside a stroke, scan dust) filled."""
+    n2 = mask.size
+    lab, k = M.label(mask)
+    if k:
+        area = np.bincount(lab.ravel(), minlength=k + 1)
+        keep = area >= max(SPECK * n2, 0.02 * area[1:].max())
+        keep[0] = False
+        mask = keep[lab]
+    holes, k = M.label(~mask)
+    if k:
+        area = np.bincount(holes.ravel(), minlength=k + 1)
+        border = np.unique(np.concatenate([holes[0], holes[-1], holes[:, 0], holes[:, -1]]))
+        fill = area < PIN_HOLE * n2
+        fill[0] = False
+        fill[border] = False
+        mask = mask | fill[holes]
+    return mask
+
+
+def _separation(d: np.ndarray, t: float) -> float:
+    lo, hi = d[d <= t], d[d > t]
+    if lo.size == 0 or hi.size == 0 or d.var() <= 0:
+        return 0.0
+    w0 = lo.size / d.size
+    return float(w0 * (1 - w0) * (hi.mean() - lo.mean()) ** 2 / d.var())
+
+
+def find_ink(grey: np.ndarray, n: int, name: str = "the picture") -> Ink:
+    """The ink of a picture's luminance on the em box's n x n grid; PictureError when it holds
+    no writing (blank, mostly dark, no two tones, ink everywhere, too many pieces)."""
+    _check_ground(grey, name)
+    sq = _square(grey, n)
+    paper = M.paper_level(sq, max(n // TILES, 4))
+    dark = np.clip(1.0 - sq / paper, 0.0, 1.0)
+    dark = _gaussian(dark, max(n / 512.0, 0.5))  # scan noise
+    if float(np.quantile(dark, 0.999)) < MIN_CONTRAST:
+        raise PictureError(f"{name} shows no writing: nothing is darker than the paper")
+    t = max(otsu(dark), MIN_CONTRAST / 2)
+    sep = _separation(dark, t)
+    mask = _clean(dark > t)
+    share = mask.mean()
+    if sep < MIN_SEPARATION or not INK_SHARE[0] <= share <= INK_SHARE[1]:
+        raise PictureError(
+            f"{name} does not look like dark writing on paper (ink {100 * share:.1f}% of the "
+            f"picture, two-tone {sep:.2f}; writing is {100 * INK_SHARE[0]:g}-"
+            f"{100 * INK_SHARE[1]:g}% ink and two-tone above {MIN_SEPARATION})"
+        )
+    pieces = M.label(mask)[1]
+    if pieces > MAX_PIECES:
+        raise PictureError(
+            f"{name} breaks into {pieces} separate pieces of ink; writing has at most "
+            f"{MAX_PIECES} (is it a photo or a page of text?)"
+        )
+    return Ink(mask, dark, float(t), sep)

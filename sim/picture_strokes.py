@@ -1,0 +1,426 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
+"""The strokes of a picture's ink (numpy only): the ink's skeleton (Zhang-Suen) as a graph of
+chains between junctions and free ends, short spurs pruned, the two junctions a thick crossing
+thins into merged, and at every junction the chains that continue each other by direction
+(nearly opposite ways out) joined across it, so that a horizontal runs on through the vertical
+that crosses it; a chain that ends at a junction (the stem of a T) runs on to its centre. Each
+stroke carries its width along it (twice the distance to the paper), read across a junction
+from either side of it. Coordinates are image pixels (x right, y down), as floats."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from . import picture_morph as M
+from .texture import _gaussian, skeleton
+
+CONTINUE_COS = -0.77  # two ways out of a junction continue each other within ~40 degrees
+LOOSE_COS = -0.5  # ... and a short overhang continues a stroke within 60 degrees
+SPUR = 2.0  # a chain from a free end into a junction shorter than this times its half-width
+ZONE = 1.3  # a junction's zone: this times the ink's half-width there, plus a pixel
+MIN_STROKE = 0.6  # a free chain shorter than this times its half-width is a dot's nub
+
+
+@dataclass
+class Chain:
+    """Skeleton pixels from one end to the other; ``ends`` are node ids (-1: a free end)."""
+
+    pts: np.ndarray  # (K, 2) x, y
+    ends: list
+
+
+@dataclass
+class Node:
+    centre: np.ndarray  # (2,) x, y
+    radius: float  # the ink's half-width at the junction
+    chains: list = field(default_factory=list)  # (chain id, which end: 0 first, 1 last)
+
+
+@dataclass
+class Stroke:
+    """A stroke recovered from the picture: its centre line and half-width along it (pixels),
+    and the nodes it passes through (``through``) or ends at (``touches``)."""
+
+    pts: np.ndarray  # (K, 2) x, y
+    radius: np.ndarray  # (K,)
+    through: set = field(default_factory=set)
+    touches: set = field(default_factory=set)
+    joints: dict = field(default_factory=dict)  # node id -> its centre (x, y)
+
+
+def _neighbour_count(s: np.ndarray) -> np.ndarray:
+    c = np.zeros(s.shape, dtype=np.int8)
+    for dy, dx in M.NEIGHBOURS_8:
+        c += M._shift(s, dy, dx, False)
+    return c
+
+
+def _simple(s: np.ndarray, y: int, x: int) -> bool:
+    """The pixel's set neighbours are one 8-connected piece and two or three: taking it away
+    disconnects nothing and ends no line."""
+    h, w = s.shape
+    nb = [
+        (dy, dx)
+        for dy, dx in M.NEIGHBOURS_8
+        if 0 <= y + dy < h and 0 <= x + dx < w and s[y + dy, x + dx]
+    ]
+    if not 2 <= len(nb) <= 3:
+        return False
+    seen, todo = {nb[0]}, [nb[0]]
+    while todo:
+        a = todo.pop()
+        for b in nb:
+            if b not in seen and max(abs(a[0] - b[0]), abs(a[1] - b[1])) <= 1:
+                seen.add(b)
+                todo.append(b)
+    return len(seen) == len(nb)
+
+
+def _thin_corners(s: np.ndarray) -> np.ndarray:
+    """Remove the redundant corner pixels of 4-connected staircases one at a time (a simple
+    point, ``_simple``), so that a one-pixel-wide skeleton has no false junctions."""
+    s = s.copy()
+    for y, x in np.argwhere(s & (_neighbour_count(s) >= 2)):
+        if _simple(s, int(y), int(x)):
+            s[y, x] = False
+    return s
+
+
+def _walk(start, members: set) -> list:
+    """Pixels of a chain from ``start``, each next one an unvisited 8-neighbour (4-neighbours
+    first)."""
+    path, seen = [start], {start}
+    cur = start
+    while True:
+        y, x = cur
+        nxt = None
+        for dy, dx in ((-1, 0), (1, 0), (0, -1), (0, 1), (-1, -1), (-1, 1), (1, -1), (1, 1)):
+            q = (y + dy, x + dx)
+            if q in members and q not in seen:
+                nxt = q
+                break
+        if nxt is None:
+            return path
+        path.append(nxt)
+        seen.add(nxt)
+        cur = nxt
+
+
+def _node_of(y: int, x: int, jlab: np.ndarray) -> int:
+    h, w = jlab.shape
+    for dy, dx in M.NEIGHBOURS_8:
+        yy, xx = y + dy, x + dx
+        if 0 <= yy < h and 0 <= xx < w and jlab[yy, xx]:
+            return int(jlab[yy, xx]) - 1
+    return -1
+
+
+def skeleton_graph(mask: np.ndarray, dist: np.ndarray) -> tuple[list, list]:
+    """The skeleton of the ink as chains and junction nodes."""
+    n = mask.shape[0]
+    smooth = _gaussian(mask.astype(np.float64), max(1.5 * n / 512, 0.7)) > 0.5
+    s = _thin_corners(skeleton(smooth))
+    count = _neighbour_count(s)
+    junction = s & (count >= 3)
+    jlab, k = M.label(junction)
+    nodes = []
+    for i in range(k):
+        ys, xs = np.nonzero(jlab == i + 1)
+        nodes.append(Node(np.array([xs.mean(), ys.mean()]), float(dist[ys, xs].max())))
+    clab, kc = M.label(s & ~junction)
+    chains = []
+    ys, xs = np.nonzero(clab)
+    order = np.argsort(clab[ys, xs], kind="stable")
+    bounds = np.searchsorted(clab[ys, xs][order], np.arange(1, kc + 2))
+    for i in range(kc):
+        idx = order[bounds[i] : bounds[i + 1]]
+        members = {(int(ys[j]), int(xs[j])) for j in idx}
+        ends = [p for p in members if _chain_degree(p, members) <= 1] or [min(members)]
+        path = _walk(ends[0], members)
+        a, b = path[0], path[-1]
+        pts = np.array([[p[1], p[0]] for p in path], dtype=np.float64)
+        na = _node_of(*a, jlab) if count[a] != 1 else -1
+        nb = _node_of(*b, jlab) if count[b] != 1 else -1
+        if len(path) == 1:
+            nb = _other_node(a, jlab, na)
+        chains.append(Chain(pts, [na, nb]))
+    _link(chains, nodes)
+    return chains, nodes
+
+
+def _chain_degree(p, members: set) -> int:
+    y, x = p
+    return sum((y + dy, x + dx) in members for dy, dx in M.NEIGHBOURS_8)
+
+
+def _other_node(p, jlab, first: int) -> int:
+    h, w = jlab.shape
+    for dy, dx in M.NEIGHBOURS_8:
+        yy, xx = p[0] + dy, p[1] + dx
+        if 0 <= yy < h and 0 <= xx < w and jlab[yy, xx] and jlab[yy, xx] - 1 != first:
+            return int(jlab[yy, xx]) - 1
+    return -1
+
+
+def _link(chains: list, nodes: list) -> None:
+    for node in nodes:
+        node.chains = []
+    for ci, c in enumerate(chains):
+        for end in (0, 1):
+            if c.ends[end] >= 0:
+                nodes[c.ends[end]].chains.append((ci, end))
+
+
+def _length(pts: np.ndarray) -> float:
+    return float(np.linalg.norm(np.diff(pts, axis=0), axis=1).sum()) if len(pts) > 1 else 0.0
+
+
+def _outward(c: Chain, end: int) -> np.ndarray:
+    """The chain's points running away from the given end."""
+    return c.pts if end == 0 else c.pts[::-1]
+
+
+def _merge_close_nodes(chains: list, nodes: list) -> tuple[list, list]:
+    """A thick crossing thins into two junctions joined by a short chain: one node."""
+    parent = list(range(len(nodes)))
+
+    def root(i):
+        while parent[i] != i:
+            parent[i] = parent[parent[i]]
+            i = parent[i]
+        return i
+
+    keep = []
+    for c in chains:
+        a, b = c.ends
+        if a >= 0 and b >= 0 and _length(c.pts) < ZONE * (nodes[a].radius + nodes[b].radius):
+            ra, rb = root(a), root(b)
+            if ra != rb:
+                parent[rb] = ra
+                continue
+        keep.append(c)
+    groups: dict = {}
+    for i in range(len(nodes)):
+        groups.setdefault(root(i), []).append(i)
+    new_id, merged = {}, []
+    for members in groups.values():
+        for i in members:
+            new_id[i] = len(merged)
+        centre = np.mean([nodes[i].centre for i in members], axis=0)
+        merged.append(Node(centre, max(nodes[i].radius for i in members)))
+    for c in keep:
+        c.ends = [new_id[e] if e >= 0 else -1 for e in c.ends]
+    _link(keep, merged)
+    return keep, merged
+
+
+def _prune_spurs(chains: list, nodes: list) -> list:
+    """Short chains from a free end into a junction of three or more: the bumps a brush's
+    entry or turn leaves, not strokes."""
+    for _ in range(3):
+        drop = set()
+        for ci, c in enumerate(chains):
+            if (c.ends[0] < 0) == (c.ends[1] < 0):
+                continue
+            node = nodes[max(c.ends)]
+            if len(node.chains) >= 3 and _length(c.pts) < SPUR * node.radius + 3:
+                drop.add(ci)
+        if not drop:
+            return chains
+        chains = [c for ci, c in enumerate(chains) if ci not in drop]
+        _link(chains, nodes)
+    return chains
+
+
+def _exit(c: Chain, end: int, node: Node) -> tuple[int, np.ndarray]:
+    """Where the chain leaves the node's zone (index along ``_outward``) and its way out."""
+    pts = _outward(c, end)
+    zone = ZONE * node.radius + 1.0
+    far = np.flatnonzero(np.linalg.norm(pts - node.centre, axis=1) > zone)
+    k = int(far[0]) if far.size else len(pts) - 1
+    j = min(k + max(int(2 * node.radius), 6), len(pts) - 1)
+    d = pts[j] - pts[k] if j > k else pts[k] - node.centre
+    return k, d / max(float(np.linalg.norm(d)), 1e-9)
+
+
+def _pairs(chains: list, nodes: list) -> dict:
+    """At every junction, the chain ends that continue each other: the most nearly opposite
+    ways out first; and a horizontal that turns down at its end (a 横折) at a corner of two."""
+    partner = {}
+    for node in nodes:
+        ways = {ce: _exit(chains[ce[0]], ce[1], node)[1] for ce in node.chains}
+        cand = sorted(
+            (float(ways[a] @ ways[b]), a, b)
+            for i, a in enumerate(node.chains)
+            for b in node.chains[i + 1 :]
+            if a[0] != b[0]
+        )
+        for cos, a, b in cand:
+            if a in partner or b in partner:
+                continue
+            corner = len(node.chains) == 2 and _is_turn_down(ways[a], ways[b])
+            if cos < CONTINUE_COS or corner:
+                partner[a], partner[b] = b, a
+        for cos, a, b in cand:  # a stroke's overhang at a corner of three continues it
+            if a in partner or b in partner or cos >= LOOSE_COS or len(node.chains) < 3:
+                continue
+            if min(_length(chains[a[0]].pts), _length(chains[b[0]].pts)) < 3 * node.radius:
+                partner[a], partner[b] = b, a
+    return partner
+
+
+def _is_turn_down(u: np.ndarray, v: np.ndarray) -> bool:
+    """One way out goes left (the horizontal came from there) and the other down."""
+    left, down = np.array([-1.0, 0.0]), np.array([0.0, 1.0])
+    return bool((u @ left > 0.8 and v @ down > 0.8) or (v @ left > 0.8 and u @ down > 0.8))
+
+
+def _line(a: np.ndarray, b: np.ndarray) -> np.ndarray:
+    n = max(int(np.ceil(np.linalg.norm(b - a))), 1)
+    t = np.linspace(0.0, 1.0, n + 1)[1:-1, None]
+    return a + t * (b - a)
+
+
+class _Trace:
+    """Points of a stroke being traced, each with a known half-width or NaN (across a
+    junction: read from either side later)."""
+
+    def __init__(self):
+        self.pts, self.rad = [], []
+        self.through, self.touches = set(), set()
+        self.free = [False, False]
+
+    def add(self, pts, known: bool, dist) -> None:
+        pts = np.asarray(pts, dtype=np.float64).reshape(-1, 2)
+        if not len(pts):
+            return
+        self.pts.append(pts)
+        if known:
+            iy = np.clip(np.round(pts[:, 1]).astype(int), 0, dist.shape[0] - 1)
+            ix = np.clip(np.round(pts[:, 0]).astype(int), 0, dist.shape[1] - 1)
+            self.rad.append(dist[iy, ix])
+        else:
+            self.rad.append(np.full(len(pts), np.nan))
+
+
+def _cut(c: Chain, end: int, nodes: list) -> np.ndarray:
+    """The chain's points from ``end`` on, without those inside the zones of its nodes."""
+    pts = _outward(c, end)
+    a = _exit(c, end, nodes[c.ends[end]])[0] if c.ends[end] >= 0 else 0
+    b = len(pts) - (_exit(c, 1 - end, nodes[c.ends[1 - end]])[0] if c.ends[1 - end] >= 0 else 0)
+    if a >= b:
+        mid = (a + b) // 2
+        return pts[min(mid, len(pts) - 1) : min(mid, len(pts) - 1) + 1]
+    return pts[a:b]
+
+
+def _trace(ci: int, end: int, chains, nodes, partner, used, dist) -> _Trace:
+    t = _Trace()
+    n0 = chains[ci].ends[end]
+    seg = _cut(chains[ci], end, nodes)
+    if n0 < 0:
+        t.free[0] = True
+    elif (ci, end) not in partner:
+        t.touches.add(n0)
+        c0 = nodes[n0].centre
+        t.add(np.vstack([c0, _line(c0, seg[0])]), False, dist)
+    while True:
+        used.add(ci)
+        t.add(seg, True, dist)
+        oe = 1 - end
+        node = chains[ci].ends[oe]
+        if node < 0:
+            t.free[1] = True
+            return t
+        nxt = partner.get((ci, oe))
+        if nxt is None or nxt[0] in used:
+            t.touches.add(node)
+            c1 = nodes[node].centre
+            if nxt is None:
+                t.add(np.vstack([_line(seg[-1], c1), c1]), False, dist)
+            return t
+        t.through.add(node)
+        ci, end = nxt
+        nseg = _cut(chains[ci], end, nodes)
+        t.add(_line(seg[-1], nseg[0]), False, dist)
+        seg = nseg
+
+
+def _extend(pts: np.ndarray, mask: np.ndarray, r_end: float) -> np.ndarray:
+    """Points on from a free end (the last point) along its way until the ink ends, less half
+    the end's half-width: the skeleton stops short of a stroke's tip."""
+    if len(pts) < 2:
+        return np.zeros((0, 2))
+    d = pts[-1] - pts[max(len(pts) - 10, 0)]
+    d /= max(float(np.linalg.norm(d)), 1e-9)
+    h, w = mask.shape
+    last = 0
+    for s in range(1, int(3 * r_end) + 6):
+        x, y = np.round(pts[-1] + s * d).astype(int)
+        if not (0 <= x < w and 0 <= y < h and mask[y, x]):
+            break
+        last = s
+    reach = last - 0.5 * r_end
+    if reach < 1:
+        return np.zeros((0, 2))
+    return pts[-1] + np.arange(1, int(reach) + 1)[:, None] * d
+
+
+def _smooth_line(p: np.ndarray, k: int) -> np.ndarray:
+    if len(p) < 3 or k <= 1:
+        return p
+    w = np.ones(k) / k
+    pad = np.pad(p, ((k // 2, k - 1 - k // 2), (0, 0)), mode="edge")
+    return np.stack([np.convolve(pad[:, i], w, mode="valid") for i in (0, 1)], axis=1)
+
+
+def _finish(t: _Trace, mask, dist) -> Stroke:
+    """The traced points as a stroke: free ends run on to the tips, junction half-widths read
+    from either side, the line smoothed and resampled every 2 px."""
+    pts, rad = np.concatenate(t.pts), np.concatenate(t.rad)
+    known = np.isfinite(rad)
+    if not known.any():
+        iy, ix = np.clip(np.round(pts[:, ::-1]).astype(int), 0, mask.shape[0] - 1).T
+        rad, known = dist[iy, ix], np.ones(len(pts), bool)
+    idx = np.arange(len(pts))
+    rad = np.interp(idx, idx[known], rad[known])
+    if t.free[1]:
+        ext = _extend(pts, mask, float(rad[-1]))
+        pts, rad = np.vstack([pts, ext]), np.concatenate([rad, _radii(ext, dist, rad[-1])])
+    if t.free[0]:
+        ext = _extend(pts[::-1], mask, float(rad[0]))[::-1]
+        pts, rad = np.vstack([ext, pts]), np.concatenate([_radii(ext, dist, rad[0]), rad])
+    pts = _smooth_line(pts, 5)
+    seg = np.linalg.norm(np.diff(pts, axis=0), axis=1)
+    s = np.concatenate([[0.0], np.cumsum(seg)])
+    n = max(int(s[-1] / 2.0), 1) + 1
+    si = np.linspace(0.0, s[-1], n)
+    out = np.stack([np.interp(si, s, pts[:, 0]), np.interp(si, s, pts[:, 1])], axis=1)
+    return Stroke(out, np.interp(si, s, rad), t.through, t.touches)
+
+
+def _radii(pts, dist, r_end: float) -> np.ndarray:
+    if not len(pts):
+        return np.zeros(0)
+    iy = np.clip(np.round(pts[:, 1]).astype(int), 0, dist.shape[0] - 1)
+    ix = np.clip(np.round(pts[:, 0]).astype(int), 0, dist.shape[1] - 1)
+    return np.minimum(dist[iy, ix], r_end)
+
+
+def find_strokes(mask: np.ndarray, dist: np.ndarray | None = None) -> list[Stroke]:
+    """The strokes of an ink mask (top row first), unordered."""
+    dist = M.edt(mask) if dist is None else dist
+    chains, nodes = skeleton_graph(mask, dist)
+    chains, nodes = _merge_close_nodes(chains, nodes)
+    chains = _prune_spurs(chains, nodes)
+    partner = _pairs(chains, nodes)
+    used, out = set(), []
+    starts = [(ci, e) for ci in range(len(chains)) for e in (0, 1) if (ci, e) not in partner]
+    for ci, e in starts + [(ci, 0) for ci in range(len(chains))]:
+        if ci not in used:
+            s = _finish(_trace(ci, e, chains, nodes, partner, used, dist), mask, dist)
+            s.joints = {i: nodes[i].centre for i in s.through | s.touches}
+            out.append(s)
+    return out
