@@ -112,6 +112,51 @@ def cmd_write(args) -> int:
     return 0
 
 
+def _progress_after_reading(frac: float, *_details) -> None:
+    """The bar from the first progress past reading the picture (a refused picture leaves
+    only its error line)."""
+    if frac > 0.0:
+        _progress(frac)
+
+
+def cmd_imitate(args) -> int:
+    """Read a picture of writing, write it with the brush, report how close the ink is."""
+    import json
+
+    from .imitate import coverage_mask
+    from .outline import iou
+    from .picture import imitate
+    from .png import write_png
+    from .texture import score, texture_stats
+
+    for path in (args.output, args.recording, args.char_data):
+        if path:
+            _writable(path)
+    t0 = time.perf_counter()
+    rec, _, sim, im = imitate(
+        args.image,
+        _template(args),
+        n_px=args.size,
+        size_mm=args.size_mm,
+        passes=args.passes,
+        progress=None if args.quiet else _progress_after_reading,
+    )
+    write_png(args.output, sim.image8())
+    if args.recording:
+        rec.save(args.recording)
+    if args.char_data:
+        with open(args.char_data, "w", encoding="utf-8") as f:
+            json.dump(im.char, f, separators=(",", ":"))
+    if not args.quiet:
+        print(
+            f"{args.output}: {len(im.strokes)} strokes read in {im.seconds:.1f} s, "
+            f"{len(rec.samples)} samples, character {rec.width_mm:.1f} mm, IoU with the "
+            f"picture's ink {iou(coverage_mask(sim), im.ink.mask):.3f}, texture score "
+            f"{score(texture_stats(sim.image())):.2f}, {time.perf_counter() - t0:.1f} s"
+        )
+    return 0
+
+
 def cmd_write_set(args) -> int:
     """Many characters to a folder of PNGs and recordings, on this machine's processes or a
     Dask cluster (the executor of ``fit --scheduler``)."""
@@ -386,6 +431,15 @@ def _parser() -> argparse.ArgumentParser:
     w.add_argument("-q", "--quiet", action="store_true")
     common(w)
     w.set_defaults(func=cmd_write)
+    im = sub.add_parser("imitate", help="read a picture of writing (PNG) and write it")
+    im.add_argument("image", help="a PNG of dark writing on a light ground")
+    im.add_argument("-o", "--output", required=True)
+    im.add_argument("--size", type=size, default=512, help="image size N (the em box)")
+    im.add_argument("--recording", default=None, help="also save the recording it made")
+    im.add_argument("--char-data", default=None, help="also save the strokes read (JSON)")
+    im.add_argument("-q", "--quiet", action="store_true")
+    common(im)
+    im.set_defaults(func=cmd_imitate)
     ws = sub.add_parser("write-set", help="write many characters to a folder (PNG + recording)")
     ws.add_argument("chars", nargs="+", help="hanzi-writer JSON files, or characters")
     ws.add_argument("--out-dir", required=True, help="folder for NNN.png and NNN.json")

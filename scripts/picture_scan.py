@@ -1,0 +1,98 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
+"""Test pictures for imitating a picture, made here (nothing to license): a "scan" - the
+brush's own writing of a character on raw xuan (bleeding, flying white) on tinted paper with
+uneven light, stains, fibres and scan noise - and a font-like render of a character's outlines.
+
+    python scripts/picture_scan.py CHAR.json OUT.png [--size N] [--seed S]
+"""
+
+from __future__ import annotations
+
+import argparse
+import sys
+from pathlib import Path
+
+import numpy as np
+
+ROOT = Path(__file__).resolve().parent.parent
+sys.path.insert(0, str(ROOT))
+
+from sim.outline import rasterise  # noqa: E402
+from sim.texture import _gaussian  # noqa: E402
+
+PAPER_TINT = np.array([0.93, 0.87, 0.74])  # old xuan
+STAIN_TINT = np.array([0.80, 0.66, 0.45])
+
+
+def font_picture(char: dict, n: int = 512) -> np.ndarray:
+    """The character's outlines filled, black on white, (n, n) grey in [0, 1]."""
+    return np.where(rasterise(char, n), 0.05, 0.95)
+
+
+def written(char: dict, n: int = 512, seed: int = 0, paper: str = "raw_xuan"):
+    """The brush's own writing of ``char`` (one pass, so it keeps the brush's texture): the
+    RGB image and its ink (coverage above half), top row first."""
+    from sim.imitate import coverage_mask, write_character
+    from sim.recording import Recording
+
+    template = Recording(
+        np.zeros((1, 6)),
+        seed=seed,
+        brush={"preset": "wolf_stiff"},
+        paper_preset=paper,
+        ink={"preset": "sumi_black"},
+    )
+    _, _, sim = write_character(char, n, template, passes=1)
+    return sim.image(), coverage_mask(sim)
+
+
+def age(rgb: np.ndarray, seed: int = 0) -> np.ndarray:
+    """A scan of old paper: the ink's darkness laid on tinted paper, light falling off across
+    the sheet, a few tea stains, paper fibres and sensor noise, blurred a little as a scanner's
+    optics do. RGB in [0, 1]."""
+    rng = np.random.default_rng(seed)
+    n = rgb.shape[0]
+    dark = 1.0 - rgb.mean(axis=2)
+    yy, xx = np.mgrid[0:n, 0:n] / n
+    light = 0.72 + 0.28 * (1 - 0.6 * xx) * (1 - 0.5 * (yy - 0.3) ** 2)
+    paper = light[..., None] * PAPER_TINT
+    for _ in range(4):  # stains: soft blobs, ring-edged as dried tea
+        cy, cx = rng.uniform(0.1, 0.9, 2) * n
+        r = rng.uniform(0.06, 0.16) * n
+        d = np.hypot(yy * n - cy, xx * n - cx) / r
+        blob = np.clip(1 - d, 0, 1) ** 0.5 * 0.35 + np.exp(-(((d - 1) / 0.06) ** 2)) * 0.25
+        paper = paper * (1 - blob[..., None] * (1 - STAIN_TINT))
+    fibres = _gaussian(rng.standard_normal((n, n)), 0.8)
+    fibres = fibres / max(float(np.abs(fibres).max()), 1e-9)
+    paper = paper * (1 + 0.05 * fibres[..., None])
+    img = paper * (1 - 0.92 * dark[..., None])
+    img = np.stack([_gaussian(img[..., c], 0.7) for c in range(3)], axis=2)
+    img = img + rng.normal(0, 0.025, img.shape)
+    return np.clip(img, 0, 1)
+
+
+def scan_picture(char: dict, n: int = 512, seed: int = 0):
+    """The scan-like picture of ``char`` and the ink that made it."""
+    rgb, ink = written(char, n, seed)
+    return age(rgb, seed), ink
+
+
+def main(argv=None) -> int:
+    from sim.hanzi import find_char
+    from sim.png import write_png
+
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("char", help="hanzi-writer JSON file or a character of data/hanzi")
+    ap.add_argument("output")
+    ap.add_argument("--size", type=int, default=512)
+    ap.add_argument("--seed", type=int, default=0)
+    ap.add_argument("--font", action="store_true", help="the font-like render instead")
+    args = ap.parse_args(argv)
+    char = find_char(args.char)
+    img = font_picture(char, args.size) if args.font else scan_picture(char, args.size)[0]
+    write_png(args.output, img)
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -1,0 +1,224 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
+"""Issue 19, imitating a picture: the numpy-only image tools against scipy / scikit-image, the
+ink read from uneven paper, strokes, their order and direction on characters the project has
+never seen (rendered from outlines; the stroke data only scores the result), the brush's
+imitation of them and of a scan-like picture, and bad pictures refused with one message."""
+
+import json
+import subprocess
+import sys
+import zlib
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from sim import picture_morph as M
+from sim.imitate import coverage_mask
+from sim.outline import fill, iou, rasterise, stroke_polygons, to_image
+from sim.picture import imitate, order_agreement, read_picture, simplify, trace_outline
+from sim.picture_ink import PictureError, find_ink
+from sim.png import PNGError, write_png
+from sim.recording import Recording
+from sim.texture import _gaussian, score, texture_stats
+
+ROOT = Path(__file__).resolve().parent.parent
+UNSEEN = ROOT / "tests" / "data" / "unseen"
+CHARS = "木王生左口禾"
+
+
+def unseen(c: str) -> dict:
+    return json.loads((UNSEEN / f"{c}.json").read_text(encoding="utf-8"))
+
+
+def picture(c: str, n: int = 512) -> np.ndarray:
+    return np.where(rasterise(unseen(c), n), 0.05, 0.95)
+
+
+def template() -> Recording:
+    return Recording(
+        np.zeros((1, 6)),
+        seed=0,
+        brush={"preset": "wolf_stiff"},
+        paper_preset="smooth",
+        ink={"preset": "sumi_black"},
+    )
+
+
+def blobs(seed: int, keep: float, n: int = 96) -> np.ndarray:
+    a = _gaussian(np.random.default_rng(seed).random((n, n)), 3.0)
+    return a > np.quantile(a, 1 - keep)
+
+
+def test_image_tools_equal_scipys_and_scikit_images():
+    ndimage = pytest.importorskip("scipy.ndimage")
+    transform = pytest.importorskip("skimage.transform")
+    for seed, keep in ((0, 0.5), (1, 0.2), (2, 0.8)):
+        m = blobs(seed, keep)
+        np.testing.assert_allclose(M.edt(m), ndimage.distance_transform_edt(m), atol=1e-12)
+        d2, rows, cols = M.nearest_feature(m)
+        yy, xx = np.mgrid[0 : m.shape[0], 0 : m.shape[1]]
+        assert m[rows, cols].all()  # the nearest feature is a feature, at that distance
+        np.testing.assert_array_equal(d2, (yy - rows) ** 2 + (xx - cols) ** 2)
+        np.testing.assert_allclose(np.sqrt(d2), ndimage.distance_transform_edt(~m), atol=1e-12)
+        lab, k = M.label(m)
+        want, k2 = ndimage.label(m, structure=np.ones((3, 3)))
+        assert k == k2 and k > 1 or keep == 0.8
+        np.testing.assert_array_equal(lab, want)
+    # a distance limit: beyond it, no feature
+    d2, rows, _ = M.nearest_feature(blobs(1, 0.05), limit=5)
+    assert np.all(np.isinf(d2) == (rows < 0)) and np.nanmax(d2[np.isfinite(d2)]) <= 25
+    g = np.random.default_rng(3).random((12, 17))
+    np.testing.assert_array_equal(M.block_max(g, 1), ndimage.maximum_filter(g, 3, mode="nearest"))
+    for shape in ((40, 70), (9, 11)):
+        want = transform.resize(g, shape, order=1, mode="edge", anti_aliasing=False)
+        np.testing.assert_allclose(M.resize(g, *shape), want, atol=1e-12)
+
+
+def test_outlines_traced_fill_back_to_the_region():
+    for seed in (0, 4):
+        m = blobs(seed, 0.3, 64)
+        polys = trace_outline(m)
+        np.testing.assert_array_equal(fill(polys, 64), m)
+        # simplified within 0.6 px they still give the region nearly back
+        loose = [simplify(p, 0.6) for p in polys]
+        assert sum(map(len, loose)) < 0.6 * sum(map(len, polys))
+        assert iou(fill(loose, 64), m) > 0.97
+
+
+def test_ink_is_found_on_uneven_stained_noisy_paper():
+    n = 256
+    ink = rasterise(unseen("木"), n)
+    yy, xx = np.mgrid[0:n, 0:n] / n
+    paper = 0.2 + 0.75 * xx * (1 - 0.2 * yy)  # light falls off across the sheet
+    stain = 0.2 * np.exp(-(((yy - 0.7) ** 2 + (xx - 0.75) ** 2) / 0.01))
+    grey = paper * (1 - stain) * np.where(ink, 0.2, 1.0)
+    grey += np.random.default_rng(0).normal(0, 0.03, grey.shape)
+    found = find_ink(np.clip(grey, 0, 1), n)
+    assert iou(found.mask, ink) > 0.96
+    # a global threshold (no paper level) takes the dark side of the sheet for ink
+    from sim.texture import otsu
+
+    plain = (1 - grey) > otsu(1 - np.clip(grey, 0, 1))
+    assert iou(plain, ink) < 0.9
+
+
+def test_unseen_characters_strokes_order_and_direction():
+    per = {}
+    for c in CHARS:
+        im = read_picture(picture(c), 512)
+        assert im.seconds < 5.0
+        # the strokes' own ink, as outlines, is the picture's ink
+        u = np.zeros((512, 512), dtype=bool)
+        for polys in stroke_polygons(im.char):
+            u |= fill([to_image(p, 512) for p in polys], 512)
+        assert iou(u, im.ink.mask) > 0.99
+        per[c] = order_agreement(im.char, unseen(c))
+    assert sum(a["found"] == a["known"] for a in per.values()) >= len(CHARS) - 1, per
+    assert np.mean([a["pairs"] for a in per.values()]) >= 0.9, per
+    assert np.mean([a["directions"] for a in per.values()]) >= 0.9, per
+
+
+@pytest.mark.parametrize("c", ["王", "木"])
+def test_an_unseen_picture_is_written_by_the_brush(c):
+    rec, _, sim, im = imitate(picture(c), template(), 512)
+    written = coverage_mask(sim)
+    assert iou(written, im.ink.mask) > 0.8
+    tex = texture_stats(sim.image())
+    assert score(tex) > 0.5  # brush texture, not a font's flat fill (0.25-0.30)
+    # the recording writes the strokes in the order read
+    assert len(rec.dips) == len(im.strokes)
+
+
+def test_a_scan_like_picture_is_read_and_imitated():
+    sys.path.insert(0, str(ROOT))
+    from scripts.picture_scan import age, written
+    from sim.hanzi import find_char
+
+    n = 384
+    rgb, true_ink = written(find_char("永"), n)
+    scan = age(rgb, seed=1)
+    im = read_picture(scan, n)
+    assert iou(im.ink.mask, true_ink) > 0.9  # the ink despite light, stains and noise
+    assert 4 <= len(im.strokes) <= 9
+    _, _, sim, _ = imitate(scan, template(), n, passes=2)
+    assert iou(coverage_mask(sim), true_ink) > 0.6
+
+
+def _bad_pictures(tmp_path):
+    rng = np.random.default_rng(0)
+    a = _gaussian(rng.random((200, 260)), 8.0)
+    a = (a - a.min()) / (a.max() - a.min())
+    photo = np.stack([0.2 + 0.6 * a, 0.3 + 0.5 * a, 0.1 + 0.6 * a * a], axis=-1)
+    pics = {
+        "blank": np.full((200, 300), 0.9),
+        "black": np.full((200, 300), 0.02),
+        "photo": photo,
+        "tiny": np.zeros((8, 8)),
+    }
+    paths = {}
+    for name, img in pics.items():
+        paths[name] = tmp_path / f"{name}.png"
+        write_png(paths[name], img)
+    good = tmp_path / "good.png"
+    write_png(good, picture("口", 128))
+    paths["truncated"] = tmp_path / "truncated.png"
+    paths["truncated"].write_bytes(good.read_bytes()[:200])
+    huge = bytearray(good.read_bytes()[:33])
+    huge[16:24] = (100_000).to_bytes(4, "big") * 2  # a header claiming 100000 x 100000 px
+    huge[29:33] = zlib.crc32(bytes(huge[12:29])).to_bytes(4, "big")
+    paths["huge"] = tmp_path / "huge.png"
+    paths["huge"].write_bytes(bytes(huge))
+    return pics, paths
+
+
+def test_bad_pictures_get_one_clear_message(tmp_path):
+    pics, paths = _bad_pictures(tmp_path)
+    words = {
+        "blank": "no writing",
+        "black": "mostly dark",
+        "photo": "does not look like",
+        "tiny": "at least",
+        "truncated": "truncated",
+        "huge": "100000",
+    }
+    for name, word in words.items():
+        with pytest.raises((PictureError, PNGError), match=word):
+            read_picture(paths[name], 128)
+    for name in ("blank", "black", "photo"):
+        with pytest.raises(PictureError):
+            read_picture(pics[name], 128)
+    with pytest.raises(PictureError, match="not an image"):
+        read_picture(np.zeros((4, 4, 7)))
+    out = tmp_path / "out.png"
+    for name in ("photo", "truncated"):
+        r = subprocess.run(
+            [sys.executable, "-m", "sim", "imitate", str(paths[name]), "-o", str(out)],
+            cwd=ROOT,
+            capture_output=True,
+            text=True,
+        )
+        assert r.returncode == 2
+        assert r.stderr.strip().startswith("error:") and "Traceback" not in r.stderr
+        assert r.stderr.count("error:") == 1
+        assert not out.exists()
+
+
+def test_cli_imitate_writes_a_recording_that_replays(tmp_path):
+    src = tmp_path / "wang.png"
+    write_png(src, picture("王", 160))
+    out, rec, data = tmp_path / "out.png", tmp_path / "rec.json", tmp_path / "char.json"
+    args = [str(src), "-o", str(out), "--size", "160", "--passes", "1", "-q"]
+    r = subprocess.run(
+        [sys.executable, "-m", "sim", "imitate", *args, "--recording", str(rec)]
+        + ["--char-data", str(data)],
+        cwd=ROOT,
+        capture_output=True,
+        text=True,
+    )
+    assert r.returncode == 0, r.stderr
+    assert len(json.loads(data.read_text())["medians"]) == 4
+    again = tmp_path / "again.png"
+    cmd = [sys.executable, "-m", "sim", "render", str(rec), "-o", str(again), "-q"]
+    assert subprocess.run(cmd, cwd=ROOT).returncode == 0
+    assert again.read_bytes() == out.read_bytes()
