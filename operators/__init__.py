@@ -15,6 +15,7 @@ from .build_primitives import HAIRY_BRUSH_OT_build_primitives
 from .dip import HAIRY_BRUSH_OT_dip
 from .export_recording import HAIRY_BRUSH_OT_export_recording
 from .fit_parameters import HAIRY_BRUSH_OT_fit_parameters
+from .imitate_image import HAIRY_BRUSH_OT_imitate_image
 from .import_recording import HAIRY_BRUSH_OT_import_recording
 from .paint import HAIRY_BRUSH_OT_paint
 from .relief import HAIRY_BRUSH_OT_relief
@@ -36,6 +37,7 @@ CLASSES = (
     HAIRY_BRUSH_OT_apply_to_mesh,
     HAIRY_BRUSH_OT_relief,
     HAIRY_BRUSH_OT_write_character,
+    HAIRY_BRUSH_OT_imitate_image,
     HAIRY_BRUSH_OT_fit_parameters,
     HAIRY_BRUSH_OT_apply_preset,
     HAIRY_BRUSH_OT_add_settings_preset,

@@ -107,6 +107,7 @@ class HAIRY_BRUSH_PT_write(_Panel, bpy.types.Panel):
         col.prop(st, "paint_angle_step")
         col.operator("hairy_brush.paint", icon="GREASEPENCIL")
         layout.operator("hairy_brush.write_character", icon="FONT_DATA")
+        layout.operator("hairy_brush.imitate_image", icon="IMAGE_DATA")
 
 
 class HAIRY_BRUSH_PT_animation(_Panel, bpy.types.Panel):

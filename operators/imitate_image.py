@@ -1,0 +1,144 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
+"""hairy_brush.imitate_image: read a picture of writing (an image datablock or a PNG file),
+recover its strokes, their order and widths (``sim.picture``), write it with the brush as Write
+Character does and keyframe the brush empty along the writing, so it plays back and renders.
+From the sidebar it runs as a modal job (progress bar, Esc stops it; the scene changes only at
+the end)."""
+
+from __future__ import annotations
+
+import bpy
+import numpy as np
+from bpy_extras.io_utils import ImportHelper
+
+from .. import bridge
+from ..sim.picture import read_picture
+from ..sim.picture_ink import MAX_PICTURE_PIXELS, PictureError, load_picture
+from . import polls
+from .jobs import JobOperator, WorkerJob
+from .write_character import WriteJob
+
+READ_SHARE = 0.05  # of the progress bar: reading the picture
+
+
+def image_grey(image: bpy.types.Image) -> np.ndarray:
+    """An image datablock's pixels as a picture (H, W, 4) floats, top row first."""
+    w, h = (int(v) for v in image.size)
+    if w == 0 or h == 0 or not image.has_data and not _loads(image):
+        raise PictureError(f"image '{image.name}' has no pixels (is its file missing?)")
+    if w * h > MAX_PICTURE_PIXELS:
+        raise PictureError(
+            f"image '{image.name}' is {w} x {h} px; at most {MAX_PICTURE_PIXELS} pixels"
+        )
+    buf = np.empty(w * h * image.channels, dtype=np.float32)
+    image.pixels.foreach_get(buf)
+    return buf.reshape(h, w, image.channels)[::-1]
+
+
+def _loads(image) -> bool:
+    try:
+        image.pixels[0]  # noqa: B018 - touching the pixels loads a packed or file image
+    except (IndexError, RuntimeError):
+        return False
+    return bool(image.has_data)
+
+
+class ImitateJob(WriteJob):
+    """Read the picture, then write its strokes as WriteJob does, in one worker."""
+
+    title = "Imitating picture"
+
+    def __init__(self, scene, picture, name: str, size_mm: float, passes: int, detail: int):
+        st = bridge.settings(scene)
+        self.scene, self.char, self.name = scene, None, name
+        self.template = bridge.settings_recording(scene)
+        self.ppm = float(st.px_per_mm)
+        self.strokes = 0
+        if size_mm:
+            self._check(size_mm)
+        WorkerJob.__init__(
+            self, lambda progress: self._imitate(picture, detail, size_mm, passes, progress)
+        )
+
+    def _imitate(self, picture, detail: int, size_mm: float, passes: int, progress):
+        progress(0.0, "reading the picture")
+        im = read_picture(picture, detail, self.name)
+        self.char, self.strokes = im.char, len(im.strokes)
+
+        def writing(frac, *details):
+            progress(READ_SHARE + (1.0 - READ_SHARE) * frac, *details)
+
+        writing(0.0, f"{self.strokes} strokes read")
+        return self._write(size_mm, passes, writing)
+
+    def finish(self, context):
+        level, message = super().finish(context)
+        return level, f"{self.name}: {message}"
+
+
+class HAIRY_BRUSH_OT_imitate_image(JobOperator, bpy.types.Operator, ImportHelper):
+    """Imitate a picture of writing (dark on a light ground): read its strokes, their order
+    and widths, write it with the brush and keyframe the brush empty along the writing"""
+
+    bl_idname = "hairy_brush.imitate_image"
+    bl_label = "Imitate Picture"
+    bl_options = {"REGISTER", "UNDO"}
+
+    filename_ext = ".png"
+    filter_glob: bpy.props.StringProperty(default="*.png", options={"HIDDEN"})
+    image: bpy.props.StringProperty(
+        name="Image",
+        default="",
+        description="An image datablock to imitate (its name); empty: the chosen PNG file",
+    )
+    size_mm: bpy.props.FloatProperty(
+        name="Size (mm)",
+        default=0.0,
+        min=0.0,
+        max=2000.0,
+        description="The picture's size in mm (the paper becomes this square); 0 sizes the "
+        "writing to the brush",
+    )
+    passes: bpy.props.IntProperty(
+        name="Practice Passes",
+        default=3,
+        min=1,
+        max=8,
+        description="How often each stroke is written, measured against the picture's ink "
+        "and corrected before the best pass is kept",
+    )
+    detail: bpy.props.IntProperty(
+        name="Detail (px)",
+        default=512,
+        min=64,
+        max=2048,
+        description="The picture is read at this many pixels a side (its strokes, widths "
+        "and ink); the writing itself is at the paper's resolution",
+    )
+
+    @classmethod
+    def poll(cls, context):
+        return polls.brush_and_paper(cls, context)
+
+    def invoke(self, context, event):
+        self.in_background = True
+        if self.image:
+            return self.execute(context)
+        return ImportHelper.invoke(self, context, event)
+
+    def execute(self, context):
+        scene = context.scene
+        try:
+            bridge.require_brush_and_paper(bridge.settings(scene))
+            if self.image:
+                img = bpy.data.images.get(self.image)
+                if img is None:
+                    raise PictureError(f"no image named '{self.image}'")
+                picture, name = image_grey(img), img.name
+            else:
+                picture, name = load_picture(self.filepath), bpy.path.basename(self.filepath)
+            job = ImitateJob(scene, picture, name, self.size_mm, self.passes, self.detail)
+        except (*bridge.USER_ERRORS, ValueError, OSError) as exc:
+            self.report({"ERROR"}, str(exc))
+            return {"CANCELLED"}
+        return self.run_job(context, job)
