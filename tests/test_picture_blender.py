@@ -1,0 +1,96 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
+"""Issue 19 in Blender: hairy_brush.imitate_image from a PNG file and from an image datablock,
+as a job with progress that Esc stops leaving the scene as it was, keyframing the brush empty
+so the writing replays; bad pictures reported in one message (real bpy)."""
+
+from __future__ import annotations
+
+import json
+import sys
+import time
+
+import numpy as np
+import pytest
+from conftest import ADDON, ROOT
+
+bpy = pytest.importorskip("bpy")
+
+from sim.outline import rasterise  # noqa: E402
+from sim.png import write_png  # noqa: E402
+
+
+def ext():
+    return sys.modules[ADDON]
+
+
+def setup_scene(ppm=1.0):
+    st = bpy.context.scene.hairy_brush
+    st.px_per_mm = ppm
+    assert bpy.ops.hairy_brush.setup() == {"FINISHED"}
+    return st
+
+
+def picture(n=128) -> np.ndarray:
+    char = json.loads((ROOT / "tests" / "data" / "unseen" / "王.json").read_text("utf-8"))
+    return np.where(rasterise(char, n), 0.05, 0.95)
+
+
+def test_imitate_a_png_keyframes_the_brush_and_replays(hb, tmp_path):
+    st = setup_scene()
+    path = tmp_path / "wang.png"
+    write_png(path, picture())
+    res = bpy.ops.hairy_brush.imitate_image(filepath=str(path), size_mm=90.0, passes=1, detail=128)
+    assert res == {"FINISHED"}
+    written = np.array(json.loads(st.recording.as_string())["samples"])
+    assert st.paper_width_mm == 90.0 and len(written) > 100
+    assert st.brush_object.animation_data.action is not None
+    bpy.ops.hairy_brush.bake_samples()  # the keyframes give the same writing back
+    baked = np.array(json.loads(st.recording.as_string())["samples"])
+    np.testing.assert_allclose(baked[: len(written)], written, atol=2e-3)
+
+
+def test_imitate_an_image_datablock_and_bad_pictures(hb, tmp_path):
+    st = setup_scene()
+    pic = picture(96)
+    img = bpy.data.images.new("wang", 96, 96)
+    rgba = np.ones((96, 96, 4), np.float32)
+    rgba[..., :3] = pic[::-1, :, None]  # Blender's rows are bottom first
+    img.pixels.foreach_set(rgba.ravel())
+    res = bpy.ops.hairy_brush.imitate_image(image="wang", size_mm=80.0, passes=1, detail=96)
+    assert res == {"FINISHED"}
+    assert st.paper_width_mm == 80.0
+    blank = bpy.data.images.new("blank", 64, 64)
+    blank.pixels.foreach_set(np.full(64 * 64 * 4, 0.9, np.float32))
+    before = st.recording.as_string()
+    with pytest.raises(RuntimeError, match="no writing"):
+        bpy.ops.hairy_brush.imitate_image(image="blank")
+    with pytest.raises(RuntimeError, match="no image named"):
+        bpy.ops.hairy_brush.imitate_image(image="nothing")
+    bad = tmp_path / "bad.png"
+    bad.write_bytes(b"\x89PNG\r\n\x1a\n" + b"\0" * 20)
+    with pytest.raises(RuntimeError, match="bad.png"):
+        bpy.ops.hairy_brush.imitate_image(filepath=str(bad))
+    assert st.recording.as_string() == before  # user work is never lost
+
+
+def test_imitate_in_a_worker_stops_cleanly_and_finishes(hb):
+    st = setup_scene()
+    sc = bpy.context.scene
+    mod = ext().operators.imitate_image
+    before = (st.paper_width_mm, sc.frame_end, st.brush_object.animation_data)
+    job = mod.ImitateJob(sc, picture(96), "wang", 80.0, 1, 96)
+    assert job.step(0.01) is False  # started in a worker: Blender's thread is free
+    time.sleep(0.2)
+    job.cancel()
+    assert not job._thread.is_alive() and job.result is None
+    assert (st.paper_width_mm, sc.frame_end, st.brush_object.animation_data) == before
+    job = mod.ImitateJob(sc, picture(96), "wang", 80.0, 1, 96)
+    fractions = []
+    end = time.perf_counter() + 120
+    while not job.step(0.05):
+        fractions.append(job.fraction)
+        assert time.perf_counter() < end
+    assert fractions and job.fraction == 1.0 and "strokes" in job.status_line()
+    level, message = job.finish(bpy.context)
+    assert level == "INFO" and message.startswith("wang: 4 strokes")
+    assert st.recording is not None and st.brush_object.animation_data.action is not None
