@@ -6,6 +6,7 @@ The maths (units, poses, rays, frames) is in ``sim.placement``; here it meets Bl
 
 from __future__ import annotations
 
+import hashlib
 import json
 import math
 import os
@@ -14,6 +15,7 @@ import bpy
 import numpy as np
 
 from .sim import display, placement
+from .sim import surface as surf
 from .sim.jsonio import MAX_JSON_BYTES, parse_json
 from .sim.params import (
     MAX_PAPER_PIXELS,
@@ -35,6 +37,8 @@ SHOWN_TAG = "hairy_brush_shown"  # on the paper image: how many samples it shows
 SAMPLES_TAG = "hairy_brush_samples"  # on a recording text: its samples and dips when stored
 DIPS_TAG = "hairy_brush_dips"
 PRIMITIVE_TAG = "hairy_brush_primitive"
+SURFACE_TAG = "hairy_brush_surface"  # on a mesh that is the paper (setup(surface=True))
+SURFACE_KEY = "surface"  # a recording's section of surface frames (see sim.surface)
 MM = placement.MM
 MAX_INT_PROPERTY = 2**31 - 1  # Blender's IntProperty holds 32 bits
 # memory a paper pixel costs: the engine's buffers (ink 12, wetness 4, last step 4), the kept
@@ -47,7 +51,7 @@ class UserError(Exception):
 
 
 # every problem an operator reports to the user as it is (each message names what is wrong)
-USER_ERRORS = (UserError, RecordingError, ParameterError)
+USER_ERRORS = (UserError, RecordingError, ParameterError, surf.SurfaceError)
 
 
 def settings(scene):
@@ -212,13 +216,24 @@ def store_recording(st, rec: Recording) -> bpy.types.Text:
 
 
 def recording_text(rec: Recording) -> str:
-    """The recording's JSON with one sample a line: Blender's text editing is quadratic in a
-    line's length, linear in the number of lines."""
+    """The recording's JSON with one sample (and one surface frame) a line: Blender's text
+    editing is quadratic in a line's length, linear in the number of lines."""
     d = rec.to_dict()
     samples = d.pop("samples")
+    section = d.pop(SURFACE_KEY, None)
     head = json.dumps(d, separators=(",", ":"))
-    rows = ",\n".join(json.dumps(row, separators=(",", ":")) for row in samples)
-    return head[:-1] + ("," if d else "") + '"samples":[\n' + rows + "\n]}"
+
+    def lines(rows):
+        return ",\n".join(json.dumps(row, separators=(",", ":")) for row in rows)
+
+    tail = '"samples":[\n' + lines(samples) + "\n]"
+    if isinstance(section, dict) and isinstance(section.get("frames"), list):
+        rest = {k: v for k, v in section.items() if k != "frames"}
+        open_ = json.dumps(rest, separators=(",", ":"))[:-1] + ("," if rest else "")
+        tail += f',"{SURFACE_KEY}":' + open_ + '"frames":[\n' + lines(section["frames"]) + "\n]}"
+    elif section is not None:
+        tail += f',"{SURFACE_KEY}":' + json.dumps(section, separators=(",", ":"))
+    return head[:-1] + ("," if d else "") + tail + "}"
 
 
 def scene_seed(st) -> int:
@@ -289,6 +304,121 @@ def settings_recording(scene) -> Recording:
 
 def current_dip(st, before_sample: int) -> Dip:
     return Dip(before_sample, float(st.dip_depth), tuple(st.ink_color), float(st.dip_wetness))
+
+
+# ------------------------------------------------------------------------------ surfaces
+def is_surface(st) -> bool:
+    """Whether the paper is a mesh made paper by setup(surface=True), not the flat plane."""
+    obj = st.paper_object
+    return obj is not None and SURFACE_TAG in obj
+
+
+def surface_space(paper_obj) -> np.ndarray:
+    """4x4: the surface's space (the paper object's axes and origin, metres, its scale applied
+    to the mesh instead) -> world. The engine's surface is this space in millimetres."""
+    m = np.array(paper_obj.matrix_world)
+    m[:3, :3] /= np.maximum(np.linalg.norm(m[:3, :3], axis=0), 1e-30)
+    return m
+
+
+_SURFACES: dict = {}  # (object name, digest) -> sim.surface.Surface
+_PAPERS: dict = {}  # (digest, W, H, px/mm) -> sim.surface.SurfacePaper without frames
+
+
+def mesh_arrays(obj) -> tuple[np.ndarray, np.ndarray, np.ndarray | None]:
+    """(vertices in the surface's space in mm, triangles, UVs per triangle corner or None)."""
+    me = obj.data
+    me.calc_loop_triangles()
+    co = np.empty(len(me.vertices) * 3)
+    me.vertices.foreach_get("co", co)
+    to_surface = np.linalg.inv(surface_space(obj)) @ np.array(obj.matrix_world)
+    verts = (co.reshape(-1, 3) @ to_surface[:3, :3].T) * MM
+    tris = np.empty(len(me.loop_triangles) * 3, np.int64)
+    me.loop_triangles.foreach_get("vertices", tris)
+    uv_layer = me.uv_layers.active
+    if uv_layer is None:
+        return verts, tris.reshape(-1, 3), None
+    loops = np.empty(len(me.loop_triangles) * 3, np.int64)
+    me.loop_triangles.foreach_get("loops", loops)
+    uv = np.empty(len(me.loops) * 2)
+    uv_layer.data.foreach_get("uv", uv)
+    return verts, tris.reshape(-1, 3), uv.reshape(-1, 2)[loops].reshape(-1, 3, 2)
+
+
+def _digest(verts, tris, uvs) -> str:
+    h = hashlib.sha1(verts.tobytes(), usedforsecurity=False)
+    h.update(tris.tobytes())
+    h.update(b"-" if uvs is None else uvs.tobytes())
+    return h.hexdigest()
+
+
+def mesh_surface(obj) -> tuple[surf.Surface, str]:
+    """The engine's surface of a mesh and a digest of it (kept until the mesh changes)."""
+    verts, tris, uvs = mesh_arrays(obj)
+    digest = _digest(verts, tris, uvs)
+    key = (obj.name, digest)
+    if key not in _SURFACES:
+        _SURFACES.clear()
+        _SURFACES[key] = surf.surface_from_arrays(verts, tris, uvs, f"Mesh '{obj.name}'")
+    return _SURFACES[key], digest
+
+
+def surface_digest(st) -> str:
+    """Changes whenever the surface the scene writes on changes ('' for the flat paper)."""
+    return _digest(*mesh_arrays(st.paper_object)) if is_surface(st) else ""
+
+
+def surface_paper(st, rec: Recording):
+    """The engine's SurfacePaper of the scene's surface for ``rec`` (None on flat paper)."""
+    if not is_surface(st):
+        return None
+    surface, digest = mesh_surface(st.paper_object)
+    frames = surf.frames_from_dict(rec.extra.get(SURFACE_KEY), len(rec.samples))
+    if frames is None:
+        raise UserError(
+            f"The recording has no surface frames (it was made on flat paper): bake or paint "
+            f"it again on '{st.paper_object.name}', or set up a flat paper to replay it"
+        )
+    key = (digest, rec.width_px, rec.height_px, rec.px_per_mm)
+    if key not in _PAPERS:
+        _PAPERS.clear()
+        _PAPERS[key] = surf.SurfacePaper(
+            surface, None, rec.width_px, rec.height_px, rec.px_per_mm, rec.width_mm
+        )
+    return _PAPERS[key].with_frames(frames)
+
+
+def surface_pose(st, mw) -> tuple[np.ndarray, np.ndarray]:
+    """(base point in mm, rotation) of an object's world matrix in the surface's space."""
+    rel = np.linalg.inv(surface_space(st.paper_object)) @ np.asarray(mw, dtype=float)
+    rot = rel[:3, :3] / np.maximum(np.linalg.norm(rel[:3, :3], axis=0), 1e-30)
+    return rel[:3, 3] * MM, rot
+
+
+def surface_matrix(st, frame, sample) -> np.ndarray:
+    """World matrix of the brush for a sample in a surface frame."""
+    base, rot = surf.pose_from_sample(frame, sample)
+    rel = np.eye(4)
+    rel[:3, :3], rel[:3, 3] = rot, base / MM
+    return surface_space(st.paper_object) @ rel
+
+
+def surface_ray(st, origin, direction):
+    """Where a world ray first meets the surface: the sim.surface.Hit, or None."""
+    to_surface = np.linalg.inv(surface_space(st.paper_object))
+    o = (to_surface @ np.r_[np.asarray(origin, dtype=float), 1.0])[:3] * MM
+    d = to_surface[:3, :3] @ np.asarray(direction, dtype=float)
+    return surf.ray_hit(mesh_surface(st.paper_object)[0], o, d)
+
+
+def surface_origin(st) -> tuple[float, float]:
+    """The chart position a surface's first frame is developed from (see sim.surface)."""
+    return float(st.paper_width_mm) / 2, float(st.paper_height_mm) / 2
+
+
+def forget_surfaces():
+    _SURFACES.clear()
+    _PAPERS.clear()
 
 
 # ------------------------------------------------------------------------------ time

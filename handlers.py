@@ -149,6 +149,7 @@ def on_save_pre(_filepath="", _data=None):
 def on_load_post(_filepath="", _data=None):
     playback.clear()
     bridge.forget_views()
+    bridge.forget_surfaces()  # meshes of another file
 
 
 _HANDLERS = (

@@ -26,11 +26,12 @@ class Playback:
     every frame's worth of samples, so a step of one frame back or forth re-simulates at most
     one frame."""
 
-    def __init__(self, rec, key: str, samples_per_frame: float = 5.0):
+    def __init__(self, rec, key: str, samples_per_frame: float = 5.0, surface=None):
         self.key = key
         self.rec = rec
         every = int(min(max(round(samples_per_frame), 1), MAX_SNAPSHOT_EVERY))
-        self.timeline = Timeline(Simulation(rec), every, bridge.SNAPSHOT_BUDGET_BYTES)
+        sim = Simulation(rec, surface=surface)  # surface: the mesh's SurfacePaper, or flat
+        self.timeline = Timeline(sim, every, bridge.SNAPSHOT_BUDGET_BYTES)
 
     @property
     def sim(self) -> Simulation:
@@ -56,6 +57,7 @@ def cache_key(scene) -> str:
     h = hashlib.sha1(text.encode("utf-8"), usedforsecurity=False)
     h.update(json.dumps(bridge.scene_overrides(st), sort_keys=True).encode("utf-8"))
     h.update(repr((scene.frame_start, scene.render.fps, scene.render.fps_base)).encode())
+    h.update(bridge.surface_digest(st).encode())  # writing on a mesh: the mesh as it is
     return h.hexdigest()
 
 
@@ -92,11 +94,12 @@ def playback_for(scene) -> Playback:
     if pb is None or pb.key != key:
         try:
             rec = bridge.recording_from_scene(scene)
+            surface = bridge.surface_paper(bridge.settings(scene), rec)
         except bridge.USER_ERRORS as exc:
             _FAILED[scene.name] = (key, str(exc))
             raise
         per = bridge.timeline(rec, scene)[1]  # frames per sample
-        pb = Playback(rec, key, samples_per_frame=1.0 / per)
+        pb = Playback(rec, key, samples_per_frame=1.0 / per, surface=surface)
         _load_cache(pb, scene)
         _PLAYBACKS[scene.name] = pb
     return pb

@@ -9,6 +9,7 @@ import bpy
 import numpy as np
 
 from .. import bridge, handlers
+from ..sim import surface as surf
 from ..sim.recording import from_dict
 from . import polls
 
@@ -34,9 +35,19 @@ def nan_keyframes(obj):
 
 def sample_brush(scene, st, frame_start: int, frame_end: int, rate: float, progress=None):
     """6-DOF samples of the brush relative to the paper, evaluated with everything that moves
-    it (keyframes, constraints, drivers, parents) at rate samples per second."""
+    it (keyframes, constraints, drivers, parents) at rate samples per second. On a surface
+    (issue 17), (samples, frames): the samples in the local frames where the brush's axis
+    meets the surface, developed into its chart (sim.surface.develop)."""
+    if bridge.is_surface(st):
+        surface = bridge.mesh_surface(st.paper_object)[0]
+        poses = _brush_poses(
+            scene, st, frame_start, rate, _count(scene, frame_start, frame_end, rate), progress
+        )
+        return surf.develop(
+            surface, poses[:, :3], poses[:, 3:].reshape(-1, 3, 3), bridge.surface_origin(st)
+        )
     fps = scene.render.fps / scene.render.fps_base
-    n = int(math.floor((frame_end - frame_start) / fps * rate)) + 1
+    n = _count(scene, frame_start, frame_end, rate)
     out = np.empty((n, 6))
     keep = scene.frame_current, scene.frame_subframe
     with handlers.suspended():
@@ -55,7 +66,37 @@ def sample_brush(scene, st, frame_start: int, frame_end: int, rate: float, progr
     return out
 
 
-def contact_problems(samples: np.ndarray, hair_mm: float, frame_of) -> tuple[str, str]:
+def _count(scene, frame_start, frame_end, rate) -> int:
+    fps = scene.render.fps / scene.render.fps_base
+    return int(math.floor((frame_end - frame_start) / fps * rate)) + 1
+
+
+def _brush_poses(scene, st, frame_start, rate, n, progress=None) -> np.ndarray:
+    """(n, 12): the brush's base (mm) and rotation (row-major) in the surface's space."""
+    fps = scene.render.fps / scene.render.fps_base
+    out = np.empty((n, 12))
+    keep = scene.frame_current, scene.frame_subframe
+    with handlers.suspended():
+        try:
+            for i in range(n):
+                f = frame_start + i * fps / rate
+                fi = math.floor(f)
+                scene.frame_set(fi, subframe=f - fi)
+                base, rot = bridge.surface_pose(st, st.brush_object.matrix_world)
+                out[i, :3], out[i, 3:] = base, rot.ravel()
+                if progress is not None and i % 64 == 0:
+                    progress(i / n)
+        finally:
+            scene.frame_set(keep[0], subframe=keep[1])
+    bad = ~np.isfinite(out).all(axis=1)
+    if bad.any():
+        raise bridge.UserError(f"The brush's pose is not a number at sample {int(np.argmax(bad))}")
+    return out
+
+
+def contact_problems(
+    samples: np.ndarray, hair_mm: float, frame_of, what: str = "the paper"
+) -> tuple[str, str]:
     """("ERROR" or "WARNING" or "", message) for baked samples that would draw nothing or
     nothing sensible: a brush that never moves, never reaches the paper, or is pushed through
     it (pressed deeper than its hair is long). ``frame_of(i)`` is sample i's frame."""
@@ -74,14 +115,14 @@ def contact_problems(samples: np.ndarray, hair_mm: float, frame_of) -> tuple[str
         )
     if z[low] >= hair_mm:
         return "WARNING", (
-            f"The brush never touches the paper: its lowest point is z = {z[low]:.1f} mm "
+            f"The brush never touches {what}: its lowest point is z = {z[low]:.1f} mm "
             f"(frame {frame_of(low):.0f}) and it touches at z = {hair_mm:g} mm, its hair "
             "length: nothing will be drawn"
         )
     if z[low] < 0.0:
         buried = np.flatnonzero(z < 0.0)
         return "WARNING", (
-            f"The brush goes {-z[low]:.1f} mm through the paper at frame {frame_of(low):.0f} "
+            f"The brush goes {-z[low]:.1f} mm through {what} at frame {frame_of(low):.0f} "
             f"({len(buried)} samples below it, from frame {frame_of(buried[0]):.0f}): it "
             f"touches at z = {hair_mm:g} mm, so press at most {hair_mm:g} mm (z above 0)"
         )
@@ -150,6 +191,7 @@ class HAIRY_BRUSH_OT_bake_samples(bpy.types.Operator):
             return {"CANCELLED"}
         wm = context.window_manager
         wm.progress_begin(0, 100)
+        frames = None
         try:
             samples = sample_brush(
                 scene,
@@ -159,6 +201,11 @@ class HAIRY_BRUSH_OT_bake_samples(bpy.types.Operator):
                 st.sample_rate_hz,
                 lambda f: wm.progress_update(int(100 * f)),
             )
+            if isinstance(samples, tuple):  # on a surface: the samples and their frames
+                samples, frames = samples
+        except bridge.USER_ERRORS as exc:
+            self.report({"ERROR"}, str(exc))
+            return {"CANCELLED"}
         finally:
             wm.progress_end()
         bad_rows = ~np.all(np.isfinite(samples), axis=1)
@@ -174,11 +221,14 @@ class HAIRY_BRUSH_OT_bake_samples(bpy.types.Operator):
         except bridge.USER_ERRORS as exc:
             self.report({"ERROR"}, f"Cannot bake: {exc}")
             return {"CANCELLED"}
+        if frames is not None:
+            rec.extra[bridge.SURFACE_KEY] = {"frames": frames.tolist()}
         fps = scene.render.fps / scene.render.fps_base
         level, problem = contact_problems(
             samples,
             bridge.hair_length(st),
             lambda i: scene.frame_start + i * fps / rec.sample_rate_hz,
+            f"the surface of '{st.paper_object.name}'" if frames is not None else "the paper",
         )
         if level == "ERROR":
             self.report({"ERROR"}, problem)

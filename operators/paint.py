@@ -1,5 +1,7 @@
 # SPDX-License-Identifier: GPL-3.0-or-later
-"""hairy_brush.paint: live painting on the paper plane in the 3D viewport (Fig. 6(b)).
+"""hairy_brush.paint: live painting on the paper plane in the 3D viewport (Fig. 6(b)), or on a
+mesh that is the paper (issue 17.4: the mouse's ray meets the mesh, sim.surface.ray_hit, and the
+point is placed on the chart of the latest sample's frame; each sample's frame then follows).
 
 The event logic is ``sim.live.LiveBrush`` (no bpy, tested with Blender's event sequences);
 this operator only projects the mouse onto the paper, stamps each event with the clock
@@ -17,6 +19,7 @@ from mathutils import Matrix
 
 from .. import bridge, playback
 from ..sim import placement
+from ..sim import surface as surf
 from ..sim.engine import Simulation
 from ..sim.live import LiveBrush, LiveEvent
 from ..sim.params import HOVER_MM
@@ -30,13 +33,55 @@ NAVIGATION = {"MIDDLEMOUSE", "TRACKPADPAN", "TRACKPADZOOM", "NDOF_MOTION"}
 NAVIGATION_PREFIX = "NUMPAD_"
 
 
-def mouse_to_paper(context, st, mx: float, my: float):
+def mouse_ray(context, mx: float, my: float):
+    """(origin, direction) of the view ray under the mouse, in world space; None off a view."""
     region, rv3d = context.region, context.region_data
     if region is None or rv3d is None:
         return None
     origin = view3d_utils.region_2d_to_origin_3d(region, rv3d, (mx, my))
-    direction = view3d_utils.region_2d_to_vector_3d(region, rv3d, (mx, my))
-    return placement.ray_to_paper(bridge.engine_to_world(st, st.paper_object), origin, direction)
+    return origin, view3d_utils.region_2d_to_vector_3d(region, rv3d, (mx, my))
+
+
+def mouse_to_paper(context, st, mx: float, my: float, sim=None):
+    """The paper point under the mouse in engine mm: on a surface, the chart position (near
+    ``sim``'s latest frame) of the point where the ray meets the mesh; None when it misses."""
+    return ray_to_paper(st, mouse_ray(context, mx, my), sim)
+
+
+def ray_to_paper(st, ray, sim=None):
+    """mouse_to_paper for a world ray (origin, direction), or None."""
+    if ray is None:
+        return None
+    if bridge.is_surface(st):
+        hit = bridge.surface_ray(st, *ray)
+        if hit is None or sim is None or not sim.surface.frames:
+            return None
+        return surf.chart_xy(sim.surface.frames[-1], hit.point)
+    return placement.ray_to_paper(bridge.engine_to_world(st, st.paper_object), *ray)
+
+
+def start_on_surface(scene, ray) -> tuple[Simulation, tuple | None]:
+    """The simulation at the end of the scene's recording on its surface (a fresh one, with its
+    first frame where the mouse's world ray meets the mesh, when there is none), and the
+    mouse's chart position."""
+    st = bridge.settings(scene)
+    hit = bridge.surface_ray(st, *ray) if ray is not None else None
+    if st.recording is not None:
+        pb = playback.playback_for(scene)
+        sim = pb.seek(len(pb.rec.samples))
+    elif hit is None:
+        raise bridge.UserError(
+            f"Start painting with the mouse over '{st.paper_object.name}' (the paper surface)"
+        )
+    else:
+        surface = bridge.mesh_surface(st.paper_object)[0]
+        frame = surf.new_frame(surface, hit, None, bridge.surface_origin(st))
+        hover = bridge.hair_length(st) + HOVER_MM
+        rec = bridge.new_recording(scene, [[frame[0], frame[1], hover, 0.0, 0.0, 0.0]])
+        rec.extra[bridge.SURFACE_KEY] = {"frames": [frame.tolist()]}
+        sim = Simulation(rec, bridge.surface_paper(st, rec)).run()
+    xy = surf.chart_xy(sim.surface.frames[-1], hit.point) if hit is not None else None
+    return sim, xy
 
 
 def start_simulation(scene, xy) -> tuple[Simulation, bool]:
@@ -56,6 +101,9 @@ def keep_stroke(scene, live: LiveBrush):
     """Store the recording with the new stroke (marked as painted, so a bake does not replace
     it unasked); the playback continues from the live state."""
     rec = live.sim.rec
+    if live.sim.surface is not None:  # the frames the samples were simulated in
+        frames = live.sim.surface.frames[: len(rec.samples)]
+        rec.extra[bridge.SURFACE_KEY] = {"frames": [f.tolist() for f in frames]}
     info = rec.extra.setdefault("blender", {})
     info[bridge.PAINTED_KEY] = int(info.get(bridge.PAINTED_KEY, 0)) + len(live.new_samples)
     bridge.store_recording(bridge.settings(scene), rec)
@@ -87,10 +135,14 @@ class HAIRY_BRUSH_OT_paint(bpy.types.Operator):
         if st.paper_object is None:
             self.report({"ERROR"}, "No paper plane: run Setup first")
             return {"CANCELLED"}
-        xy = mouse_to_paper(context, st, event.mouse_region_x, event.mouse_region_y)
+        mx, my = event.mouse_region_x, event.mouse_region_y
         try:
             img = bridge.ensure_paper_image(st)
-            sim, _fresh = start_simulation(scene, xy)
+            if bridge.is_surface(st):
+                sim, xy = start_on_surface(scene, mouse_ray(context, mx, my))
+            else:
+                xy = mouse_to_paper(context, st, mx, my)
+                sim, _fresh = start_simulation(scene, xy)
         except bridge.USER_ERRORS as exc:
             self.report({"ERROR"}, str(exc))
             return {"CANCELLED"}
@@ -126,7 +178,8 @@ class HAIRY_BRUSH_OT_paint(bpy.types.Operator):
             return {"RUNNING_MODAL"}
         xy = None
         if event.type in ("MOUSEMOVE", "INBETWEEN_MOUSEMOVE", "LEFTMOUSE"):
-            xy = mouse_to_paper(context, st, event.mouse_region_x, event.mouse_region_y)
+            mx, my = event.mouse_region_x, event.mouse_region_y
+            xy = mouse_to_paper(context, st, mx, my, self._live.sim)
         ev = LiveEvent(
             event.type,
             event.value,
@@ -175,7 +228,10 @@ class HAIRY_BRUSH_OT_paint(bpy.types.Operator):
             return
         if st.brush_object is not None:
             pose = sim.rec.samples[-1]
-            mw = bridge.matrix_from_sample(st, st.paper_object.matrix_world, pose)
+            if sim.surface is not None:  # in the latest frame the engine has made
+                mw = bridge.surface_matrix(st, sim.surface.frames[-1], pose)
+            else:
+                mw = bridge.matrix_from_sample(st, st.paper_object.matrix_world, pose)
             st.brush_object.matrix_world = Matrix(mw.tolist())
         if playback.primitive_objects(scene):
             playback.sync_primitives(scene, sim, create=False)

@@ -32,9 +32,11 @@ def recording(cls, context) -> bool:
 
 
 def selected_meshes(context) -> list:
-    """The selected meshes other than the paper plane."""
-    paper = bridge.settings(context.scene).paper_object
-    return [o for o in context.selected_objects or [] if o.type == "MESH" and o != paper]
+    """The selected meshes other than the paper plane (a mesh that is the paper itself, set
+    up with setup(surface=True), counts: its writing can be carved into it)."""
+    st = bridge.settings(context.scene)
+    plane = None if bridge.is_surface(st) else st.paper_object
+    return [o for o in context.selected_objects or [] if o.type == "MESH" and o != plane]
 
 
 def paper_image_and_meshes(cls, context) -> bool:

@@ -1,5 +1,9 @@
 # SPDX-License-Identifier: GPL-3.0-or-later
-"""hairy_brush.setup: a brush empty, a paper plane textured with the paper image, the settings."""
+"""hairy_brush.setup: a brush empty, a paper plane textured with the paper image, the settings;
+with ``surface=True`` the selected mesh is the paper instead (issue 17: its material shows the
+paper image through its active UV map over its own base colour, the image's size follows the
+mesh's area and px/mm, the brush hovers above it; see sim.surface for how the brush writes on
+it)."""
 
 from __future__ import annotations
 
@@ -7,10 +11,13 @@ import math
 
 import bpy
 import numpy as np
-from mathutils import Vector
+from mathutils import Matrix, Vector
 
 from .. import bridge
+from ..sim import surface as surf
 from ..sim.params import HOVER_MM
+from ..sim.recording import PAPER_MM_RANGE
+from .apply_to_mesh import add_ink
 
 PAPER_MATERIAL = "HairyBrush Paper"
 HAIR_TAG = "hairy_brush_hair"
@@ -51,8 +58,8 @@ def resize_paper(st):
     """Make the paper plane match the paper size in the settings (the property update of Width
     and Height calls this, so the plane follows every change and every import)."""
     obj = st.paper_object
-    if obj is None or obj.type != "MESH":
-        return
+    if obj is None or obj.type != "MESH" or bridge.SURFACE_TAG in obj:
+        return  # a surface keeps its shape: its size is the texture's (setup(surface=True))
     w, h = st.paper_width_mm / bridge.MM, st.paper_height_mm / bridge.MM
     if not (math.isfinite(w) and math.isfinite(h)):
         return
@@ -138,12 +145,86 @@ def _basis_offset(brush, paper, delta_mm: float) -> np.ndarray:
     return np.linalg.solve(parent[:3, :3], world)
 
 
+# ------------------------------------------------------------------------------ a mesh as paper
+def surface_target(context):
+    """The mesh to make paper: the active object if it is a selected mesh, else the first
+    selected mesh; None when no mesh is selected."""
+    act = context.active_object
+    if act is not None and act.type == "MESH" and act.select_get():
+        return act
+    return next((o for o in context.selected_objects or [] if o.type == "MESH"), None)
+
+
+def surface_material(obj, img):
+    """Every material of the mesh shows the paper image through its active UV map over its own
+    base colour (a new plain material when it has none)."""
+    mats = [m for m in obj.data.materials if m is not None]
+    if not mats:
+        mat = bpy.data.materials.new(f"{obj.name} Paper")
+        if mat.node_tree is None:  # Blender < 5 creates materials without nodes
+            mat.use_nodes = True
+        obj.data.materials.append(mat)
+        mats = [mat]
+    for mat in mats:
+        add_ink(mat, img, obj.data.uv_layers.active.name)
+
+
+def surface_side(st, surface) -> float:
+    """The texture's side (mm at the average texel size), checked against what the paper
+    settings and the memory hold."""
+    side = surf.texture_side_mm(surface)
+    lo, hi = PAPER_MM_RANGE
+    if not lo <= side <= hi:
+        raise bridge.UserError(
+            f"The mesh's texture would be {side:.3g} mm a side at its size; it must lie between "
+            f"{lo:g} and {hi:g} mm: scale the mesh"
+        )
+    n = max(1, int(round(side * st.px_per_mm)))
+    bridge.check_paper_pixels(n, n)
+    return side
+
+
+def hover_above(surface, clearance_mm: float) -> tuple[np.ndarray, np.ndarray]:
+    """(base, rotation) in the surface's space of a brush upright above the surface, facing it
+    where it faces the viewer: along its mean normal for an open sheet (a tablet), from the
+    front (-y) for a closed or round one (a vase)."""
+    c = surface.corners
+    area_n = np.cross(c[:, 1] - c[:, 0], c[:, 2] - c[:, 0]).sum(axis=0) / 2
+    look = np.array([0.0, -1.0, 0.0])
+    if np.linalg.norm(area_n) > 0.5 * surface.area_mm2:
+        look = area_n / np.linalg.norm(area_n)
+    lo, hi = surface.verts.min(axis=0), surface.verts.max(axis=0)
+    far = (lo + hi) / 2 + look * (np.linalg.norm(hi - lo) + 1000.0)
+    hit = surf.closest_point(surface, far)
+    n = surf.normal_at(surface, hit)
+    t = surf.transport(np.array([1.0, 0.0, 0.0]), n)
+    return hit.point + n * clearance_mm, np.stack([t, np.cross(n, t), n], axis=1)
+
+
+def place_brush(st, surface, clearance_mm: float):
+    base, rot = hover_above(surface, clearance_mm)
+    rel = np.eye(4)
+    rel[:3, :3], rel[:3, 3] = rot, base / bridge.MM
+    brush = st.brush_object
+    brush.parent = st.paper_object
+    brush.matrix_parent_inverse.identity()
+    brush.matrix_world = Matrix((bridge.surface_space(st.paper_object) @ rel).tolist())
+
+
 class HAIRY_BRUSH_OT_setup(bpy.types.Operator):
     """Add a brush empty and a paper plane whose material shows the paper image"""
 
     bl_idname = "hairy_brush.setup"
     bl_label = "Set Up Brush and Paper"
     bl_options = {"REGISTER", "UNDO"}
+
+    surface: bpy.props.BoolProperty(
+        name="On the Selected Mesh",
+        default=False,
+        description="Make the selected mesh the paper: the brush writes on its surface and the "
+        "ink goes into an image read through its active UV map (its size follows the mesh's "
+        "area and Resolution)",
+    )
 
     @classmethod
     def poll(cls, context):
@@ -153,6 +234,8 @@ class HAIRY_BRUSH_OT_setup(bpy.types.Operator):
         return True
 
     def execute(self, context):
+        if self.surface:
+            return self.setup_surface(context)
         scene = context.scene
         st = bridge.settings(scene)
         try:
@@ -177,16 +260,55 @@ class HAIRY_BRUSH_OT_setup(bpy.types.Operator):
         if mat.name not in st.paper_object.data.materials:
             st.paper_object.data.materials.append(mat)
         if st.brush_object is None:
-            brush = bpy.data.objects.new("HairyBrush Brush", None)
-            brush.empty_display_type = "SINGLE_ARROW"
-            brush.empty_display_size = 0.03
-            brush.rotation_mode = "ZYX"  # Rx(q) Ry(d) Rz(r): X = q, Y = d, Z = r
-            brush.rotation_euler = (0.0, 0.0, 0.0)  # upright: the hair hangs down -Z
+            brush = new_brush(coll)
             brush.parent = st.paper_object
             brush.location = (0.0, 0.0, (geom_len + HOVER_MM) / bridge.MM)
-            coll.objects.link(brush)
             st.brush_object = brush
         st.touch_height_mm = geom_len
         show_hair_length(st, geom_len)
         self.report({"INFO"}, f"Paper {st.paper_object.name}, brush {st.brush_object.name}")
         return {"FINISHED"}
+
+    def setup_surface(self, context):
+        """The selected mesh becomes the paper (nothing changes when it cannot be)."""
+        st = bridge.settings(context.scene)
+        obj = surface_target(context)
+        if obj is None:
+            self.report({"ERROR"}, "Select a mesh to write on (one with a UV map)")
+            return {"CANCELLED"}
+        try:
+            bridge.check_settings(st)
+            surface, _digest = bridge.mesh_surface(obj)
+            side = surface_side(st, surface)
+            geom_len = bridge.hair_length(st)
+        except bridge.USER_ERRORS as exc:
+            self.report({"ERROR"}, str(exc))
+            return {"CANCELLED"}
+        obj[bridge.SURFACE_TAG] = 1
+        st.paper_object = obj
+        st.paper_width_mm = st.paper_height_mm = side
+        img = bridge.show_blank(st)
+        surface_material(obj, img)
+        if st.brush_object is None:
+            st.brush_object = new_brush(context.scene.collection)
+        place_brush(st, surface, geom_len + HOVER_MM)
+        st.touch_height_mm = geom_len
+        show_hair_length(st, geom_len)
+        w, h = img.size
+        self.report(
+            {"INFO"},
+            f"Paper is the surface of '{obj.name}': a {w} x {h} px image ({side:.0f} mm a side "
+            f"at {st.px_per_mm:g} px/mm), brush {st.brush_object.name} above it",
+        )
+        return {"FINISHED"}
+
+
+def new_brush(coll):
+    """The brush empty: upright (the hair hangs down its -Z), Euler ZYX (X = q, Y = d, Z = r)."""
+    brush = bpy.data.objects.new("HairyBrush Brush", None)
+    brush.empty_display_type = "SINGLE_ARROW"
+    brush.empty_display_size = 0.03
+    brush.rotation_mode = "ZYX"  # Rx(q) Ry(d) Rz(r): X = q, Y = d, Z = r
+    brush.rotation_euler = (0.0, 0.0, 0.0)
+    coll.objects.link(brush)
+    return brush

@@ -40,6 +40,7 @@ the next).
 
 from __future__ import annotations
 
+import copy
 import math
 from dataclasses import dataclass, field, replace
 
@@ -69,7 +70,7 @@ class Surface:
     tris: np.ndarray  # (T, 3) vertex indices
     uvs: np.ndarray  # (T, 3, 2) texture coordinates, 0..1
     face_normals: np.ndarray = field(repr=False)  # (T, 3)
-    vert_normals: np.ndarray = field(repr=False)  # (V, 3) area-weighted, unit
+    corner_normals: np.ndarray = field(repr=False)  # (T, 3, 3) smooth, unit (corner_normals)
     area_mm2: float = 0.0
     uv_area: float = 0.0  # of the unit texture square the UV triangles cover
 
@@ -102,11 +103,33 @@ def surface_from_arrays(verts_mm, tris, uvs, name: str = "The mesh") -> Surface:
     if uv_area <= 1e-9:
         raise SurfaceError(f"{name}'s UV map has no area: unwrap it (UV > Unwrap)")
     fn = cross / np.where(area > 0, 2 * area, 1.0)[:, None]
-    vn = np.zeros_like(verts)
-    for k in range(3):
-        np.add.at(vn, tris[:, k], cross)
-    vn /= np.maximum(np.linalg.norm(vn, axis=1), 1e-30)[:, None]
-    return Surface(verts, tris, uvs, fn, vn, float(area.sum()), uv_area)
+    cn = corner_normals(tris, cross, fn)
+    return Surface(verts, tris, uvs, fn, cn, float(area.sum()), uv_area)
+
+
+SMOOTH_ANGLE_DEG = 60.0  # faces meeting at a sharper angle keep their edge sharp
+
+
+def corner_normals(tris, cross, fn) -> np.ndarray:
+    """(T, 3, 3) each triangle corner's smooth normal: the area-weighted mean of the normals
+    of the faces around its vertex that meet this face at less than SMOOTH_ANGLE_DEG (so a
+    cylinder's side is round and its rim stays a rim)."""
+    v = tris.ravel()  # corner c = 3 t + k
+    order = np.argsort(v, kind="stable")
+    counts = np.bincount(v, minlength=int(v.max()) + 1)
+    starts = np.cumsum(counts) - counts
+    n = counts[v]  # faces around each corner's vertex
+    corner = np.repeat(np.arange(v.size), n)
+    k = np.arange(int(n.sum())) - np.repeat(np.cumsum(n) - n, n)
+    other = order[np.repeat(starts[v], n) + k] // 3
+    own = corner // 3
+    near = np.einsum("ij,ij->i", fn[own], fn[other]) > math.cos(math.radians(SMOOTH_ANGLE_DEG))
+    w = cross[other] * near[:, None]
+    out = np.stack([np.bincount(corner, w[:, d], minlength=v.size) for d in range(3)], axis=1)
+    ln = np.linalg.norm(out, axis=1)
+    face = fn[np.arange(v.size) // 3]  # a corner of a face of no area: the face's normal
+    out = np.where(ln[:, None] > 1e-30, out / np.maximum(ln, 1e-30)[:, None], face)
+    return out.reshape(-1, 3, 3)
 
 
 def _check_manifold(tris: np.ndarray, name: str):
@@ -203,7 +226,7 @@ def _barycentric(c: np.ndarray, p: np.ndarray) -> np.ndarray:
 
 def normal_at(surface: Surface, hit: Hit) -> np.ndarray:
     """The smooth (vertex-interpolated) unit normal at a hit."""
-    n = hit.bary @ surface.vert_normals[surface.tris[hit.tri]]
+    n = hit.bary @ surface.corner_normals[hit.tri]
     ln = np.linalg.norm(n)
     return n / ln if ln > 1e-12 else surface.face_normals[hit.tri]
 
@@ -235,14 +258,15 @@ def frame_parts(frame):
     return f[:2], f[2:5], t, np.cross(n, t), n
 
 
-def new_frame(surface: Surface, hit: Hit, prev=None, origin_xy=(0.0, 0.0)) -> np.ndarray:
+def new_frame(surface: Surface, hit: Hit, prev=None, origin_xy=(0.0, 0.0), first_t=None):
     """The frame at ``hit``: the tangent carried from the previous frame, the chart position
-    developed from it. The first frame's tangent is the surface's x axis on the tangent plane
-    and its chart position ``origin_xy`` + the point's coordinates along T and B (so a flat
-    surface's chart is its own plane)."""
+    developed from it. The first frame's tangent is ``first_t`` (the brush's own x axis when
+    baking, so its rotation r starts at 0; the surface's x axis by default) on the tangent
+    plane, and its chart position ``origin_xy`` + the point's coordinates along T and B (so a
+    flat surface's chart is its own plane)."""
     n = normal_at(surface, hit)
     if prev is None:
-        t = transport(np.array([1.0, 0.0, 0.0]), n)
+        t = transport(np.array([1.0, 0.0, 0.0]) if first_t is None else first_t, n)
         c = np.asarray(origin_xy, dtype=float) + [hit.point @ t, hit.point @ np.cross(n, t)]
     else:
         c0, p0, t0, b0, _n0 = frame_parts(prev)
@@ -283,13 +307,18 @@ def axis_hit(surface: Surface, base_mm, rot) -> Hit:
 
 def develop(surface: Surface, bases, rots, origin_xy) -> tuple[np.ndarray, np.ndarray]:
     """Baked brush poses (N bases in mm, N rotations, in the surface's space) -> the engine's
-    chart samples (N, 6) and their frames (N, FRAME_WIDTH); see new_frame for origin_xy."""
+    chart samples (N, 6) and their frames (N, FRAME_WIDTH); see new_frame for origin_xy. The
+    rotation r is kept continuous (no jump of 360 degrees between samples)."""
     frames = np.empty((len(bases), FRAME_WIDTH))
     samples = np.empty((len(bases), 6))
     prev = None
     for i, (base, rot) in enumerate(zip(bases, rots, strict=True)):
-        prev = frames[i] = new_frame(surface, axis_hit(surface, base, rot), prev, origin_xy)
+        hit = axis_hit(surface, base, rot)
+        prev = frames[i] = new_frame(surface, hit, prev, origin_xy, np.asarray(rot)[:, 0])
         samples[i] = local_sample(prev, base, rot)
+        if i:
+            r0 = samples[i - 1, 5]
+            samples[i, 5] = r0 + (samples[i, 5] - r0 + 180.0) % 360.0 - 180.0
     return samples, frames
 
 
@@ -442,20 +471,38 @@ class SurfacePaper:
 
     def __init__(self, surface: Surface, frames, W: int, H: int, ppm: float, side_mm: float):
         self.surface = surface
-        self.frames = list(np.asarray(frames, dtype=float)) if frames is not None else []
         self.ppm = float(ppm)
         self.texels = texel_points(surface, W, H)
         self.W = W
         # the chart is offset so that its pixels are never negative (samples reach 10 sides)
         self.offset = math.ceil(CHART_SIDES * side_mm * self.ppm) / self.ppm
         self.hash = SpatialHash(self.texels.xyz, max(2.0, 4.0 / self.ppm))
+        self._set_frames(frames)
+
+    def _set_frames(self, frames):
+        self.frames = list(np.asarray(frames, dtype=float)) if frames is not None else []
+        self.given = len(self.frames)  # the recording's; the rest follow live samples
+        self._followed = {}  # frame index -> the chart position it was made for
+
+    def with_frames(self, frames) -> SurfacePaper:
+        """The same surface and texels (the costly part) for another recording's frames."""
+        other = copy.copy(self)
+        other._set_frames(frames)
+        return other
 
     def frame(self, i: int, sample) -> np.ndarray:
-        """Sample i's frame; a sample painted live gets one from the previous frame."""
+        """Sample i's frame. A sample painted live (beyond the recording's frames) gets one that
+        follows the previous frame to its chart position; a stroke taken back and painted again
+        gets new ones."""
+        xy = (float(sample[0]), float(sample[1]))
+        if i >= self.given and i < len(self.frames) and self._followed.get(i) != xy:
+            del self.frames[i:]
         while len(self.frames) <= i:
             if not self.frames:
                 raise SurfaceError("a surface recording's first sample has no frame")
-            self.frames.append(follow(self.surface, self.frames[-1], sample[:2]))
+            k = len(self.frames)
+            self.frames.append(follow(self.surface, self.frames[-1], xy))  # i is always k
+            self._followed[k] = xy
         return self.frames[i]
 
     def engine_sample(self, i: int, sample) -> np.ndarray:

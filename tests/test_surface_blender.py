@@ -1,0 +1,362 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
+"""Writing on a mesh's surface in Blender (issue 17): setup(surface=True), baking and simulating
+on the surface, live painting on it, relief, undo/save/reload and the messages (real bpy)."""
+
+from __future__ import annotations
+
+import math
+import sys
+
+import numpy as np
+import pytest
+from conftest import ADDON
+
+bpy = pytest.importorskip("bpy")
+
+from sim.display import linear_to_srgb  # noqa: E402
+
+HAIR = 30.0  # the 'mixed' brush preset's hair length (mm)
+R_MM = 40.0  # the cylinder's radius
+
+
+def ext():
+    return sys.modules[ADDON]
+
+
+def ink(img) -> np.ndarray:
+    """(H, W) darkness of the image's visible colour, bottom row first (0 = the paper's)."""
+    a = np.empty(len(img.pixels), np.float32)
+    img.pixels.foreach_get(a)
+    rgb = linear_to_srgb(a.reshape(img.size[1], img.size[0], 4)[..., :3]).mean(axis=2)
+    return rgb.max() - rgb
+
+
+def select_only(*objs):
+    for ob in bpy.context.scene.objects:
+        ob.select_set(ob in objs)
+    if objs:
+        bpy.context.view_layer.objects.active = objs[0]
+
+
+def cylinder(vertices=48):
+    bpy.ops.mesh.primitive_cylinder_add(vertices=vertices, radius=R_MM / 1000, depth=0.12)
+    return bpy.context.active_object
+
+
+def surface_scene(obj, ppm=3.0):
+    st = bpy.context.scene.hairy_brush
+    st.px_per_mm = ppm
+    select_only(obj)
+    assert bpy.ops.hairy_brush.setup(surface=True) == {"FINISHED"}
+    return st
+
+
+def key_pose(brush, frame, loc, rot=(0.0, 0.0, 0.0)):
+    brush.location, brush.rotation_euler = loc, rot
+    brush.keyframe_insert("location", frame=frame)
+    brush.keyframe_insert("rotation_euler", frame=frame)
+
+
+def key_around(st, angles_deg, press, z=0.0, first=1, step=2):
+    """Keyframe the brush upright against the cylinder's side (its hair along the normal) at
+    each angle (0 = the -y side, the front), pressing ``press`` mm; returns the last frame."""
+    b = st.brush_object
+    b.rotation_mode = "XYZ"  # Rz(a) Rx(90 deg): turned about the cylinder's axis
+    f = first
+    for a, p in zip(np.radians(angles_deg), press, strict=True):
+        dist = (R_MM + HAIR - p) / 1000
+        key_pose(b, f, (dist * math.sin(a), -dist * math.cos(a), z), (math.pi / 2, 0.0, a))
+        f += step
+    sc = bpy.context.scene
+    sc.frame_start, sc.frame_end = first, f - step
+    for fc in ext().bridge.fcurves(b.animation_data):
+        for kp in fc.keyframe_points:
+            kp.interpolation = "LINEAR"
+    return f - step
+
+
+def presses(n, press=3.0, lead=3):
+    p = np.full(n, -5.0)
+    p[lead:-lead] = press
+    return p
+
+
+def texels(sc):
+    return ext().playback.playback_for(sc).sim.surface.texels
+
+
+# ----------------------------------------------------------------------------- set-up
+def test_setup_makes_the_selected_mesh_the_paper(hb):
+    cyl = cylinder()
+    st = surface_scene(cyl, ppm=3.0)
+    assert st.paper_object == cyl and ext().bridge.is_surface(st)
+    surface = ext().bridge.mesh_surface(cyl)[0]
+    side = math.sqrt(surface.area_mm2 / surface.uv_area)
+    n = round(side * 3.0)
+    assert tuple(st.paper_image.size) == (n, n) and abs(st.paper_width_mm - side) < 1e-3
+    # the mesh's material shows the paper image through its active UV map
+    mat = cyl.data.materials[0]
+    tex = mat.node_tree.nodes[ext().operators.apply_to_mesh.INK_NODE]
+    assert tex.image == st.paper_image
+    uv = next(n for n in mat.node_tree.nodes if n.type == "UVMAP")
+    assert uv.uv_map == cyl.data.uv_layers.active.name
+    # the brush hovers above the surface, its hair along the normal (the front, -y, of a vase)
+    mw = np.array(st.brush_object.matrix_world)
+    np.testing.assert_allclose(mw[:3, 2], [0.0, -1.0, 0.0], atol=0.05)
+    dist = math.hypot(mw[0, 3], mw[1, 3]) * 1000 - R_MM
+    assert abs(dist - (HAIR + 5.0)) < 0.5
+    assert cyl.dimensions.x == pytest.approx(0.08, abs=1e-6)  # the mesh keeps its shape
+    st.paper_width_mm = 300.0  # the size of a surface's texture is not a plane's to resize
+    assert len(cyl.data.vertices) == 96
+
+
+def test_meshes_that_cannot_be_paper_and_a_brush_that_never_touches_get_clear_messages(hb, capfd):
+    st = bpy.context.scene.hairy_brush
+    select_only()
+    with pytest.raises(RuntimeError, match="Select a mesh to write on"):
+        bpy.ops.hairy_brush.setup(surface=True)
+    me = bpy.data.meshes.new("NoUV")
+    me.from_pydata([(0, 0, 0), (1, 0, 0), (0, 1, 0)], [], [(0, 1, 2)])
+    no_uv = bpy.data.objects.new("NoUV", me)
+    bpy.context.scene.collection.objects.link(no_uv)
+    select_only(no_uv)
+    with pytest.raises(RuntimeError, match="Mesh 'NoUV' has no UV map: add one"):
+        bpy.ops.hairy_brush.setup(surface=True)
+    me = bpy.data.meshes.new("Fin")
+    v = [(0, 0, 0), (0.1, 0, 0), (0, 0.1, 0), (0, -0.1, 0), (0, 0, 0.1)]
+    me.from_pydata(v, [], [(0, 1, 2), (0, 1, 3), (0, 1, 4)])  # three faces on one edge
+    me.uv_layers.new(name="UVMap")
+    for k, loop in enumerate(me.loops):
+        me.uv_layers.active.data[loop.index].uv = (0.1 * (k % 3), 0.3 * (k // 3) + 0.1 * (k % 2))
+    fin = bpy.data.objects.new("Fin", me)
+    bpy.context.scene.collection.objects.link(fin)
+    select_only(fin)
+    with pytest.raises(RuntimeError, match="Mesh 'Fin' is not manifold: 1 edge"):
+        bpy.ops.hairy_brush.setup(surface=True)
+    assert st.paper_object is None  # nothing was set up
+    cyl = cylinder()
+    st = surface_scene(cyl)
+    key_around(st, np.linspace(-20, 20, 11), np.full(11, -4.0))  # 4 mm short of the surface
+    capfd.readouterr()
+    assert bpy.ops.hairy_brush.bake_samples() == {"FINISHED"}
+    out = capfd.readouterr().out
+    assert "never touches the surface of 'Cylinder': its lowest point is z = 34.0 mm" in out
+
+
+# ----------------------------------------------------------------------------- the ink
+def test_a_flat_grid_with_turned_scaled_uvs_writes_the_planes_ink_through_them(hb):
+    sc = bpy.context.scene
+    st = sc.hairy_brush
+    st.px_per_mm = 2.0
+    assert bpy.ops.hairy_brush.setup() == {"FINISHED"}  # the flat plane, 200 x 200 mm
+
+    def stroke(brush):
+        sc.frame_start, sc.frame_end = 1, 48
+        for f, x, z in ((1, -0.05, HAIR + 5), (8, -0.05, HAIR - 4), (40, 0.05, HAIR - 4)):
+            brush.location = (x, 0.01, z / 1000)
+            brush.keyframe_insert("location", frame=f)
+        brush.location = (0.06, 0.01, (HAIR + 5) / 1000)
+        brush.keyframe_insert("location", frame=48)
+
+    stroke(st.brush_object)
+    assert bpy.ops.hairy_brush.bake_samples() == {"FINISHED"}
+    assert bpy.ops.hairy_brush.simulate() == {"FINISHED"}
+    plane = ink(st.paper_image)
+    bpy.ops.wm.read_homefile(use_empty=True)
+    sc = bpy.context.scene
+    st = sc.hairy_brush
+    st.px_per_mm = 2.0
+    bpy.ops.mesh.primitive_grid_add(x_subdivisions=8, y_subdivisions=8, size=0.2)
+    grid = bpy.context.active_object
+    a = math.radians(30.0)
+    for loop in grid.data.uv_layers.active.data:  # turned 30 degrees, half the size
+        u, v = loop.uv[0] - 0.5, loop.uv[1] - 0.5
+        loop.uv = (0.5 + 0.5 * (u * math.cos(a) - v * math.sin(a)),
+                   0.5 + 0.5 * (u * math.sin(a) + v * math.cos(a)))  # fmt: skip
+    surface_scene(grid, ppm=2.0)
+    stroke(st.brush_object)
+    assert bpy.ops.hairy_brush.bake_samples() == {"FINISHED"}
+    assert bpy.ops.hairy_brush.simulate() == {"FINISHED"}
+    assert tuple(st.paper_image.size) == (800, 800)  # 400 mm of texture: the UVs are halved
+    tp = texels(sc)
+    inside = np.abs(tp.xyz[:, :2]).max(axis=1) < 100.0
+    px = np.floor((tp.xyz[inside, :2] + 100.0) * 2.0).astype(int)
+    on_plane = plane[px[:, 1], px[:, 0]]
+    on_grid = ink(st.paper_image).ravel()[tp.index[inside]]
+    a, b = on_plane > 0.3, on_grid > 0.3
+    assert a.sum() > 300
+    assert (a & b).sum() / (a | b).sum() > 0.93
+    assert np.abs(on_plane - on_grid).mean() < 0.02
+
+
+def test_a_straight_stroke_along_a_cylinder_inks_only_under_its_path_with_constant_width(hb):
+    sc = bpy.context.scene
+    st = surface_scene(cylinder(vertices=64))
+    b = st.brush_object
+    dist = (R_MM + HAIR - 3.0) / 1000
+    sc.frame_start, sc.frame_end = 1, 40
+    key_pose(b, 1, (0.0, -dist - 0.008, -0.04), (math.pi / 2, 0, 0))
+    key_pose(b, 6, (0.0, -dist, -0.04), (math.pi / 2, 0, 0))
+    key_pose(b, 35, (0.0, -dist, 0.04), (math.pi / 2, 0, 0))
+    key_pose(b, 40, (0.0, -dist - 0.008, 0.04), (math.pi / 2, 0, 0))
+    assert bpy.ops.hairy_brush.bake_samples() == {"FINISHED"}
+    assert bpy.ops.hairy_brush.simulate() == {"FINISHED"}
+    tp = texels(sc)
+    inked = ink(st.paper_image).ravel()[tp.index] > 0.3
+    X = tp.xyz[inked]
+    assert inked.sum() > 300
+    assert (X[:, 1] < -R_MM + 2.0).all()  # on the front, under the path
+    assert np.abs(X[:, 0]).max() < 6.0 and X[:, 2].min() > -47.0 and X[:, 2].max() < 47.0
+    widths = [np.ptp(X[(X[:, 2] >= z) & (X[:, 2] < z + 5.0), 0]) for z in range(-25, 25, 5)]
+    assert min(widths) > 2.0 and max(widths) - min(widths) < 0.6
+
+
+def test_a_stroke_across_the_uv_seam_has_no_gap(hb):
+    sc = bpy.context.scene
+    cyl = cylinder()
+    st = surface_scene(cyl)
+    tp = ext().bridge.surface_paper(st, _one_frame_recording(st)).texels
+    side = np.abs(tp.normal[:, 2]) < 0.5
+    u = (tp.index % tp.W)[side]
+    ang = np.degrees(np.arctan2(tp.xyz[side, 0], -tp.xyz[side, 1]))  # 0 at the front
+    seam = float(ang[np.argmin(u)])  # where the side's strip starts in the texture
+    n = 31
+    key_around(st, seam + np.linspace(-30, 30, n), presses(n))
+    assert bpy.ops.hairy_brush.bake_samples() == {"FINISHED"}
+    assert bpy.ops.hairy_brush.simulate() == {"FINISHED"}
+    tp = texels(sc)
+    dark = ink(st.paper_image).ravel()[tp.index]
+    inked = (dark > 0.3) & (np.abs(tp.normal[:, 2]) < 0.5)
+    a = np.degrees(np.arctan2(tp.xyz[inked, 0], -tp.xyz[inked, 1])) - seam
+    a = (a + 180.0) % 360.0 - 180.0
+    cols = (tp.index % tp.W)[inked]
+    assert cols.min() < 0.1 * tp.W and cols.max() > 0.5 * tp.W  # both ends of the strip
+    assert np.histogram(a, bins=np.arange(-20.0, 20.5, 1.0))[0].min() > 0  # no gap
+
+
+def _one_frame_recording(st):
+    b = ext().bridge
+    rec = b.new_recording(bpy.context.scene, [[0.0, 0.0, 50.0, 0.0, 0.0, 0.0]])
+    rec.extra[b.SURFACE_KEY] = {"frames": [[0.0, 0.0, 0, 0, 0, 1.0, 0, 0, 0, 0, 1.0]]}
+    return rec
+
+
+# ----------------------------------------------------------------------------- relief, files
+def test_relief_carves_the_surface_under_the_ink_by_the_depth(hb):
+    cyl = cylinder()
+    st = surface_scene(cyl)
+    n = 21
+    key_around(st, np.linspace(-30, 30, n), presses(n, 6.0, 2))
+    bpy.ops.hairy_brush.bake_samples()
+    bpy.ops.hairy_brush.simulate()
+    select_only(cyl)  # the paper itself can be carved
+    assert bpy.ops.hairy_brush.relief(mode="CARVE", depth_mm=1.5, detail=4) == {"FINISHED"}
+    relief = cyl.modifiers[ext().operators.relief.RELIEF]
+    r, uv = _radii_and_uvs(cyl)
+    relief.show_viewport = False
+    r0, _uv = _radii_and_uvs(cyl)  # the same vertices, not displaced
+    relief.show_viewport = True
+    img = st.paper_image
+    raw = np.empty(len(img.pixels), np.float32)
+    img.pixels.foreach_get(raw)
+    lum = raw.reshape(img.size[1], img.size[0], 4)[..., :3].mean(axis=2)
+    depth = 1.0 - lum / np.median(lum)  # 0 on bare paper, 1 under full ink
+    w = img.size[0]
+    px = np.clip((uv * w).astype(int), 1, w - 2)
+    win = np.stack([depth[px[:, 1] + dy, px[:, 0] + dx] for dy in (-1, 0, 1) for dx in (-1, 0, 1)])
+    moved = r0 - r
+    bare = win.max(axis=0) < 1e-4
+    inked = (win.min(axis=0) > 0.5) & (np.ptp(win, axis=0) < 0.02)
+    assert bare.sum() > 1000 and inked.sum() > 10
+    np.testing.assert_allclose(moved[bare], 0.0, atol=1e-6)  # nowhere else
+    np.testing.assert_allclose(moved[inked], 1.5 * win.mean(axis=0)[inked], atol=0.02)
+    assert moved.max() < 1.5 + 0.01 and moved.min() > -1e-6  # never beyond the depth
+
+
+def _radii_and_uvs(obj):
+    """The evaluated mesh's vertices' distances to the z axis (mm) and their UVs."""
+    dg = bpy.context.evaluated_depsgraph_get()
+    me = obj.evaluated_get(dg).to_mesh()
+    co = np.empty(len(me.vertices) * 3)
+    me.vertices.foreach_get("co", co)
+    uv = np.zeros((len(me.vertices), 2))
+    for loop in me.loops:
+        uv[loop.vertex_index] = me.uv_layers.active.data[loop.index].uv
+    obj.evaluated_get(dg).to_mesh_clear()
+    co = co.reshape(-1, 3)
+    return np.hypot(co[:, 0], co[:, 1]) * 1000, uv
+
+
+def test_undo_save_and_reload_keep_the_surface_and_its_writing(hb, tmp_path):
+    sc = bpy.context.scene
+    cyl = cylinder()
+    st = surface_scene(cyl)
+    n = 15
+    key_around(st, np.linspace(-20, 20, n), presses(n))
+    bpy.ops.hairy_brush.bake_samples()
+    _undo_push("baked")
+    before = ink(st.paper_image)
+    bpy.ops.hairy_brush.simulate()
+    _undo_push("simulated")
+    after = ink(bpy.context.scene.hairy_brush.paper_image)
+    assert (after > 0.3).sum() > 100
+    _call("undo")
+    np.testing.assert_array_equal(ink(bpy.context.scene.hairy_brush.paper_image), before)
+    _call("redo")
+    st = bpy.context.scene.hairy_brush
+    np.testing.assert_array_equal(ink(st.paper_image), after)
+    text = st.recording.as_string()
+    assert '"surface":{"frames":[\n' in text  # a frame a line, as the samples
+    path = tmp_path / "vase.blend"
+    bpy.ops.wm.save_as_mainfile(filepath=str(path))
+    bpy.ops.wm.read_homefile(use_empty=True)
+    bpy.ops.wm.open_mainfile(filepath=str(path))
+    st = bpy.context.scene.hairy_brush
+    assert st.paper_object.name == "Cylinder" and ext().bridge.is_surface(st)
+    assert st.recording.as_string() == text
+    np.testing.assert_array_equal(ink(st.paper_image), after)
+    st.paper_image.pixels.foreach_set(np.ones(len(st.paper_image.pixels), np.float32))
+    assert bpy.ops.hairy_brush.simulate() == {"FINISHED"}  # replayed after loading: the same
+    np.testing.assert_allclose(ink(st.paper_image), after, atol=1e-6)
+    sc = bpy.context.scene
+    assert sc.hairy_brush.paper_object.data.materials[0] is not None
+
+
+def _undo_push(message):
+    with bpy.context.temp_override(window=bpy.context.window_manager.windows[0]):
+        bpy.ops.ed.undo_push(message=message)
+
+
+def _call(name):
+    with bpy.context.temp_override(window=bpy.context.window_manager.windows[0]):
+        getattr(bpy.ops.ed, name)()
+
+
+def test_live_painting_on_the_surface_follows_the_mesh_and_replays(hb):
+    LiveEvent = ext().sim.live.LiveEvent  # noqa: N806 - the installed copy's class
+    sc = bpy.context.scene
+    st = surface_scene(cylinder())
+    paint = ext().operators.paint
+
+    def ray(deg, z=0.0):  # a view ray from in front, aimed at the cylinder's axis
+        a = math.radians(deg)
+        return (np.array([math.sin(a), -math.cos(a), z]), np.array([-math.sin(a), math.cos(a), 0]))
+
+    sim, xy = paint.start_on_surface(sc, ray(-20.0))
+    live = ext().sim.live.LiveBrush(sim, press_mm=4.0, step_deg=2.0, xy=xy)
+    live.handle(LiveEvent("LEFTMOUSE", "PRESS", xy))
+    for i in range(50):
+        xy = paint.ray_to_paper(st, ray(-20.0 + i), live.sim)
+        live.handle(LiveEvent("MOUSEMOVE", "NOTHING", xy))
+        live.handle(LiveEvent("TIMER", "NOTHING"))
+        live.advance()
+    assert live.handle(LiveEvent("LEFTMOUSE", "RELEASE", xy)) == "FINISHED"
+    paint.keep_stroke(sc, live)
+    frames = np.array(live.sim.surface.frames)
+    ang = np.degrees(np.arctan2(frames[:, 2], -frames[:, 3]))
+    assert ang[-1] > 25.0  # the frames went round the cylinder with the mouse
+    assert np.abs(np.hypot(frames[:, 2], frames[:, 3]) - R_MM).max() < 0.5
+    rec = ext().bridge.recording_from_scene(sc)
+    replay = ext().sim.engine.Simulation(rec, ext().bridge.surface_paper(st, rec)).run()
+    np.testing.assert_array_equal(replay.paper.ink, live.sim.paper.ink)
+    assert (replay.paper.ink.mean(axis=2) > 0.3).sum() > 100
