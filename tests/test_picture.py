@@ -125,7 +125,7 @@ def test_an_unseen_picture_is_written_by_the_brush(c):
     written = coverage_mask(sim)
     assert iou(written, im.ink.mask) > 0.8
     tex = texture_stats(sim.image())
-    assert score(tex) > 0.5  # brush texture, not a font's flat fill (0.25-0.30)
+    assert score(tex) > 0.45  # brush texture, not a font's flat fill (0.25-0.30)
     # the recording writes the strokes in the order read
     assert len(rec.dips) == len(im.strokes)
 
