@@ -19,6 +19,7 @@ from .texture import _gaussian, skeleton
 CONTINUE_COS = -0.77  # two ways out of a junction continue each other within ~40 degrees
 LOOSE_COS = -0.5  # ... and a short overhang continues a stroke within 60 degrees
 SPUR = 2.0  # a chain from a free end into a junction shorter than this times its half-width
+HOOK_COS = 0.3  # ... and a hook's two ways out lie within ~70 degrees of each other
 ZONE = 1.3  # a junction's zone: this times the ink's half-width there, plus a pixel
 MIN_STROKE = 0.6  # a free chain shorter than this times its half-width is a dot's nub
 
@@ -260,7 +261,7 @@ def _pairs(chains: list, nodes: list) -> dict:
         for cos, a, b in cand:
             if a in partner or b in partner:
                 continue
-            corner = len(node.chains) == 2 and _is_turn_down(ways[a], ways[b])
+            corner = len(node.chains) == 2 and _is_corner(ways[a], ways[b])
             if cos < CONTINUE_COS or corner:
                 partner[a], partner[b] = b, a
         for cos, a, b in cand:  # a stroke's overhang at a corner of three continues it
@@ -271,10 +272,14 @@ def _pairs(chains: list, nodes: list) -> dict:
     return partner
 
 
-def _is_turn_down(u: np.ndarray, v: np.ndarray) -> bool:
-    """One way out goes left (the horizontal came from there) and the other down."""
+def _is_corner(u: np.ndarray, v: np.ndarray) -> bool:
+    """Two ways out of a corner that one stroke makes: a horizontal turning down (one way goes
+    left, the other down: 横折, 横撇) or a hook (both go up, close together: the stroke came
+    down and flicks back up at its foot, 竖钩, 斜钩)."""
     left, down = np.array([-1.0, 0.0]), np.array([0.0, 1.0])
-    return bool((u @ left > 0.8 and v @ down > 0.8) or (v @ left > 0.8 and u @ down > 0.8))
+    turn_down = (u @ left > 0.8 and v @ down > 0.6) or (v @ left > 0.8 and u @ down > 0.6)
+    hook = u[1] < -0.3 and v[1] < -0.3 and float(u @ v) > HOOK_COS
+    return bool(turn_down or hook)
 
 
 def _line(a: np.ndarray, b: np.ndarray) -> np.ndarray:
