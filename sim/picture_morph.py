@@ -73,34 +73,63 @@ def _shift(a: np.ndarray, dy: int, dx: int, fill) -> np.ndarray:
     return out
 
 
+def _runs(m: np.ndarray):
+    """The runs of True in each row: row, first column, column past the end (raster order)."""
+    h, w = m.shape
+    pad = np.zeros((h, w + 2), dtype=np.int8)
+    pad[:, 1:-1] = m
+    d = np.diff(pad, axis=1)
+    rows, starts = np.nonzero(d == 1)
+    _, ends = np.nonzero(d == -1)
+    return rows, starts, ends
+
+
+def _touching_runs(rows, starts, ends, h: int):
+    """Pairs of runs in neighbouring rows that touch (8-connected)."""
+    first = np.searchsorted(rows, np.arange(h + 1))
+    ea, eb = [], []
+    for r in range(1, h):
+        a0, a1, b1 = first[r - 1], first[r], first[r + 1]
+        if a0 == a1 or a1 == b1:
+            continue
+        lo = a0 + np.searchsorted(ends[a0:a1], starts[a1:b1], side="left")
+        hi = a0 + np.searchsorted(starts[a0:a1], ends[a1:b1], side="right")
+        k = np.maximum(hi - lo, 0)
+        if k.any():
+            b = np.repeat(np.arange(a1, b1), k)
+            ea.append(np.repeat(lo, k) + np.arange(k.sum()) - np.repeat(np.cumsum(k) - k, k))
+            eb.append(b)
+    if not ea:
+        return np.zeros(0, int), np.zeros(0, int)
+    return np.concatenate(ea), np.concatenate(eb)
+
+
 def label(mask) -> tuple[np.ndarray, int]:
     """8-connected components: labels 1..n in the raster order of each component's first
-    pixel (0: background), as scipy.ndimage.label with a 3 x 3 structure. Each pixel takes the
-    least index among its neighbours, then follows its label's own label (pointer jumping),
-    until nothing changes."""
+    pixel (0: background), as scipy.ndimage.label with a 3 x 3 structure. The rows' runs of
+    pixels are joined where runs of neighbouring rows touch: each run takes the least run
+    index it touches, then follows that run's own (pointer jumping), until nothing changes."""
     m = np.asarray(mask, dtype=bool)
     h, w = m.shape
-    big = h * w
-    lab = np.where(m, np.arange(big).reshape(h, w), big)
+    rows, starts, ends = _runs(m)
+    ea, eb = _touching_runs(rows, starts, ends, h)
+    lab = np.arange(len(rows))
     while True:
-        low = lab.copy()
-        for dy, dx in NEIGHBOURS_8:
-            np.minimum(low, _shift(lab, dy, dx, big), out=low)
-        low = np.where(m, low, big)
-        flat = np.append(low.ravel(), big)
+        old = lab.copy()
+        np.minimum.at(lab, ea, lab[eb])
+        np.minimum.at(lab, eb, lab[ea])
         while True:
-            jumped = flat[flat]
-            if np.array_equal(jumped, flat):
+            jumped = lab[lab]
+            if np.array_equal(jumped, lab):
                 break
-            flat = jumped
-        new = flat[:-1].reshape(h, w)
-        if np.array_equal(new, lab):
+            lab = jumped
+        if np.array_equal(lab, old):
             break
-        lab = new
-    roots, inverse = np.unique(lab, return_inverse=True)
-    out = inverse.reshape(h, w) + 1
-    out[~m] = 0
-    return out.astype(np.int32), int(len(roots) - (1 if big in roots else 0))
+    roots, ids = np.unique(lab, return_inverse=True)
+    delta = np.zeros((h, w + 1), dtype=np.int64)
+    np.add.at(delta, (rows, starts), ids + 1)
+    np.add.at(delta, (rows, ends), -(ids + 1))
+    return np.cumsum(delta, axis=1)[:, :w].astype(np.int32), int(len(roots))
 
 
 def block_max(grid: np.ndarray, r: int = 1) -> np.ndarray:
