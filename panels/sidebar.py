@@ -39,10 +39,17 @@ class HAIRY_BRUSH_PT_paper(_Panel, bpy.types.Panel):
         col.prop(st, "px_per_mm")
         w, h = bridge.paper_pixels(st)
         layout.label(text=f"Image {w} x {h} px", icon="IMAGE_DATA")
+        if bridge.is_surface(st):  # Width and Height are the texture's, in the mesh's mm
+            layout.label(
+                text=f"Writing on the surface of '{st.paper_object.name}'", icon="MESH_DATA"
+            )
         col = layout.column(align=True)
         col.prop(st, "paper_color")
         col.prop(st, "paper_capacity")
         layout.operator("hairy_brush.setup", icon="ADD")
+        layout.operator(
+            "hairy_brush.setup", text="Write on Selected Mesh", icon="MESH_UVSPHERE"
+        ).surface = True
         col = layout.column(align=True)
         col.prop(st, "paper_object")
         col.prop(st, "paper_image")
