@@ -12,7 +12,7 @@ import numpy as np
 from bpy_extras.io_utils import ImportHelper
 
 from .. import bridge
-from ..sim.picture import read_picture
+from ..sim.picture import PASSES, read_picture
 from ..sim.picture_ink import MAX_PICTURE_PIXELS, PictureError, load_picture
 from . import polls
 from .jobs import JobOperator, WorkerJob
@@ -101,7 +101,7 @@ class HAIRY_BRUSH_OT_imitate_image(JobOperator, bpy.types.Operator, ImportHelper
     )
     passes: bpy.props.IntProperty(
         name="Practice Passes",
-        default=3,
+        default=PASSES,
         min=1,
         max=8,
         description="How often each stroke is written, measured against the picture's ink "

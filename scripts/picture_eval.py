@@ -6,7 +6,7 @@ known way, the IoU of the brush's ink with the picture's ink and the texture sco
 same writer given the true stroke data (``sim write``) - and the seconds taken; then one JSON
 line.
 
-    python scripts/picture_eval.py tests/data/unseen/*.json [--size 512] [--read-only]
+    python scripts/picture_eval.py tests/data/unseen/*.json [--size 512] [--passes 3] [--read-only]
 """
 
 from __future__ import annotations
@@ -40,7 +40,7 @@ def template(seed: int = 0) -> Recording:
     )
 
 
-def evaluate(path: str, n: int, read_only: bool) -> dict:
+def evaluate(path: str, n: int, read_only: bool, passes: int = 3) -> dict:
     char = find_char(path)
     font = rasterise(char, n)
     pic = np.where(font, 0.05, 0.95)
@@ -50,11 +50,11 @@ def evaluate(path: str, n: int, read_only: bool) -> dict:
     if read_only:
         return row
     t0 = time.perf_counter()
-    _, resp, sim, _ = imitate(pic, template(), n)
+    _, resp, sim, _ = imitate(pic, template(), n, passes=passes)
     row["write_s"] = round(time.perf_counter() - t0, 1)
     row["iou"] = round(iou(coverage_mask(sim), im.ink.mask), 4)
     row["score"] = round(score(texture_stats(sim.image())), 3)
-    _, _, true = write_character(char, n, template(), response=resp)
+    _, _, true = write_character(char, n, template(), response=resp, passes=passes)
     row["iou_true_data"] = round(iou(coverage_mask(true), font), 4)
     row["score_true_data"] = round(score(texture_stats(true.image())), 3)
     return row
@@ -65,16 +65,18 @@ def main(argv=None) -> int:
     ap.add_argument("chars", nargs="+")
     ap.add_argument("--size", type=int, default=512)
     ap.add_argument("--read-only", action="store_true", help="strokes and order only")
+    ap.add_argument("--passes", type=int, default=3, help="practice passes per stroke")
     args = ap.parse_args(argv)
     rows = []
     for path in args.chars:
-        rows.append(evaluate(path, args.size, args.read_only))
+        rows.append(evaluate(path, args.size, args.read_only, args.passes))
         print("  ".join(f"{k} {v}" for k, v in rows[-1].items()), flush=True)
     keys = [k for k, v in rows[0].items() if isinstance(v, (int, float)) and k != "char"]
     mean = {k: round(float(np.mean([r[k] for r in rows])), 4) for k in keys}
     mean["same_order"] = sum(r["same"] for r in rows)
     print("mean  " + "  ".join(f"{k} {v}" for k, v in mean.items()))
-    print(json.dumps({"size": args.size, "mean": mean, "rows": rows}, ensure_ascii=False))
+    out = {"size": args.size, "passes": args.passes, "mean": mean, "rows": rows}
+    print(json.dumps(out, ensure_ascii=False))
     return 0
 
 

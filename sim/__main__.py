@@ -394,6 +394,7 @@ def _add_fit(sub, size, common):
 
 def _parser() -> argparse.ArgumentParser:
     from .imitate import MAX_PASSES, MIN_SHEET_PX
+    from .picture import PASSES
 
     seed = _whole(0, MAX_SEED)
     size = _whole(MIN_SHEET_PX, MAX_PAPER_SIDE_PX)
@@ -439,7 +440,7 @@ def _parser() -> argparse.ArgumentParser:
     im.add_argument("--char-data", default=None, help="also save the strokes read (JSON)")
     im.add_argument("-q", "--quiet", action="store_true")
     common(im)
-    im.set_defaults(func=cmd_imitate)
+    im.set_defaults(func=cmd_imitate, passes=PASSES)
     ws = sub.add_parser("write-set", help="write many characters to a folder (PNG + recording)")
     ws.add_argument("chars", nargs="+", help="hanzi-writer JSON files, or characters")
     ws.add_argument("--out-dir", required=True, help="folder for NNN.png and NNN.json")

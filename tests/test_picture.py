@@ -119,15 +119,16 @@ def test_unseen_characters_strokes_order_and_direction():
     assert np.mean([a["directions"] for a in per.values()]) >= 0.9, per
 
 
-@pytest.mark.parametrize("c", ["王", "木"])
-def test_an_unseen_picture_is_written_by_the_brush(c):
-    rec, _, sim, im = imitate(picture(c), template(), 512)
-    written = coverage_mask(sim)
-    assert iou(written, im.ink.mask) > 0.8
-    tex = texture_stats(sim.image())
-    assert score(tex) > 0.45  # brush texture, not a font's flat fill (0.25-0.30)
-    # the recording writes the strokes in the order read
-    assert len(rec.dips) == len(im.strokes)
+def test_unseen_pictures_are_written_by_the_brush():
+    ious = []
+    for c in ("王", "木"):
+        rec, _, sim, im = imitate(picture(c), template(), 512)  # 5 practice passes
+        ious.append(iou(coverage_mask(sim), im.ink.mask))
+        assert ious[-1] > 0.8
+        # brush texture, not a font's flat fill (0.25-0.30)
+        assert score(texture_stats(sim.image())) > 0.4
+        assert len(rec.dips) == len(im.strokes)  # a dip before every stroke read
+    assert np.mean(ious) > 0.85  # issue 19's target at 512 px
 
 
 def test_a_scan_like_picture_is_read_and_imitated():
@@ -135,7 +136,7 @@ def test_a_scan_like_picture_is_read_and_imitated():
     from scripts.picture_scan import age, written
     from sim.hanzi import find_char
 
-    n = 384
+    n = 320
     rgb, true_ink = written(find_char("永"), n)
     scan = age(rgb, seed=1)
     im = read_picture(scan, n)
