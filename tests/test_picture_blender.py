@@ -94,3 +94,9 @@ def test_imitate_in_a_worker_stops_cleanly_and_finishes(hb):
     level, message = job.finish(bpy.context)
     assert level == "INFO" and message.startswith("wang: 4 strokes")
     assert st.recording is not None and st.brush_object.animation_data.action is not None
+
+
+def test_imitate_is_greyed_out_without_a_brush_and_paper(hb):
+    assert not bpy.ops.hairy_brush.imitate_image.poll()
+    with pytest.raises(RuntimeError, match="No brush empty"):
+        bpy.ops.hairy_brush.imitate_image(image="anything")
