@@ -145,7 +145,9 @@ class Simulation:
                 self.paper.deposit(marks, p.gamma, p.hair_u, self.q, self.dt, p.step)  # Eq. 24-27
                 self.last_marks = marks
                 continue
+            t1 = time.perf_counter()
             groups = self.surface.splat(marks, p.step - 1) or [[]]  # texels under the marks
+            self._tick("surface splat", t1)
             for group in groups:  # far apart in the texture (a seam): a window each
                 self.paper.deposit(group, p.gamma, p.hair_u, self.q, self.dt, p.step)
             self.last_marks = [mk for group in groups for mk in group]

@@ -55,6 +55,7 @@ CHART_SIDES = 11.0  # the chart's origin, in paper sides from its own 0 (samples
 CHART_SHAPE = (1 << 30, 1 << 30)  # the chart's pixel grid is unbounded for the marks
 NORMAL_DOT_MIN = 0.0  # a texel whose normal faces away from the frame's is on another side
 DEPTH_TOL_MM = 0.5  # plus half the mark's radius: how far off the tangent plane a texel may be
+HASH_CELL_MM = 1.0  # the spatial hash's cubes: a query takes little more than the marks' box
 GROUP_TILE = 64  # texture tiles by which one sample's texels are grouped for the paper
 
 
@@ -448,8 +449,13 @@ class SpatialHash:
     def query(self, centre, radius: float) -> np.ndarray:
         """Indices of the points in the cubes that meet the ball (a superset of the ball)."""
         c = np.asarray(centre, dtype=float)
-        a = np.maximum(np.floor((c - radius) / self.cell).astype(np.int64), self.lo)
-        b = np.minimum(np.floor((c + radius) / self.cell).astype(np.int64), self.lo + self.dims - 1)
+        return self.query_box(c - radius, c + radius)
+
+    def query_box(self, lo, hi) -> np.ndarray:
+        """Indices of the points in the cubes that meet the box [lo, hi] (a superset)."""
+        a = np.maximum(np.floor(np.asarray(lo) / self.cell).astype(np.int64), self.lo)
+        b = np.floor(np.asarray(hi) / self.cell).astype(np.int64)
+        b = np.minimum(b, self.lo + self.dims - 1)
         if (b < a).any():
             return np.zeros(0, dtype=np.int64)
         axes = [np.arange(a[k], b[k] + 1) for k in range(3)]
@@ -476,7 +482,11 @@ class SurfacePaper:
         self.W = W
         # the chart is offset so that its pixels are never negative (samples reach 10 sides)
         self.offset = math.ceil(CHART_SIDES * side_mm * self.ppm) / self.ppm
-        self.hash = SpatialHash(self.texels.xyz, max(2.0, 4.0 / self.ppm))
+        self.hash = SpatialHash(self.texels.xyz, HASH_CELL_MM)
+        # the texels in the hash's order, so a query's texels lie together in memory
+        tp, order = self.texels, self.hash.order
+        self.texels = TexelPoints(tp.index[order], tp.xyz[order], tp.normal[order], tp.W, tp.H)
+        self.hash.order = np.arange(order.size)
         self._set_frames(frames)
 
     def _set_frames(self, frames):
@@ -526,11 +536,17 @@ class SurfacePaper:
         y0 = min(mk.iy0 for mk in marks) / ppm
         x1 = max(mk.ix0 + mk.shape[1] for mk in marks) / ppm
         y1 = max(mk.iy0 + mk.shape[0] for mk in marks) / ppm
-        mid = np.array([(x0 + x1) / 2, (y0 + y1) / 2])
-        radius = math.hypot(x1 - x0, y1 - y0) / 2 + 1.0 / ppm
-        tol = DEPTH_TOL_MM + radius / 2
-        q = p + (mid[0] - c[0]) * t + (mid[1] - c[1]) * b
-        cand = self.hash.query(q, radius + tol)
+        tol = DEPTH_TOL_MM + math.hypot(x1 - x0, y1 - y0) / 4
+        # the box in 3D around the marks' rectangle on the tangent plane, tol off it
+        corners = np.array(
+            [
+                p + (x - c[0]) * t + (y - c[1]) * b + h * n
+                for x in (x0, x1)
+                for y in (y0, y1)
+                for h in (-tol, tol)
+            ]
+        )
+        cand = self.hash.query_box(corners.min(axis=0), corners.max(axis=0))
         d = self.texels.xyz[cand] - p
         ok = (np.abs(d @ n) <= tol) & (self.texels.normal[cand] @ n > NORMAL_DOT_MIN)
         cand, d = cand[ok], d[ok]
@@ -586,24 +602,27 @@ def group_marks(marks) -> list[list]:
     seam costs its texels, not the texture between them."""
     if not marks:
         return []
-    tiles = {}
-    for mk in marks:
-        ty = (mk.rows + mk.iy0) // GROUP_TILE
-        tx = (mk.cols + mk.ix0) // GROUP_TILE
-        for key in set(zip(ty.tolist(), tx.tolist(), strict=True)):
-            tiles.setdefault(key, None)
-    label = _tile_components(list(tiles))
-    if len(set(label.values())) == 1:
+    keys = [_tile_keys(mk) for mk in marks]
+    tiles = np.unique(np.concatenate(keys))
+    if tiles.size == 1 or np.ptp(tiles // _KEY) <= 1 and np.ptp(tiles % _KEY) <= 1:
+        return [marks]  # one tile or a block of touching ones: one window
+    label = _tile_components([divmod(int(k), _KEY) for k in tiles])
+    lab_of = np.array([label[divmod(int(k), _KEY)] for k in tiles])
+    if np.unique(lab_of).size == 1:
         return [marks]
     groups: dict[int, list] = {}
-    for mk in marks:
-        ty = (mk.rows + mk.iy0) // GROUP_TILE
-        tx = (mk.cols + mk.ix0) // GROUP_TILE
-        lab = np.array([label[k] for k in zip(ty.tolist(), tx.tolist(), strict=True)])
+    for mk, key in zip(marks, keys, strict=True):
+        lab = lab_of[np.searchsorted(tiles, key)]
         for g in np.unique(lab).tolist():
-            sel = lab == g
-            groups.setdefault(g, []).append(_subset(mk, sel))
+            groups.setdefault(g, []).append(_subset(mk, lab == g))
     return [groups[g] for g in sorted(groups)]
+
+
+_KEY = 1 << 20  # tile row * _KEY + tile column
+
+
+def _tile_keys(mk) -> np.ndarray:
+    return ((mk.rows + mk.iy0) // GROUP_TILE) * _KEY + (mk.cols + mk.ix0) // GROUP_TILE
 
 
 def _tile_components(tiles: list) -> dict:
