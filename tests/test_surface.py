@@ -273,3 +273,55 @@ def test_work_per_sample_is_the_texels_near_the_mark():
     c, p, *_ = sf.frame_parts(sp.frames[-1])
     near = sp.hash.query(p, 10.0)
     assert 0 < near.size < 0.02 * sp.texels.index.size
+
+
+def sphere(radius=50.0, n=48, m=24):
+    """A UV sphere (poles on z, u = longitude / 360 deg with its seam at longitude 0)."""
+    verts = [(0.0, 0.0, -radius)]
+    for j in range(1, m):
+        lat = -np.pi / 2 + np.pi * j / m
+        for i in range(n):
+            lon = 2 * np.pi * i / n
+            verts.append((radius * np.cos(lat) * np.cos(lon), radius * np.cos(lat) * np.sin(lon),
+                          radius * np.sin(lat)))  # fmt: skip
+    verts.append((0.0, 0.0, radius))
+    top = len(verts) - 1
+    tris, uvs = [], []
+
+    def ring(j, i):
+        return 1 + (j - 1) * n + i % n
+
+    for i in range(n):
+        u0, u1 = i / n, (i + 1) / n
+        tris.append((0, ring(1, i + 1), ring(1, i)))
+        uvs.append([((u0 + u1) / 2, 0.0), (u1, 1 / m), (u0, 1 / m)])
+        tris.append((top, ring(m - 1, i), ring(m - 1, i + 1)))
+        uvs.append([((u0 + u1) / 2, 1.0), (u0, (m - 1) / m), (u1, (m - 1) / m)])
+        for j in range(1, m - 1):
+            v0, v1 = j / m, (j + 1) / m
+            a, b, c, d = ring(j, i), ring(j, i + 1), ring(j + 1, i + 1), ring(j + 1, i)
+            tris += [(a, b, c), (a, c, d)]
+            uvs += [[(u0, v0), (u1, v0), (u1, v1)], [(u0, v0), (u1, v1), (u0, v1)]]
+    return sf.surface_from_arrays(np.array(verts), np.array(tris), np.array(uvs))
+
+
+def test_a_stroke_over_a_spheres_pole_and_along_its_seam_has_no_gap():
+    s = sphere()
+    n = 150
+    lat = np.radians(np.linspace(50.0, 130.0, n))  # up the seam's meridian, over the pole
+    press = stroke_press(n, 3.0)
+    bases, rots = [], []
+    for t, p in zip(lat, press, strict=True):
+        nrm = np.array([np.cos(t), 0.0, np.sin(t)])  # past 90 deg: down the other side
+        bases.append(nrm * (50.0 + L - p))
+        x = np.array([0.0, 1.0, 0.0])
+        rots.append(np.stack([x, np.cross(nrm, x), nrm], axis=1))
+    sim, sp = simulate_on(s, np.array(bases), np.array(rots))
+    tp = sp.texels
+    inked = ink_of(sim).ravel()[tp.index] > 0.3
+    X = tp.xyz[inked]
+    assert np.abs(X[:, 1]).max() < 6.0  # under the path only
+    along = np.degrees(np.arctan2(X[:, 2], X[:, 0]))  # 90 at the pole
+    assert np.histogram(along, bins=np.arange(65.0, 115.0, 1.0))[0].min() > 0
+    u = (tp.index % tp.W)[inked] / tp.W
+    assert (u < 0.1).any() and (u > 0.9).any()  # the seam's both sides
