@@ -268,11 +268,23 @@ def test_live_samples_get_frames_that_follow_the_surface():
 
 def test_work_per_sample_is_the_texels_near_the_mark():
     s = cylinder()
-    bases, rots = around([-90.0], [3.0])
-    sim, sp = simulate_on(s, np.repeat(bases, 3, 0), np.repeat(rots, 3, 0), ppm=6.0)
-    c, p, *_ = sf.frame_parts(sp.frames[-1])
-    near = sp.hash.query(p, 10.0)
-    assert 0 < near.size < 0.02 * sp.texels.index.size
+    n = 60
+    bases, rots = around(np.linspace(-100.0, -80.0, n), stroke_press(n, 3.0, lead=10))
+    side = sf.texture_side_mm(s)
+    samples, frames = sf.develop(s, bases, rots, (side / 2, side / 2))
+    rec = Recording(samples, width_mm=side, height_mm=side, px_per_mm=PPM)
+    sp = sf.SurfacePaper(s, frames, rec.width_px, rec.height_px, PPM, side)
+    looked_at, query = [], sp.hash.query_box
+    sp.hash.query_box = lambda lo, hi: looked_at.append(query(lo, hi)) or looked_at[-1]
+    sim = Simulation(rec, surface=sp)
+    inked = []
+    while not sim.done:
+        sim.step()
+        inked.append(sum(mk.rows.size for mk in sim.last_marks))
+    assert len(looked_at) > 30 and max(inked) > 50
+    # each sample looks at a few times the texels it inks, a sliver of the texture's
+    assert max(len(q) for q in looked_at) < 6 * max(inked)
+    assert max(len(q) for q in looked_at) < 0.01 * sp.texels.index.size
 
 
 def sphere(radius=50.0, n=48, m=24):
