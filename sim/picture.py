@@ -35,6 +35,7 @@ FLAT = np.tan(np.radians(30.0))  # a stroke whose chord rises less than this lie
 STEEP = np.tan(np.radians(60.0))
 THICKER = 1.3  # an end this much thicker than the other is where the brush entered
 POINTED = 1.8  # a flat stroke must end this much thinner to be a 撇 (a 横 ends pressed)
+MIN_SIDE = 0.2  # a side-by-side part of a character holds at least this share of its ink
 ROW = 0.05  # strokes starting within this share of the em box of each other are one row
 TUBE = (1.0, 0.5)  # a stroke's own ink: within its half-width of its median, plus pixels
 MEDIAN_EPS = 2.0  # px at 512: the median simplified this closely
@@ -107,10 +108,40 @@ def _must_precede(a: Stroke, b: Stroke) -> bool:
     return False
 
 
-def writing_order(strokes: list, n: int) -> list[int]:
-    """Top to bottom, left to right (rows of ROW of the em box; a flat stroke first in its
-    row), with ``_must_precede`` kept; a cycle of rules is broken by the top-left stroke."""
+def _sides(strokes: list, idx: list, mask: np.ndarray, x0: int, x1: int) -> list[list]:
+    """The strokes ``idx`` in side-by-side parts, left to right: the ink between columns x0
+    and x1 is cut at the widest column free of ink that leaves two strokes or more and a
+    fifth of the ink or more on either side (亻 | 也), and each side is cut again."""
+    weight = mask[:, x0:x1].sum(axis=0)
+    inked = np.flatnonzero(weight)
+    if len(idx) < 4 or inked.size == 0:
+        return [idx]
+    free = np.flatnonzero(weight[inked[0] : inked[-1]] == 0) + inked[0]
+    mid = {i: float(strokes[i].pts[:, 0].mean()) - x0 for i in idx}
+    best, total = None, weight.sum()
+    for run in np.split(free, np.flatnonzero(np.diff(free) > 1) + 1) if free.size else []:
+        cut = 0.5 * (run[0] + run[-1])
+        left = [i for i in idx if mid[i] < cut]
+        share = weight[: int(cut)].sum() / total
+        ok = 2 <= len(left) <= len(idx) - 2 and MIN_SIDE <= share <= 1 - MIN_SIDE
+        if ok and (best is None or len(run) > best[0]):
+            best = (len(run), int(cut), left)
+    if best is None:
+        return [idx]
+    _, cut, left = best
+    right = [i for i in idx if i not in left]
+    return _sides(strokes, left, mask, x0, x0 + cut) + _sides(strokes, right, mask, x0 + cut, x1)
+
+
+def writing_order(strokes: list, n: int, mask: np.ndarray | None = None) -> list[int]:
+    """Side-by-side parts of the character left to right (``_sides``, given the ink); in each,
+    top to bottom, left to right (rows of ROW of the em box; a flat stroke first in its row),
+    with ``_must_precede`` kept; a cycle of rules is broken by the top-left stroke."""
     k = len(strokes)
+    side = np.zeros(k, dtype=int)
+    if mask is not None:
+        for g, members in enumerate(_sides(strokes, list(range(k)), mask, 0, mask.shape[1])):
+            side[members] = g
     after = {i: set() for i in range(k)}
     for i in range(k):
         for j in range(k):
@@ -123,7 +154,7 @@ def writing_order(strokes: list, n: int) -> list[int]:
 
     def key(i):
         x, y = strokes[i].pts[0]
-        return (int(y // (ROW * n)), 0 if is_flat(strokes[i]) else 1, float(x))
+        return (side[i], int(y // (ROW * n)), 0 if is_flat(strokes[i]) else 1, float(x))
 
     order, placed = [], set()
     while len(order) < k:
@@ -283,7 +314,7 @@ def read_strokes(ink: Ink) -> tuple[list, list, dict]:
         raise PictureError(
             f"the picture's ink makes {len(found)} strokes; at most {MAX_STROKES} (one character)"
         )
-    strokes = [found[i] for i in writing_order(found, n)]
+    strokes = [found[i] for i in writing_order(found, n, ink.mask)]
     regions = stroke_regions(strokes, ink.mask)
     keep = [i for i, r in enumerate(regions) if r.sum() >= 4]
     strokes, regions = [strokes[i] for i in keep], [regions[i] for i in keep]
