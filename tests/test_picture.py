@@ -119,6 +119,17 @@ def test_unseen_characters_strokes_order_and_direction():
     assert np.mean([a["directions"] for a in per.values()]) >= 0.9, per
 
 
+def test_side_by_side_parts_are_written_left_to_right():
+    # 口 beside 王 (as 亻 beside 也): all of the left part first, each part in its own order
+    pair = np.concatenate([picture("口", 256), picture("王", 256)], axis=1)
+    im = read_picture(pair, 512)
+    left = [float(s.pts[:, 0].mean()) < 256 for s in im.strokes]
+    assert left == [True] * 3 + [False] * 4
+    # a row of the right part's first horizontal lies above the left part's strokes: without
+    # the parts, top to bottom would interleave them
+    assert min(float(s.pts[:, 1].min()) for s in im.strokes[3:]) < im.strokes[2].pts[0, 1]
+
+
 def test_unseen_pictures_are_written_by_the_brush():
     ious = []
     for c in ("王", "木"):
