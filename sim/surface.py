@@ -378,55 +378,60 @@ def texel_points(surface: Surface, W: int, H: int, chunk: int = 1 << 21) -> Texe
     lo = np.maximum(lo, 0)
     hi = np.minimum(hi, [W, H])
     nx = np.maximum(hi[:, 0] - lo[:, 0], 0)
-    ny = np.maximum(hi[:, 1] - lo[:, 1], 0)
+    counts = nx * np.maximum(hi[:, 1] - lo[:, 1], 0)
+    coef = _edge_functions(uvp)
+    counts[~np.isfinite(coef).all(axis=(1, 2))] = 0  # UV triangles of no area hold no texel
     best = np.full(W * H, -np.inf)
     owner = np.full(W * H, -1, dtype=np.int64)
-    bary_of = np.zeros((W * H, 3))
-    counts = nx * ny
-    tri_order = np.arange(len(counts))
     start = 0
     while start < len(counts):  # groups of triangles of about ``chunk`` candidate texels
         cum = np.cumsum(counts[start:])
         stop = start + max(int(np.searchsorted(cum, chunk)), 1)
-        sel = tri_order[start:stop]
-        _rasterise(uvp, sel, lo, nx, counts, W, best, owner, bary_of)
+        _rasterise(coef, np.arange(start, stop), lo, nx, counts, W, best, owner)
         start = stop
     idx = np.flatnonzero(owner >= 0)
     tri = owner[idx]
-    xyz = np.einsum("kj,kjd->kd", bary_of[idx], surface.corners[tri])
+    bary = _bary(coef[tri], (idx % W).astype(float), (idx // W).astype(float))
+    xyz = np.einsum("kj,kjd->kd", bary, surface.corners[tri])
     return TexelPoints(idx, xyz, surface.face_normals[tri], W, H)
 
 
-def _rasterise(uvp, sel, lo, nx, counts, W, best, owner, bary_of):
-    """One group of triangles' candidate texels: keep each texel's deepest triangle."""
+def _edge_functions(uvp) -> np.ndarray:
+    """(T, 3, 3): for each triangle and corner i, (A, B, C) with A x + B y + C its barycentric
+    coordinate at texel (x, y); NaN for a triangle of no area."""
+    a, b, c = uvp[:, 0], uvp[:, 1], uvp[:, 2]
+    den = (b[:, 0] - a[:, 0]) * (c[:, 1] - a[:, 1]) - (b[:, 1] - a[:, 1]) * (c[:, 0] - a[:, 0])
+    with np.errstate(divide="ignore", invalid="ignore"):
+        inv = np.where(np.abs(den) > 1e-14, 1.0 / den, np.nan)
+    out = np.empty((len(uvp), 3, 3))
+    for i, (p, q) in enumerate(((b, c), (c, a), (a, b))):  # corner i: the edge opposite it
+        out[:, i, 0] = (p[:, 1] - q[:, 1]) * inv
+        out[:, i, 1] = (q[:, 0] - p[:, 0]) * inv
+        out[:, i, 2] = (p[:, 0] * q[:, 1] - q[:, 0] * p[:, 1]) * inv
+    return out
+
+
+def _bary(coef, x, y) -> np.ndarray:
+    return coef[:, :, 0] * x[:, None] + coef[:, :, 1] * y[:, None] + coef[:, :, 2]
+
+
+def _rasterise(coef, sel, lo, nx, counts, W, best, owner):
+    """One group of triangles' candidate texels: keep each texel's deepest triangle (its
+    signed distance in texels to the nearest edge, the largest; the later one on a tie)."""
     n = counts[sel]
     tri = np.repeat(sel, n)
     k = np.arange(int(n.sum())) - np.repeat(np.cumsum(n) - n, n)
     x = lo[tri, 0] + k % nx[tri]
     y = lo[tri, 1] + k // nx[tri]
-    p = np.stack([x, y], axis=1).astype(float)
-    a, b, c = uvp[tri, 0], uvp[tri, 1], uvp[tri, 2]
-    v0, v1, v2 = b - a, c - a, p - a
-    den = v0[:, 0] * v1[:, 1] - v0[:, 1] * v1[:, 0]
-    good = np.abs(den) > 1e-14
-    den = np.where(good, den, 1.0)
-    wb = (v2[:, 0] * v1[:, 1] - v2[:, 1] * v1[:, 0]) / den
-    wc = (v0[:, 0] * v2[:, 1] - v0[:, 1] * v2[:, 0]) / den
-    bary = np.stack([1 - wb - wc, wb, wc], axis=1)
-    # signed distance (texels) to each edge: barycentric x the corner's height over the edge
-    e = np.stack([c - b, a - c, b - a], axis=1)
-    heights = np.abs(den)[:, None] / np.maximum(np.linalg.norm(e, axis=2), 1e-14)
-    depth = np.where(good, (bary * heights).min(axis=1), -np.inf)
+    c = coef[tri]
+    # barycentric coordinate / its gradient's length = signed distance (texels) to the edge
+    grad = np.hypot(c[:, :, 0], c[:, :, 1])
+    depth = (_bary(c, x.astype(float), y.astype(float)) / grad).min(axis=1)
     keep = depth >= -PAD_TEXELS
-    flat = (y * W + x)[keep]
-    depth, tri, bary = depth[keep], tri[keep], bary[keep]
-    order = np.lexsort((depth, flat))  # per texel, the deepest last
-    flat, depth, tri, bary = flat[order], depth[order], tri[order], bary[order]
-    last = np.r_[flat[1:] != flat[:-1], True]
-    flat, depth, tri, bary = flat[last], depth[last], tri[last], bary[last]
-    better = depth > best[flat]
-    f = flat[better]
-    best[f], owner[f], bary_of[f] = depth[better], tri[better], bary[better]
+    flat, depth, tri = (y * W + x)[keep], depth[keep], tri[keep]
+    np.maximum.at(best, flat, depth)
+    win = depth >= best[flat]
+    owner[flat[win]] = tri[win]
 
 
 class SpatialHash:
