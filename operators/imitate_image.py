@@ -14,6 +14,7 @@ from bpy_extras.io_utils import ImportHelper
 from .. import bridge
 from ..sim.picture import PASSES, read_picture
 from ..sim.picture_ink import MAX_PICTURE_PIXELS, PictureError, load_picture
+from ..sim.png import SIGNATURE
 from . import polls
 from .jobs import JobOperator, WorkerJob
 from .write_character import WriteJob
@@ -41,6 +42,24 @@ def _loads(image) -> bool:
     except (IndexError, RuntimeError):
         return False
     return bool(image.has_data)
+
+
+def file_picture(path: str) -> np.ndarray:
+    """A picture file: a PNG by the engine's bounded reader, any other format Blender reads
+    (JPEG, TIFF, ...) through a temporary image datablock."""
+    with open(path, "rb") as f:
+        if f.read(len(SIGNATURE)) == SIGNATURE:
+            return load_picture(path)
+    try:
+        img = bpy.data.images.load(path)
+    except RuntimeError as exc:
+        raise PictureError(f"{path} is not a picture Blender can read ({exc})") from None
+    try:
+        if not _loads(img):
+            raise PictureError(f"{path} is not a picture Blender can read")
+        return image_grey(img)
+    finally:
+        bpy.data.images.remove(img)
 
 
 class ImitateJob(WriteJob):
@@ -85,7 +104,9 @@ class HAIRY_BRUSH_OT_imitate_image(JobOperator, bpy.types.Operator, ImportHelper
     bl_options = {"REGISTER", "UNDO"}
 
     filename_ext = ".png"
-    filter_glob: bpy.props.StringProperty(default="*.png", options={"HIDDEN"})
+    filter_glob: bpy.props.StringProperty(
+        default="*.png;*.jpg;*.jpeg;*.tif;*.tiff;*.bmp;*.webp", options={"HIDDEN"}
+    )
     image: bpy.props.StringProperty(
         name="Image",
         default="",
@@ -136,7 +157,7 @@ class HAIRY_BRUSH_OT_imitate_image(JobOperator, bpy.types.Operator, ImportHelper
                     raise PictureError(f"no image named '{self.image}'")
                 picture, name = image_grey(img), img.name
             else:
-                picture, name = load_picture(self.filepath), bpy.path.basename(self.filepath)
+                picture, name = file_picture(self.filepath), bpy.path.basename(self.filepath)
             job = ImitateJob(scene, picture, name, self.size_mm, self.passes, self.detail)
         except (*bridge.USER_ERRORS, ValueError, OSError) as exc:
             self.report({"ERROR"}, str(exc))

@@ -59,10 +59,41 @@ def grey_of(img, name: str = "the picture") -> np.ndarray:
 
 
 def load_picture(path) -> np.ndarray:
-    """A PNG file's luminance (``sim.png``, bounded); PNGError for a damaged or huge file."""
-    from .png import read_png
+    """A picture file's luminance: a PNG by ``sim.png`` (bounded; PNGError for a damaged or
+    huge file), any other format (JPEG, ...) by Pillow when it is installed (optional)."""
+    from .png import SIGNATURE, read_png
 
-    return grey_of(read_png(path, MAX_PICTURE_SIDE, MAX_PICTURE_PIXELS), str(path))
+    try:
+        with open(path, "rb") as f:
+            head = f.read(len(SIGNATURE))
+    except OSError as exc:
+        raise PictureError(f"cannot read {path}: {exc.strerror or exc}") from None
+    if head == SIGNATURE:
+        return grey_of(read_png(path, MAX_PICTURE_SIDE, MAX_PICTURE_PIXELS), str(path))
+    return grey_of(_read_other(path), str(path))
+
+
+def _read_other(path) -> np.ndarray:
+    """A non-PNG picture through Pillow, its size checked before it is decoded."""
+    try:
+        from PIL import Image
+    except ImportError:
+        raise PictureError(
+            f"{path} is not a PNG; other formats (JPEG, ...) need Pillow (pip install pillow)"
+        ) from None
+    try:
+        with Image.open(path) as im:
+            w, h = im.size
+            if max(w, h) > MAX_PICTURE_SIDE or w * h > MAX_PICTURE_PIXELS:
+                raise PictureError(
+                    f"{path} is {w} x {h} px; at most {MAX_PICTURE_SIDE} a side and "
+                    f"{MAX_PICTURE_PIXELS} pixels"
+                )
+            return np.asarray(im.convert("RGBA"))
+    except (OSError, ValueError, SyntaxError) as exc:
+        if isinstance(exc, PictureError):
+            raise
+        raise PictureError(f"{path} is not a picture this can read: {exc}") from None
 
 
 def _square(grey: np.ndarray, n: int) -> np.ndarray:

@@ -216,6 +216,17 @@ def test_bad_pictures_get_one_clear_message(tmp_path):
         assert not out.exists()
 
 
+def test_other_formats_through_pillow_when_it_is_there(tmp_path):
+    Image = pytest.importorskip("PIL.Image")
+    jpg = tmp_path / "wang.jpg"
+    Image.fromarray((picture("王", 128) * 255).astype(np.uint8)).save(jpg, quality=80)
+    im = read_picture(jpg, 128)
+    assert len(im.strokes) == 4
+    (tmp_path / "cut.jpg").write_bytes(jpg.read_bytes()[:600])
+    with pytest.raises(PictureError, match="truncated"):
+        read_picture(tmp_path / "cut.jpg", 128)
+
+
 def test_cli_imitate_writes_a_recording_that_replays(tmp_path):
     src = tmp_path / "wang.png"
     write_png(src, picture("王", 160))

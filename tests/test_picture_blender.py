@@ -35,6 +35,23 @@ def picture(n=128) -> np.ndarray:
     return np.where(rasterise(char, n), 0.05, 0.95)
 
 
+def test_imitate_a_jpeg_through_blender(hb, tmp_path):
+    setup_scene()
+    img = bpy.data.images.new("pic", 128, 128)
+    rgba = np.ones((128, 128, 4), np.float32)
+    rgba[..., :3] = picture()[::-1, :, None]
+    img.pixels.foreach_set(rgba.ravel())
+    img.filepath_raw = str(tmp_path / "wang.jpg")
+    img.file_format = "JPEG"
+    img.save()
+    bpy.data.images.remove(img)
+    res = bpy.ops.hairy_brush.imitate_image(
+        filepath=str(tmp_path / "wang.jpg"), size_mm=80.0, passes=1, detail=128
+    )
+    assert res == {"FINISHED"}
+    assert "wang.jpg" not in bpy.data.images  # the picture was read, not kept
+
+
 def test_imitate_a_png_keyframes_the_brush_and_replays(hb, tmp_path):
     st = setup_scene()
     path = tmp_path / "wang.png"
@@ -70,6 +87,11 @@ def test_imitate_an_image_datablock_and_bad_pictures(hb, tmp_path):
     bad.write_bytes(b"\x89PNG\r\n\x1a\n" + b"\0" * 20)
     with pytest.raises(RuntimeError, match="bad.png"):
         bpy.ops.hairy_brush.imitate_image(filepath=str(bad))
+    not_a_picture = tmp_path / "notes.jpg"
+    not_a_picture.write_text("not a picture")
+    with pytest.raises(RuntimeError, match="not a picture Blender can read"):
+        bpy.ops.hairy_brush.imitate_image(filepath=str(not_a_picture))
+    assert "notes.jpg" not in bpy.data.images
     assert st.recording.as_string() == before  # user work is never lost
 
 
