@@ -21,7 +21,6 @@ LOOSE_COS = -0.5  # ... and a short overhang continues a stroke within 60 degree
 SPUR = 2.0  # a chain from a free end into a junction shorter than this times its half-width
 HOOK_COS = 0.3  # ... and a hook's two ways out lie within ~70 degrees of each other
 ZONE = 1.3  # a junction's zone: this times the ink's half-width there, plus a pixel
-MIN_STROKE = 0.6  # a free chain shorter than this times its half-width is a dot's nub
 
 
 @dataclass
