@@ -24,7 +24,6 @@ from .hanzi import check_char
 from .outline import EM, TOP, median_bands, median_radii, rasterise
 from .params import HOVER_MM, MAX_PAPER_SIDE_PX, ParameterError, number_within, short_repr
 from .recording import PAPER_MM_RANGE, PX_PER_MM_RANGE, Dip, Recording, quantise
-from .strokes import stroke
 
 CAL_PPM = 5.0  # px/mm of the calibration strokes
 CAL_LENGTH_MM = 45.0
@@ -108,7 +107,7 @@ def _cache_file(key: str):
 
 
 def calibrate(
-    template: Recording, speed_mm_s: float = 60.0, presses: int = 7, ppm: float = CAL_PPM
+    template: Recording, speed_mm_s: float = 60.0, presses: int = 11, ppm: float = CAL_PPM
 ) -> Response:
     """The brush's response (``_calibrate``), cached per settings in the process and on disk
     (``~/.cache/hairy_brush``; the key includes the engine's source, so a changed model is
@@ -136,50 +135,74 @@ def calibrate(
     return resp
 
 
+CAL_DEPTHS = (0.04, 0.42)  # press range of the calibration, as shares of the hair length:
+# deeper, the belly buckles and splits and the band's width no longer follows the press
+
+
+def _straight_plan(lines, press, step_mm: float) -> Plan:
+    """A plan of straight strokes (calibration): each line ((x0, y0), (x1, y1)) in mm written
+    as the writer writes a stroke, its width taken as its press (it only sets the entry's
+    length), travel in the air between, a dip before each."""
+    tg, wd, tn, ph, strokes = [], [], [], [], []
+    for k, ((x0, y0), (x1, y1)) in enumerate(lines):
+        a, b = np.array([x0, y0], float), np.array([x1, y1], float)
+        n = max(int(np.ceil(np.linalg.norm(b - a) / step_mm)), 2) + 1
+        pts = a + np.linspace(0.0, 1.0, n)[:, None] * (b - a)
+        tang = (b - a) / max(float(np.linalg.norm(b - a)), 1e-9)
+        if k:
+            _air(tg, wd, tn, ph, np.array(lines[k - 1][1], float), a, tang, step_mm)
+        n0 = sum(len(t) for t in tg)
+        tg += [np.tile(a, (ENTRY_SAMPLES, 1)), pts, np.tile(b, (EXIT_SAMPLES, 1))]
+        m = n + ENTRY_SAMPLES + EXIT_SAMPLES
+        wd.append(np.full(m, float(press[k])))
+        tn.append(np.tile(tang, (m, 1)))
+        ph += [
+            np.full(ENTRY_SAMPLES, ENTERING),
+            np.full(n, WRITING),
+            np.full(EXIT_SAMPLES, LIFTING),
+        ]
+        strokes.append((n0, n0 + m))
+    dips = [s for s, _ in strokes]
+    return Plan(*(np.concatenate(v) for v in (tg, wd, tn, ph)), dips, strokes)
+
+
 def _calibrate(template: Recording, speed_mm_s: float, presses: int, ppm: float) -> Response:
     """Measure the brush's response by simulation: one straight stroke per press depth, each
-    after a fresh dip, on one sheet; the width is read across the ink band in the stroke's
-    steady middle, the lag between the base and the centroid of the current marks."""
+    after a fresh dip, on one sheet, written with the writer's own movement (``_fill``: the tip
+    lands moving and the belly presses as it goes - a stationary press splays the hair and
+    leaves a wider band than the writer ever gets); the width is read across the ink band in
+    the stroke's steady middle, the lag between the base and the centroid of the current marks.
+    The widths are made monotone (pool adjacent violators) and the lags a straight line in the
+    press (least squares): single readings wander by a few tenths of a millimetre."""
     _, geometry, _, ink = template.resolve()
     hair = geometry.hair_length_mm
-    depths = np.linspace(0.04, 0.75, presses) * hair
+    depths = np.linspace(*CAL_DEPTHS, presses) * hair
     gap = 6.0 * geometry.belly_diameter_mm + 10.0
-    width_mm = CAL_LENGTH_MM + 40.0
-    height_mm = gap * (presses + 1)
-    parts, dips, bands = [], [], []
-    n = 0
-    for k, p in enumerate(depths):
-        y = gap * (k + 1)
-        pts = [[20.0, y], [20.0 + CAL_LENGTH_MM, y]]
-        s = stroke(
-            pts,
-            rate_hz=template.sample_rate_hz,
-            speed_mm_s=speed_mm_s,
-            press_mm=float(p),
-            hair_length_mm=hair,
-            hover_mm=HOVER_MM,
-            lift_fraction=1e-6,
-            entry_samples=ENTRY_SAMPLES,
-            end_samples=EXIT_SAMPLES,
-        )
-        dips.append(Dip(n, ink.depth, tuple(ink.color), ink.wetness))
-        bands.append((y, n + ENTRY_SAMPLES, n + len(s) - EXIT_SAMPLES))
-        parts.append(s)
-        n += len(s)
+    step_mm = speed_mm_s / template.sample_rate_hz
+    lines = [((20.0, gap * (k + 1)), (20.0 + CAL_LENGTH_MM, gap * (k + 1))) for k in range(presses)]
+    pl = _straight_plan(lines, depths, step_mm)
+    samples = np.zeros((len(pl.target), 6))
+    samples[:, :2], samples[:, 2] = pl.target, hair + HOVER_MM
+    flat = Response(depths, depths, np.zeros(presses), float(speed_mm_s))  # no lead yet
+    for k, (a, b) in enumerate(pl.strokes):
+        body = np.flatnonzero(pl.phase[a:b] == WRITING)
+        brush = (hair + HOVER_MM, hair, step_mm)
+        _fill(samples, pl, flat, (a, b), np.full(len(body), depths[k]), np.zeros(len(body)), brush)
+    dips = [Dip(i, ink.depth, tuple(ink.color), ink.wetness) for i in pl.dips]
     rec = _settings(
         template,
-        samples=np.concatenate(parts),
-        width_mm=width_mm,
-        height_mm=height_mm,
+        samples=quantise(samples),
+        width_mm=CAL_LENGTH_MM + 40.0,
+        height_mm=gap * (presses + 1),
         px_per_mm=ppm,
         dips=dips,
     )
     sim = Simulation(rec)
+    band_of = np.full(len(samples), -1)
+    for k, (a, b) in enumerate(pl.strokes):
+        body = np.flatnonzero(pl.phase[a:b] == WRITING) + a
+        band_of[body[len(body) // 4 : len(body) - len(body) // 4]] = k  # the steady middle
     lags = [[] for _ in depths]
-    band_of = np.full(n, -1)
-    for k, (_, a, b) in enumerate(bands):
-        lo, hi = a + (b - a) // 4, b - (b - a) // 4  # steady middle of the stroke
-        band_of[lo:hi] = k
     while not sim.done:
         i = sim.index
         sim.step()
@@ -189,13 +212,26 @@ def _calibrate(template: Recording, speed_mm_s: float, presses: int, ppm: float)
             if xs:
                 lags[k].append(float(sim.brush.B[0] - np.concatenate(xs).mean()))
     dark = _coverage(sim)  # (H, W) bottom row first
-    widths = []
     x0, x1 = int((20 + 0.3 * CAL_LENGTH_MM) * ppm), int((20 + 0.7 * CAL_LENGTH_MM) * ppm)
-    for y, _, _ in bands:
+    widths = []
+    for (_, y), _ in lines:
         r0, r1 = int((y - gap / 2) * ppm), int((y + gap / 2) * ppm)
         widths.append(float(dark[r0:r1, x0:x1].sum(axis=0).mean()) / ppm)
-    lag = np.array([np.median(v) if v else 0.0 for v in lags])
-    return Response(depths, np.array(widths), lag, float(speed_mm_s))
+    lag = np.array([np.median(v) if v else np.nan for v in lags])
+    ok = np.isfinite(lag)
+    fit = np.polyfit(depths[ok], lag[ok], 1) if ok.sum() >= 2 else np.zeros(2)
+    return Response(depths, _monotone(np.array(widths)), np.polyval(fit, depths), speed_mm_s)
+
+
+def _monotone(v) -> np.ndarray:
+    """The non-decreasing sequence nearest ``v`` in least squares (pool adjacent violators)."""
+    blocks = []  # [mean, count]
+    for x in np.asarray(v, dtype=float):
+        blocks.append([x, 1])
+        while len(blocks) > 1 and blocks[-2][0] > blocks[-1][0]:
+            (m1, n1), (m2, n2) = blocks.pop(-2), blocks.pop(-1)
+            blocks.append([(m1 * n1 + m2 * n2) / (n1 + n2), n1 + n2])
+    return np.concatenate([np.full(n, m) for m, n in blocks])
 
 
 def _coverage(sim: Simulation, rows=slice(None), cols=slice(None)) -> np.ndarray:
@@ -206,9 +242,11 @@ def _coverage(sim: Simulation, rows=slice(None), cols=slice(None)) -> np.ndarray
     return np.mean(dens / full, axis=-1) > 0.5
 
 
-def auto_size_mm(char: dict, response: Response, fill: float = 0.85) -> float:
+def auto_size_mm(char: dict, response: Response, fill: float = 1.2) -> float:
     """A character size at which the character's widest stroke (twice the largest distance
-    from a median to its outline) needs ``fill`` of the widest band the brush can leave."""
+    from a median to its outline) needs ``fill`` of the widest band the brush leaves as the
+    writer moves it (measured so since issue 16; larger characters match their outline better,
+    smaller ones carry more of the brush's texture: 1 is the measured balance)."""
     widest = max(float(r.max()) for _, r in median_radii(char)) * 2.0  # data units
     return float(np.clip(fill * response.max_width_mm * EM / max(widest, 1e-6), 20.0, 2000.0))
 
@@ -477,6 +515,28 @@ def _enter_and_leave(samples, pl, body, hover, hair, step_mm) -> None:
     samples[lift, 2] = samples[body[-1], 2] + (hover - samples[body[-1], 2]) * np.sqrt(f)
 
 
+def _fill(samples, pl: Plan, response: Response, span, press, side, brush) -> np.ndarray:
+    """Samples a..b (``span``) of one stroke of plan ``pl``: for each of its movements, come
+    down, write with the given press and sideways placement per body sample (the press eased at
+    the entry and at sharp turns, the base leading the ink by the response's lag), lift off
+    (``_enter_and_leave``). ``brush`` is (hover, hair length, step) in mm."""
+    a, b = span
+    hover, hair, step_mm = brush
+    body = np.flatnonzero(pl.phase[a:b] == WRITING) + a
+    normal = np.stack([-pl.tangent[:, 1], pl.tangent[:, 0]], axis=1)
+    j0 = 0
+    for run in np.split(body, np.flatnonzero(np.diff(body) > 1) + 1):
+        j1 = j0 + len(run)
+        p = press[j0:j1] * _entry_ramp(pl.target[run], pl.width[run])
+        samples[run, :2] = _lead_along(pl.target[run], response.lag_for(p))
+        samples[run, :2] += side[j0:j1, None] * normal[run]
+        samples[run, 2] = hair - p
+        _enter_and_leave(samples, pl, run, hover, hair, step_mm)
+        j0 = j1
+    samples[a:b] = quantise(samples[a:b])  # as the saved recording will hold them
+    return body
+
+
 @dataclass
 class _Window:
     rows: np.ndarray  # (h, w) paper rows (bottom first) of the window
@@ -504,7 +564,8 @@ def _stroke_masks(char: dict, H: int, W: int) -> list[_Window]:
 
 
 RECORD_EVERY = 4  # samples between the coverage records of a practice pass
-PRACTICE_GAIN = 0.45  # share of a pass's measured error corrected for the next (measured best)
+PRACTICE_GAIN = 0.45  # share of a pass's width error corrected for the next (measured best)
+PRACTICE_SIDE_GAIN = 0.8  # share of the band's sideways offset corrected (issue 16: measured)
 
 
 def _practise(sim, a, b, body, want, step_mm, pl, reach):
@@ -597,7 +658,7 @@ def _correct(response, press, side, want, got, centre, valid):
     dp = np.where(valid, PRACTICE_GAIN * (want - got) / slope, 0.0)
     dp = np.where(valid & (got == 0) & (want > 0), 0.5, dp)
     press = np.clip(press + _smooth(dp, 5), 0.0, p_max)
-    side = side - _smooth(np.where(valid & (got > 0), PRACTICE_GAIN * centre, 0.0), 5)
+    side = side - _smooth(np.where(valid & (got > 0), PRACTICE_SIDE_GAIN * centre, 0.0), 5)
     return press, side
 
 
@@ -682,7 +743,6 @@ def write_character(
         template, samples=samples, width_mm=size, height_mm=size, px_per_mm=ppm, dips=dips
     )
     hover = hair + HOVER_MM
-    normal = np.stack([-pl.tangent[:, 1], pl.tangent[:, 0]], axis=1)
     samples[:, :2] = pl.target
     samples[:, 2] = hover
     samples[:] = quantise(samples)
@@ -691,20 +751,7 @@ def write_character(
     masks = _stroke_masks(char, sim.paper.H, sim.paper.W) if passes > 1 else None
 
     def fill(a, b, press, side):
-        """Samples a..b of one stroke: for each of its movements, come down, write, lift off
-        (``_enter_and_leave``)."""
-        body = np.flatnonzero(pl.phase[a:b] == WRITING) + a
-        j0 = 0
-        for run in np.split(body, np.flatnonzero(np.diff(body) > 1) + 1):
-            j1 = j0 + len(run)
-            p = press[j0:j1] * _entry_ramp(pl.target[run], pl.width[run])
-            samples[run, :2] = _lead_along(pl.target[run], response.lag_for(p))
-            samples[run, :2] += side[j0:j1, None] * normal[run]
-            samples[run, 2] = hair - p
-            _enter_and_leave(samples, pl, run, hover, hair, step_mm)
-            j0 = j1
-        samples[a:b] = quantise(samples[a:b])  # as the saved recording will hold them
-        return body
+        return _fill(samples, pl, response, (a, b), press, side, (hover, hair, step_mm))
 
     for n_stroke, (a, b) in enumerate(pl.strokes):
         sim.run(until=a)  # travel in the air up to the stroke

@@ -200,6 +200,29 @@ def _ray_hits(points, dirs, polys) -> np.ndarray:
     return out
 
 
+TIP_REACH = (0.3, 0.5)  # share of the way from a median's start and end to the outline the
+# path goes on (measured: the end helps, the head - where the brush lands - does not)
+
+
+def _to_the_tips(med, polys) -> np.ndarray:
+    """The median carried on at its ends, along its end directions, ``TIP_REACH`` of the way to
+    the outline: a stroke's median stops short of its pointed or squared-off end (the point of a
+    hook or a left-falling stroke), which the brush must still reach."""
+    m = np.asarray(med, dtype=float)
+    if len(m) < 2:
+        return m
+    ends = []
+    for (p, q), reach in zip(((m[0], m[1]), (m[-1], m[-2])), TIP_REACH, strict=True):
+        d = p - q
+        d = d / max(float(np.linalg.norm(d)), 1e-9)
+        if distance_to_outline(p[None], polys)[0] <= 0:
+            ends.append(p)  # the median already ends outside the outline
+            continue
+        hit = float(_ray_hits(p[None], d[None], polys)[0])
+        ends.append(p + (reach * hit if np.isfinite(hit) else 0.0) * d)
+    return np.concatenate([ends[0][None], m, ends[1][None]])
+
+
 def median_bands(char: dict, step: float = 4.0) -> list[tuple[np.ndarray, np.ndarray]]:
     """For every stroke, points along the middle of its outline and the stroke's full width
     there (data units, every ``step`` along the median): the outline is cut across the median's
@@ -207,7 +230,7 @@ def median_bands(char: dict, step: float = 4.0) -> list[tuple[np.ndarray, np.nda
     stroke (at a corner or an end) is held to three times the distance to the nearest edge."""
     out = []
     for med, polys in zip(char["medians"], stroke_polygons(char), strict=True):
-        pts, _ = resample(med, step)
+        pts, _ = resample(_to_the_tips(med, polys), step)
         r = np.maximum(distance_to_outline(pts, polys), 0.0)
         if len(pts) > 1:
             tan = np.gradient(pts, axis=0)
