@@ -403,12 +403,37 @@ def surface_matrix(st, frame, sample) -> np.ndarray:
     return surface_space(st.paper_object) @ rel
 
 
+_CASTERS: dict = {}  # surface digest -> ray caster (Blender's BVH tree of its triangles)
+
+
+def surface_caster(st):
+    """``cast(origin, direction)`` in the surface's space (mm) -> its first sim.surface.Hit or
+    None, through a BVH tree of the surface's triangles (sim.surface.ray_hit looks at every
+    triangle: fine for tests, slow for a mesh of many thousands while painting or baking)."""
+    from mathutils import Vector
+    from mathutils.bvhtree import BVHTree
+
+    surface, digest = mesh_surface(st.paper_object)
+    if digest not in _CASTERS:
+        _CASTERS.clear()
+        tree = BVHTree.FromPolygons(surface.verts.tolist(), surface.tris.tolist())
+
+        def cast(o, d):
+            loc, _normal, index, dist = tree.ray_cast(Vector(o), Vector(d))
+            if loc is None:
+                return None
+            return surf.hit_at(surface, index, loc, dist)
+
+        _CASTERS[digest] = cast
+    return _CASTERS[digest]
+
+
 def surface_ray(st, origin, direction):
     """Where a world ray first meets the surface: the sim.surface.Hit, or None."""
     to_surface = np.linalg.inv(surface_space(st.paper_object))
     o = (to_surface @ np.r_[np.asarray(origin, dtype=float), 1.0])[:3] * MM
     d = to_surface[:3, :3] @ np.asarray(direction, dtype=float)
-    return surf.ray_hit(mesh_surface(st.paper_object)[0], o, d)
+    return surface_caster(st)(o, d)
 
 
 def surface_origin(st) -> tuple[float, float]:
@@ -419,6 +444,7 @@ def surface_origin(st) -> tuple[float, float]:
 def forget_surfaces():
     _SURFACES.clear()
     _PAPERS.clear()
+    _CASTERS.clear()
 
 
 # ------------------------------------------------------------------------------ time

@@ -44,7 +44,11 @@ def sample_brush(scene, st, frame_start: int, frame_end: int, rate: float, progr
             scene, st, frame_start, rate, _count(scene, frame_start, frame_end, rate), progress
         )
         return surf.develop(
-            surface, poses[:, :3], poses[:, 3:].reshape(-1, 3, 3), bridge.surface_origin(st)
+            surface,
+            poses[:, :3],
+            poses[:, 3:].reshape(-1, 3, 3),
+            bridge.surface_origin(st),
+            bridge.surface_caster(st),
         )
     fps = scene.render.fps / scene.render.fps_base
     n = _count(scene, frame_start, frame_end, rate)

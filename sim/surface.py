@@ -186,13 +186,24 @@ def ray_hit(surface: Surface, origin, direction) -> Hit | None:
     return Hit(i, bary, o + t[i] * d, float(t[i]))
 
 
-def closest_point(surface: Surface, point) -> Hit:
-    """The surface point nearest ``point`` (every triangle at once: the projection on its plane
-    when inside, else the nearest point of its three edges)."""
+def closest_point(surface: Surface, point, near: TriangleGrid | None = None) -> Hit:
+    """The surface point nearest ``point`` (the triangles at once: the projection on its plane
+    when inside, else the nearest point of its three edges). With ``near``, only the triangles
+    in its cells around the point are looked at, and all of them only when none is that near."""
     p = np.asarray(point, dtype=float)
-    c = surface.corners
+    if near is not None:
+        tris = near.query(p)
+        if tris.size:
+            hit = _closest_among(surface, p, tris)
+            if hit.distance <= near.reach:  # every triangle that near was looked at: exact
+                return hit
+    return _closest_among(surface, p, None)
+
+
+def _closest_among(surface: Surface, p: np.ndarray, tris) -> Hit:
+    c = surface.corners if tris is None else surface.corners[tris]
+    n = surface.face_normals if tris is None else surface.face_normals[tris]
     cands, barys = [], []
-    n = surface.face_normals
     proj = p - np.einsum("ij,ij->i", p - c[:, 0], n)[:, None] * n
     b = _barycentric(c, proj)
     inside = (b >= -1e-12).all(axis=1)
@@ -210,7 +221,58 @@ def closest_point(surface: Surface, point) -> Hit:
     dist = np.linalg.norm(pts - p, axis=2)
     dist = np.where(np.isfinite(dist), dist, np.inf)
     k, i = np.unravel_index(int(np.argmin(dist)), dist.shape)
-    return Hit(int(i), np.asarray(barys[k][i]), pts[k, i], float(dist[k, i]))
+    tri = int(i) if tris is None else int(tris[i])
+    return Hit(tri, np.asarray(barys[k][i]), pts[k, i], float(dist[k, i]))
+
+
+class TriangleGrid:
+    """The triangles binned by their bounding boxes in cubes of ``cell`` mm: the triangles
+    within ``reach`` of a point, whatever the mesh's size (live painting's nearest points)."""
+
+    def __init__(self, surface: Surface, cell: float | None = None):
+        c = surface.corners
+        lo, hi = c.min(axis=1), c.max(axis=1)
+        if cell is None:  # about a triangle's size, so each lies in a few cubes
+            cell = float(np.clip(np.median((hi - lo).max(axis=1)), 1.0, 50.0))
+        self.cell, self.reach = cell, 2 * cell
+        a = np.floor(lo / cell).astype(np.int64)
+        b = np.floor(hi / cell).astype(np.int64)
+        self.lo = a.min(axis=0)
+        self.dims = b.max(axis=0) - self.lo + 1
+        n = np.prod(b - a + 1, axis=1)
+        tri = np.repeat(np.arange(len(c)), n)
+        k = np.arange(int(n.sum())) - np.repeat(np.cumsum(n) - n, n)
+        ext = (b - a + 1)[tri]
+        ijk = a[tri] + np.stack([k // (ext[:, 1] * ext[:, 2]), k // ext[:, 2] % ext[:, 1],
+                                 k % ext[:, 2]], axis=1)  # fmt: skip
+        keys = self._key(ijk)
+        order = np.argsort(keys, kind="stable")
+        self.keys, self.tris = keys[order], tri[order]
+
+    def _key(self, ijk):
+        r = ijk - self.lo
+        return (r[:, 0] * self.dims[1] + r[:, 1]) * self.dims[2] + r[:, 2]
+
+    def query(self, point) -> np.ndarray:
+        """The triangles whose boxes meet the cube of half side ``reach`` around the point."""
+        a = np.maximum(np.floor((point - self.reach) / self.cell).astype(np.int64), self.lo)
+        b = np.floor((point + self.reach) / self.cell).astype(np.int64)
+        b = np.minimum(b, self.lo + self.dims - 1)
+        if (b < a).any():
+            return np.zeros(0, dtype=np.int64)
+        axes = [np.arange(a[k], b[k] + 1) for k in range(3)]
+        keys = self._key(np.stack(np.meshgrid(*axes, indexing="ij"), axis=-1).reshape(-1, 3))
+        s = np.searchsorted(self.keys, keys, "left")
+        e = np.searchsorted(self.keys, keys, "right")
+        n = e - s
+        pos = np.repeat(s - (np.cumsum(n) - n), n) + np.arange(int(n.sum()))
+        return np.unique(self.tris[pos])
+
+
+def hit_at(surface: Surface, tri: int, point, distance: float) -> Hit:
+    """A Hit from a triangle and a point on it (what another ray caster reports)."""
+    p = np.asarray(point, dtype=float)
+    return Hit(int(tri), _barycentric(surface.corners[[tri]], p[None])[0], p, float(distance))
 
 
 def _barycentric(c: np.ndarray, p: np.ndarray) -> np.ndarray:
@@ -299,22 +361,24 @@ def pose_from_sample(frame, sample) -> tuple[np.ndarray, np.ndarray]:
     return base, F @ rotation_matrix(*s[3:6])
 
 
-def axis_hit(surface: Surface, base_mm, rot) -> Hit:
+def axis_hit(surface: Surface, base_mm, rot, cast=None) -> Hit:
     """Where the brush's axis (its -z, from the base) meets the surface; the closest surface
-    point when it does not."""
-    hit = ray_hit(surface, base_mm, -np.asarray(rot, dtype=float)[:, 2])
+    point when it does not. ``cast(origin, direction)`` finds a ray's first hit (ray_hit, or
+    the caller's faster one: Blender's BVH tree)."""
+    cast = (lambda o, d: ray_hit(surface, o, d)) if cast is None else cast
+    hit = cast(np.asarray(base_mm, dtype=float), -np.asarray(rot, dtype=float)[:, 2])
     return hit if hit is not None else closest_point(surface, base_mm)
 
 
-def develop(surface: Surface, bases, rots, origin_xy) -> tuple[np.ndarray, np.ndarray]:
+def develop(surface: Surface, bases, rots, origin_xy, cast=None) -> tuple[np.ndarray, np.ndarray]:
     """Baked brush poses (N bases in mm, N rotations, in the surface's space) -> the engine's
-    chart samples (N, 6) and their frames (N, FRAME_WIDTH); see new_frame for origin_xy. The
-    rotation r is kept continuous (no jump of 360 degrees between samples)."""
+    chart samples (N, 6) and their frames (N, FRAME_WIDTH); see new_frame for origin_xy and
+    axis_hit for cast. The rotation r is kept continuous (no jump of 360 degrees)."""
     frames = np.empty((len(bases), FRAME_WIDTH))
     samples = np.empty((len(bases), 6))
     prev = None
     for i, (base, rot) in enumerate(zip(bases, rots, strict=True)):
-        hit = axis_hit(surface, base, rot)
+        hit = axis_hit(surface, base, rot, cast)
         prev = frames[i] = new_frame(surface, hit, prev, origin_xy, np.asarray(rot)[:, 0])
         samples[i] = local_sample(prev, base, rot)
         if i:
@@ -323,12 +387,12 @@ def develop(surface: Surface, bases, rots, origin_xy) -> tuple[np.ndarray, np.nd
     return samples, frames
 
 
-def follow(surface: Surface, prev, xy) -> np.ndarray:
+def follow(surface: Surface, prev, xy, near: TriangleGrid | None = None) -> np.ndarray:
     """The frame of a sample painted at chart position ``xy`` after the frame ``prev``: the
     surface point nearest the spot of prev's tangent plane at xy (live painting)."""
     c, p, t, b, _n = frame_parts(prev)
     guess = p + (xy[0] - c[0]) * t + (xy[1] - c[1]) * b
-    return new_frame(surface, closest_point(surface, guess), prev)
+    return new_frame(surface, closest_point(surface, guess, near), prev)
 
 
 def chart_xy(frame, point) -> tuple[float, float]:
@@ -488,6 +552,7 @@ class SurfacePaper:
         # the chart is offset so that its pixels are never negative (samples reach 10 sides)
         self.offset = math.ceil(CHART_SIDES * side_mm * self.ppm) / self.ppm
         self.hash = SpatialHash(self.texels.xyz, HASH_CELL_MM)
+        self.near = TriangleGrid(surface)  # the frames of live samples
         # the texels in the hash's order, so a query's texels lie together in memory
         tp, order = self.texels, self.hash.order
         self.texels = TexelPoints(tp.index[order], tp.xyz[order], tp.normal[order], tp.W, tp.H)
@@ -516,7 +581,7 @@ class SurfacePaper:
             if not self.frames:
                 raise SurfaceError("a surface recording's first sample has no frame")
             k = len(self.frames)
-            self.frames.append(follow(self.surface, self.frames[-1], xy))  # i is always k
+            self.frames.append(follow(self.surface, self.frames[-1], xy, self.near))
             self._followed[k] = xy
         return self.frames[i]
 

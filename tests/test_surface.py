@@ -100,6 +100,19 @@ def test_ray_and_closest_point_on_a_cylinder():
     np.testing.assert_allclose(n, [0.0, -1.0, 0.0], atol=1e-9)
 
 
+def test_the_triangle_grid_finds_the_same_nearest_points_as_all_triangles():
+    s = cylinder(n=96, m=12)
+    grid = sf.TriangleGrid(s)
+    rng = np.random.default_rng(1)
+    points = rng.uniform([-60, -60, -20], [60, 60, 140], (40, 3))
+    points[:20] *= [0.7, 0.7, 1.0]  # some near the surface, some far
+    for p in points:
+        a, b = sf.closest_point(s, p), sf.closest_point(s, p, grid)
+        assert a.tri == b.tri and np.allclose(a.point, b.point) and a.distance == b.distance
+    near = grid.query(np.array([40.0, 0.0, 60.0]))
+    assert 0 < near.size < 0.15 * len(s.tris)  # a neighbourhood, not the mesh
+
+
 def test_local_sample_is_the_pose_relative_to_the_frame_and_back():
     g = grid()[0]
     base = np.array([5.0, -3.0, 26.0])
