@@ -246,7 +246,8 @@ class HAIRY_BRUSH_OT_setup(bpy.types.Operator):
             self.report({"ERROR"}, str(exc))
             return {"CANCELLED"}
         coll = scene.collection
-        if st.paper_object is None:
+        from_surface = bridge.is_surface(st)  # back to a flat paper: a new plane, the mesh stays
+        if st.paper_object is None or from_surface:
             me = paper_mesh("HairyBrush Paper", st.paper_width_mm / 1000, st.paper_height_mm / 1000)
             paper = bpy.data.objects.new("HairyBrush Paper", me)
             coll.objects.link(paper)
@@ -259,9 +260,12 @@ class HAIRY_BRUSH_OT_setup(bpy.types.Operator):
         mat = paper_material(img)
         if mat.name not in st.paper_object.data.materials:
             st.paper_object.data.materials.append(mat)
-        if st.brush_object is None:
-            brush = new_brush(coll)
+        if st.brush_object is None or from_surface:
+            brush = st.brush_object or new_brush(coll)
             brush.parent = st.paper_object
+            brush.matrix_parent_inverse.identity()
+            brush.rotation_mode = "ZYX"
+            brush.rotation_euler = (0.0, 0.0, 0.0)
             brush.location = (0.0, 0.0, (geom_len + HOVER_MM) / bridge.MM)
             st.brush_object = brush
         st.touch_height_mm = geom_len

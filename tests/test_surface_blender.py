@@ -108,6 +108,12 @@ def test_setup_makes_the_selected_mesh_the_paper(hb):
     assert cyl.dimensions.x == pytest.approx(0.08, abs=1e-6)  # the mesh keeps its shape
     st.paper_width_mm = 300.0  # the size of a surface's texture is not a plane's to resize
     assert len(cyl.data.vertices) == 96
+    # and Set Up again without surface=True: a flat paper plane again, the mesh untouched
+    assert bpy.ops.hairy_brush.setup() == {"FINISHED"}
+    assert st.paper_object != cyl and not ext().bridge.is_surface(st)
+    assert len(st.paper_object.data.vertices) == 4 and len(cyl.data.materials) == 1
+    assert st.brush_object.parent == st.paper_object
+    assert st.brush_object.matrix_world.translation.z == pytest.approx((HAIR + 5) / 1000)
 
 
 def test_meshes_that_cannot_be_paper_and_a_brush_that_never_touches_get_clear_messages(hb, capfd):
