@@ -23,6 +23,7 @@ MIN_SEPARATION = 0.8  # Otsu's between-class share of the darkness's variance
 INK_SHARE = (0.002, 0.4)  # of the em box: less is no writing, more is not writing on paper
 MAX_PIECES = 64  # separate pieces of ink (after specks are removed)
 SPECK = 2e-4  # a piece of ink smaller than this share of the em box is a speck
+SEAL_CHROMA = 0.3  # max - min of a pixel's RGB above which it is a colour, not ink or paper
 PIN_HOLE = 4e-4  # a hole in the ink smaller than this share of the em box is filled
 
 
@@ -54,8 +55,20 @@ def grey_of(img, name: str = "the picture") -> np.ndarray:
     a = np.clip(a, 0.0, 1.0)
     c = a.shape[2]
     alpha = a[..., -1] if c in (2, 4) else 1.0
-    lum = a[..., :3] @ np.array([0.2126, 0.7152, 0.0722]) if c >= 3 else a[..., 0]
+    lum = _without_seals(a[..., :3]) if c >= 3 else a[..., 0]
     return lum * alpha + (1.0 - alpha)
+
+
+def _without_seals(rgb: np.ndarray) -> np.ndarray:
+    """Luminance, with strongly coloured marks (a red seal, a coloured stamp) taken as paper
+    when the picture also holds dark neutral ink (the writing); writing that is all in one
+    colour (vermilion, indigo) is kept."""
+    lum = rgb @ np.array([0.2126, 0.7152, 0.0722])
+    chroma = rgb.max(axis=2) - rgb.min(axis=2)
+    coloured = chroma > SEAL_CHROMA
+    if coloured.any() and np.mean((lum < 0.5) & (chroma < SEAL_CHROMA / 2)) > INK_SHARE[0]:
+        lum = np.where(coloured, 1.0, lum)
+    return lum
 
 
 def load_picture(path) -> np.ndarray:

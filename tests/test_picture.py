@@ -103,6 +103,21 @@ def test_ink_is_found_on_uneven_stained_noisy_paper():
     assert iou(plain, ink) < 0.9
 
 
+def test_a_red_seal_is_not_writing_but_red_writing_is():
+    m = rasterise(unseen("木"), 256)
+    rgb = np.where(m[..., None], 0.08, 0.95) * np.array([0.97, 0.92, 0.82])
+    seal = np.zeros_like(m)
+    seal[200:240, 210:250] = True
+    seal[210:230, 222:226] = False  # the seal's carved characters
+    rgb[seal] = [0.72, 0.12, 0.10]
+    im = read_picture(rgb, 256)
+    assert len(im.strokes) == 4 and iou(im.ink.mask, m) > 0.99
+    lum = rgb @ np.array([0.2126, 0.7152, 0.0722])
+    assert find_ink(lum, 256).mask[seal].mean() > 0.9  # by luminance alone the seal is ink
+    vermilion = np.where(m[..., None], np.array([0.8, 0.15, 0.1]), np.array([0.97, 0.95, 0.9]))
+    assert iou(read_picture(vermilion, 256).ink.mask, m) > 0.99
+
+
 def test_unseen_characters_strokes_order_and_direction():
     per = {}
     for c in CHARS:
