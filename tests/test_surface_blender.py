@@ -106,6 +106,9 @@ def test_setup_makes_the_selected_mesh_the_paper(hb):
     dist = math.hypot(mw[0, 3], mw[1, 3]) * 1000 - R_MM
     assert abs(dist - (HAIR + 5.0)) < 0.5
     assert cyl.dimensions.x == pytest.approx(0.08, abs=1e-6)  # the mesh keeps its shape
+    shown = _paper_panel()
+    assert ("op", "hairy_brush.setup", "Write on Selected Mesh") in shown
+    assert ("label", "Writing on the surface of 'Cylinder'") in shown
     st.paper_width_mm = 300.0  # the size of a surface's texture is not a plane's to resize
     assert len(cyl.data.vertices) == 96
     # and Set Up again without surface=True: a flat paper plane again, the mesh untouched
@@ -114,6 +117,37 @@ def test_setup_makes_the_selected_mesh_the_paper(hb):
     assert len(st.paper_object.data.vertices) == 4 and len(cyl.data.materials) == 1
     assert st.brush_object.parent == st.paper_object
     assert st.brush_object.matrix_world.translation.z == pytest.approx((HAIR + 5) / 1000)
+
+
+def _paper_panel() -> list:
+    """What the sidebar's Paper panel draws: ("op", idname, text) and ("label", text)."""
+    from types import SimpleNamespace
+
+    log = []
+
+    class Layout:
+        enabled, use_property_split = True, False
+
+        def operator(self, idname, text="", **_kw):
+            log.append(("op", idname, text))
+            return SimpleNamespace()
+
+        def label(self, text="", **_kw):
+            log.append(("label", text))
+
+        def prop(self, *_a, **_kw):
+            pass
+
+        menu = prop_search = separator = prop
+
+        def row(self, **_kw):
+            return self
+
+        column = box = row
+
+    panel = ext().panels.sidebar.HAIRY_BRUSH_PT_paper
+    panel.draw(SimpleNamespace(layout=Layout()), bpy.context)
+    return log
 
 
 def test_meshes_that_cannot_be_paper_and_a_brush_that_never_touches_get_clear_messages(hb, capfd):
