@@ -193,29 +193,10 @@ class HAIRY_BRUSH_OT_bake_samples(bpy.types.Operator):
         if scene.frame_end <= scene.frame_start:
             self.report({"ERROR"}, "The scene's frame range is empty")
             return {"CANCELLED"}
-        wm = context.window_manager
-        wm.progress_begin(0, 100)
-        frames = None
         try:
-            samples = sample_brush(
-                scene,
-                st,
-                scene.frame_start,
-                scene.frame_end,
-                st.sample_rate_hz,
-                lambda f: wm.progress_update(int(100 * f)),
-            )
-            if isinstance(samples, tuple):  # on a surface: the samples and their frames
-                samples, frames = samples
+            samples, frames = self.sampled(context, st)
         except bridge.USER_ERRORS as exc:
             self.report({"ERROR"}, str(exc))
-            return {"CANCELLED"}
-        finally:
-            wm.progress_end()
-        bad_rows = ~np.all(np.isfinite(samples), axis=1)
-        if bad_rows.any():
-            i = int(np.argmax(bad_rows))
-            self.report({"ERROR"}, f"The brush's pose is not a number at sample {i}")
             return {"CANCELLED"}
         dips = None
         if old is not None and old.dips and not painted:  # re-baking keeps the dips recorded
@@ -246,3 +227,29 @@ class HAIRY_BRUSH_OT_bake_samples(bpy.types.Operator):
         if level:
             self.report({level}, problem)
         return {"FINISHED"}
+
+    def sampled(self, context, st) -> tuple[np.ndarray, np.ndarray | None]:
+        """(samples, surface frames or None) over the scene's frame range, with a progress
+        bar; UserError for a pose that is not a number."""
+        scene = context.scene
+        wm = context.window_manager
+        wm.progress_begin(0, 100)
+        frames = None
+        try:
+            samples = sample_brush(
+                scene,
+                st,
+                scene.frame_start,
+                scene.frame_end,
+                st.sample_rate_hz,
+                lambda f: wm.progress_update(int(100 * f)),
+            )
+            if isinstance(samples, tuple):  # on a surface: the samples and their frames
+                samples, frames = samples
+        finally:
+            wm.progress_end()
+        bad_rows = ~np.all(np.isfinite(samples), axis=1)
+        if bad_rows.any():
+            i = int(np.argmax(bad_rows))
+            raise bridge.UserError(f"The brush's pose is not a number at sample {i}")
+        return samples, frames
