@@ -1,7 +1,8 @@
 # SPDX-License-Identifier: GPL-3.0-or-later
 """Test pictures for imitating a picture, made here (nothing to license): a "scan" - the
 brush's own writing of a character on raw xuan (bleeding, flying white) on tinted paper with
-uneven light, stains, fibres and scan noise - and a font-like render of a character's outlines.
+uneven light, stains, a red seal, fibres and scan noise - and a font-like render of a
+character's outlines.
 
     python scripts/picture_scan.py CHAR.json OUT.png [--size N] [--seed S]
 """
@@ -22,6 +23,7 @@ from sim.texture import _gaussian  # noqa: E402
 
 PAPER_TINT = np.array([0.93, 0.87, 0.74])  # old xuan
 STAIN_TINT = np.array([0.80, 0.66, 0.45])
+SEAL_RED = np.array([0.70, 0.13, 0.10])
 
 
 def font_picture(char: dict, n: int = 512) -> np.ndarray:
@@ -48,8 +50,8 @@ def written(char: dict, n: int = 512, seed: int = 0, paper: str = "raw_xuan"):
 
 def age(rgb: np.ndarray, seed: int = 0) -> np.ndarray:
     """A scan of old paper: the ink's darkness laid on tinted paper, light falling off across
-    the sheet, a few tea stains, paper fibres and sensor noise, blurred a little as a scanner's
-    optics do. RGB in [0, 1]."""
+    the sheet, a few tea stains, a red seal, paper fibres and sensor noise, blurred a little as
+    a scanner's optics do. RGB in [0, 1]."""
     rng = np.random.default_rng(seed)
     n = rgb.shape[0]
     dark = 1.0 - rgb.mean(axis=2)
@@ -66,9 +68,27 @@ def age(rgb: np.ndarray, seed: int = 0) -> np.ndarray:
     fibres = fibres / max(float(np.abs(fibres).max()), 1e-9)
     paper = paper * (1 + 0.05 * fibres[..., None])
     img = paper * (1 - 0.92 * dark[..., None])
+    img = _seal(img, n)
     img = np.stack([_gaussian(img[..., c], 0.7) for c in range(3)], axis=2)
     img = img + rng.normal(0, 0.025, img.shape)
     return np.clip(img, 0, 1)
+
+
+def _seal(img: np.ndarray, n: int) -> np.ndarray:
+    """A red seal in the lower right corner: a square of cinnabar with its characters carved
+    out as white lines."""
+    s = max(n // 9, 8)
+    y0, x0 = n - s - n // 25, n - s - n // 25
+    yy, xx = np.mgrid[0:s, 0:s] / s
+    carved = (
+        (np.abs(xx - 0.35) < 0.05) & (yy > 0.15) & (yy < 0.85)
+        | (np.abs(yy - 0.3) < 0.05) & (xx > 0.15) & (xx < 0.85)
+        | (np.abs(xx - 0.7) < 0.05) & (yy > 0.45) & (yy < 0.85)
+    )
+    frame = (np.minimum(np.minimum(xx, 1 - xx), np.minimum(yy, 1 - yy)) < 0.06) | ~carved
+    out = img.copy()
+    out[y0 : y0 + s, x0 : x0 + s][frame] = SEAL_RED
+    return out
 
 
 def scan_picture(char: dict, n: int = 512, seed: int = 0):
