@@ -44,6 +44,9 @@ MAX_INT_PROPERTY = 2**31 - 1  # Blender's IntProperty holds 32 bits
 # memory a paper pixel costs: the engine's buffers (ink 12, wetness 4, last step 4), the kept
 # display pixels (16) and Blender's float image (16)
 BYTES_PER_PIXEL = 52
+# and on a surface (sim.surface): a texel's 3D point, normal, index and cube (36), and while
+# they are built, the deepest triangle of every texel (8)
+SURFACE_BYTES_PER_PIXEL = 44
 
 
 class UserError(Exception):
@@ -106,9 +109,10 @@ def check_paper_size(st) -> tuple[int, int]:
     return check_paper_pixels(*paper_pixels(st))
 
 
-def check_paper_pixels(w: int, h: int) -> tuple[int, int]:
-    """UserError unless a paper of w x h px fits the engine's limits and the free memory."""
-    need = w * h * BYTES_PER_PIXEL + SNAPSHOT_BUDGET_BYTES
+def check_paper_pixels(w: int, h: int, extra_per_pixel: int = 0) -> tuple[int, int]:
+    """UserError unless a paper of w x h px fits the engine's limits and the free memory
+    (``extra_per_pixel``: what else a pixel costs, e.g. a surface's texel points)."""
+    need = w * h * (BYTES_PER_PIXEL + extra_per_pixel) + SNAPSHOT_BUDGET_BYTES
     free = available_memory()
     if w > MAX_PAPER_SIDE_PX or h > MAX_PAPER_SIDE_PX or w * h > MAX_PAPER_PIXELS:
         raise UserError(

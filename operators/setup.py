@@ -180,7 +180,7 @@ def surface_side(st, surface) -> float:
             f"{lo:g} and {hi:g} mm: scale the mesh"
         )
     n = max(1, int(round(side * st.px_per_mm)))
-    bridge.check_paper_pixels(n, n)
+    bridge.check_paper_pixels(n, n, bridge.SURFACE_BYTES_PER_PIXEL)
     return side
 
 
