@@ -67,7 +67,7 @@ def _without_seals(rgb: np.ndarray) -> np.ndarray:
     chroma = rgb.max(axis=2) - rgb.min(axis=2)
     coloured = chroma > SEAL_CHROMA
     if coloured.any() and np.mean((lum < 0.5) & (chroma < SEAL_CHROMA / 2)) > INK_SHARE[0]:
-        lum = np.where(coloured, 1.0, lum)
+        lum = np.where(coloured, float(np.quantile(lum[~coloured], 0.9)), lum)  # the paper's
     return lum
 
 
