@@ -426,6 +426,10 @@ def surface_caster(st):
             loc, _normal, index, dist = tree.ray_cast(Vector(o), Vector(d))
             if loc is None:
                 return None
+            if surface.face_normals[index] @ d > 0:
+                # in through a crack (a ray along an edge can slip between faces in the
+                # tree's single precision): the exact test over all triangles decides
+                return surf.ray_hit(surface, o, d)
             return surf.hit_at(surface, index, loc, dist)
 
         _CASTERS[digest] = cast

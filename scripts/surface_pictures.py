@@ -281,6 +281,92 @@ def tablet():
     return st
 
 
+def sphere():
+    """A UV sphere written on along its UV seam's meridian, over the pole, and round its
+    equator across the seam: the strokes go on, unbroken, from one side of the seam to the
+    other."""
+    bpy.ops.wm.read_homefile(use_empty=True)
+    bpy.ops.mesh.primitive_uv_sphere_add(segments=64, ring_count=32, radius=0.08)
+    obj = bpy.context.active_object
+    obj.data.shade_smooth()
+    material(obj, (0.8, 0.78, 0.72), 0.5)
+    sc = bpy.context.scene
+    st = sc.hairy_brush
+    st.brush_preset, st.px_per_mm, st.paper_color = "wolf_stiff", 5.0, (1.0, 1.0, 1.0)
+    assert bpy.ops.hairy_brush.setup(surface=True) == {"FINISHED"}
+    seam = seam_longitude(obj)
+    hair = sys.modules[bench_live.ADDON].bridge.hair_length(st)
+    first = meridian(seam, hair, 80.0)
+    poses = first + meridian(seam, hair, 80.0, equator=True)
+    sc.frame_start = 1
+    keyframe(st.brush_object, poses, st.sample_rate_hz)
+    assert bpy.ops.hairy_brush.bake_samples() == {"FINISHED"}
+    ext = sys.modules[bench_live.ADDON]
+    rec = ext.bridge.recording_from_scene(sc)  # a full dip before each stroke
+    rec.dips = [ext.sim.recording.Dip(0), ext.sim.recording.Dip(len(first))]
+    ext.bridge.store_recording(st, rec)
+    assert bpy.ops.hairy_brush.simulate() == {"FINISHED"}
+    sc.frame_set(sc.frame_end)
+    st.brush_object.hide_render = True
+    for child in st.brush_object.children:
+        child.hide_render = True
+    look = np.array([math.cos(seam), math.sin(seam), 0.0])  # from the seam's side, above
+    side = np.array([-look[1], look[0], 0.0])
+    cam = 0.42 * look + 0.12 * side + np.array([0.0, 0.0, 0.3])
+    sun = look + side * 0.6 + np.array([0, 0, 0.8])
+    stage(
+        tuple(cam),
+        (0.0, 0.0, 0.0),
+        90,
+        sun_direction(sun),
+        3.5,
+        (480, 480),
+        OUT / "surface_sphere.png",
+    )
+
+
+def seam_longitude(obj) -> float:
+    """The longitude (radians) of the UV sphere's seam: where its UVs' u is 0."""
+    me = obj.data
+    uv = me.uv_layers.active.data
+    pts = [me.vertices[loop.vertex_index].co for loop in me.loops if uv[loop.index].uv[0] < 1e-4]
+    p = [q for q in pts if abs(q.z) < 0.07]
+    return math.atan2(p[0].y, p[0].x)
+
+
+def meridian(lon, hair, speed_mm_s, equator=False, radius_mm=80.0, press=7.0, rate=120.0):
+    """World matrices of the brush upright on the sphere: along the meridian at ``lon`` from
+    40 deg south over the north pole and down the far side, or once round the equator across
+    the seam; landing and lifting over 0.25 s."""
+    arc = math.radians(250.0 if not equator else 390.0)
+    n = int(arc * radius_mm / speed_mm_s * rate)
+    ts = np.linspace(0.0, arc, n)
+    lift = np.clip(np.minimum(ts, arc - ts) * radius_mm / speed_mm_s / 0.25, 0.0, 1.0)
+    out = []
+    for t, k in zip(ts, lift, strict=True):
+        if equator:
+            a = lon - math.radians(15.0) + t
+            nrm = np.array([math.cos(a), math.sin(a), 0.0])
+            x = np.array([-math.sin(a), math.cos(a), 0.0])
+        else:
+            lat = math.radians(-40.0) + t
+            nrm = np.array([math.cos(lat) * math.cos(lon), math.cos(lat) * math.sin(lon),
+                            math.sin(lat)])  # fmt: skip
+            x = np.array([-math.sin(lon), math.cos(lon), 0.0])
+        m = np.eye(4)
+        m[:3, :3] = np.stack([x, np.cross(nrm, x), nrm], axis=1)
+        m[:3, 3] = nrm * (radius_mm + hair + 5.0 - (press + 5.0) * k) / 1000
+        out.append(m)
+    return out
+
+
+def sun_direction(towards) -> tuple:
+    """Euler angles of a sun lamp shining from ``towards`` (a direction to the light)."""
+    from mathutils import Vector
+
+    return tuple(Vector(tuple(-np.asarray(towards))).to_track_quat("-Z", "Y").to_euler())
+
+
 def _plane(size):
     me = bpy.data.meshes.new("Floor")
     h = size / 2
@@ -290,9 +376,9 @@ def _plane(size):
 
 def main(argv) -> int:
     bench_live.install()
-    which = argv or ["vase", "tablet"]
+    which = argv or ["vase", "tablet", "sphere"]
     for name in which:
-        {"vase": vase, "tablet": tablet}[name]()
+        {"vase": vase, "tablet": tablet, "sphere": sphere}[name]()
     return 0
 
 
