@@ -400,3 +400,40 @@ def test_live_painting_on_the_surface_follows_the_mesh_and_replays(hb):
     replay = ext().sim.engine.Simulation(rec, ext().bridge.surface_paper(st, rec)).run()
     np.testing.assert_array_equal(replay.paper.ink, live.sim.paper.ink)
     assert (replay.paper.ink.mean(axis=2) > 0.3).sum() > 100
+
+
+def test_a_stroke_along_a_uv_spheres_seam_and_over_its_pole_has_no_gap(hb):
+    from mathutils import Matrix
+
+    sc = bpy.context.scene
+    bpy.ops.mesh.primitive_uv_sphere_add(segments=32, ring_count=16, radius=0.05)
+    st = surface_scene(bpy.context.active_object)
+    me = st.paper_object.data
+    uv = me.uv_layers.active.data
+    on_seam = [me.vertices[lp.vertex_index].co for lp in me.loops if uv[lp.index].uv[0] < 1e-4]
+    lon = math.atan2(on_seam[len(on_seam) // 2].y, on_seam[len(on_seam) // 2].x)
+    b = st.brush_object
+    b.rotation_mode = "QUATERNION"
+    x = np.array([-math.sin(lon), math.cos(lon), 0.0])  # rays along the seam's edges
+    lats = np.radians(np.linspace(20.0, 160.0, 36))
+    press = presses(len(lats), 3.0, 2)
+    for f, (lat, p) in enumerate(zip(lats, press, strict=True), start=1):
+        n = np.array([math.cos(lat) * math.cos(lon), math.cos(lat) * math.sin(lon), math.sin(lat)])
+        m = np.eye(4)
+        m[:3, :3] = np.stack([x, np.cross(n, x), n], axis=1)
+        m[:3, 3] = n * (50.0 + HAIR - p) / 1000
+        b.matrix_world = Matrix(m.tolist())
+        b.keyframe_insert("location", frame=f)
+        b.keyframe_insert("rotation_quaternion", frame=f)
+    sc.frame_start, sc.frame_end = 1, len(lats)
+    assert bpy.ops.hairy_brush.bake_samples() == {"FINISHED"}
+    rec = ext().bridge.recording_from_scene(sc)
+    assert np.abs(rec.samples[:, 3:5]).max() < 5.0  # upright on the surface all the way
+    assert bpy.ops.hairy_brush.simulate() == {"FINISHED"}
+    tp = texels(sc)
+    inked = ink(st.paper_image).ravel()[tp.index] > 0.3
+    X = tp.xyz[inked]
+    along = np.degrees(np.arctan2(X[:, 2], X[:, 0] * math.cos(lon) + X[:, 1] * math.sin(lon)))
+    assert np.histogram(along, bins=np.arange(45.0, 135.0, 2.0))[0].min() > 0  # over the pole
+    u = (tp.index % tp.W)[inked] / tp.W
+    assert (u < 0.05).any() and (u > 0.95).any()  # on both sides of the seam
