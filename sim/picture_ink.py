@@ -24,6 +24,7 @@ INK_SHARE = (0.002, 0.4)  # of the em box: less is no writing, more is not writi
 MAX_PIECES = 64  # separate pieces of ink (after specks are removed)
 SPECK = 2e-4  # a piece of ink smaller than this share of the em box is a speck
 SEAL_CHROMA = 0.3  # max - min of a pixel's RGB above which it is a colour, not ink or paper
+FILL_MIN, FILL = 0.5, 0.8  # writing smaller than FILL_MIN of the picture is framed to fill FILL
 PIN_HOLE = 4e-4  # a hole in the ink smaller than this share of the em box is filled
 
 
@@ -157,30 +158,62 @@ def _separation(d: np.ndarray, t: float) -> float:
     return float(w0 * (1 - w0) * (hi.mean() - lo.mean()) ** 2 / d.var())
 
 
-def find_ink(grey: np.ndarray, n: int, name: str = "the picture") -> Ink:
-    """The ink of a picture's luminance on the em box's n x n grid; PictureError when it holds
-    no writing (blank, mostly dark, no two tones, ink everywhere, too many pieces)."""
-    _check_ground(grey, name)
+def _read_ink(grey: np.ndarray, n: int, name: str) -> Ink:
+    """Darkness over the paper's level on the em box, Otsu's threshold, cleaned."""
     sq = _square(grey, n)
     paper = M.paper_level(sq, max(n // TILES, 4))
     dark = np.clip(1.0 - sq / paper, 0.0, 1.0)
     dark = _gaussian(dark, max(n / 512.0, 0.5))  # scan noise
-    if float(np.quantile(dark, 0.999)) < MIN_CONTRAST:
+    if float(np.quantile(dark, 0.9999)) < MIN_CONTRAST:
         raise PictureError(f"{name} shows no writing: nothing is darker than the paper")
     t = max(otsu(dark), MIN_CONTRAST / 2)
-    sep = _separation(dark, t)
-    mask = _clean(dark > t)
-    share = mask.mean()
-    if sep < MIN_SEPARATION or not INK_SHARE[0] <= share <= INK_SHARE[1]:
+    return Ink(_clean(dark > t), dark, float(t), _separation(dark, t))
+
+
+def _framed(grey: np.ndarray, ink: Ink) -> np.ndarray | None:
+    """When the writing fills less than FILL_MIN of the picture's side: the picture cut to a
+    square round it in which it fills FILL (as a font's character fills its em box), the paper's
+    colour beyond the picture's edges. None when it fills the picture already."""
+    n = ink.mask.shape[0]
+    ys, xs = np.nonzero(ink.mask)
+    if ys.size == 0:
+        return None
+    side = max(np.ptp(ys), np.ptp(xs)) + 1
+    if side >= FILL_MIN * n:
+        return None
+    h, w = grey.shape
+    s = max(h, w)
+    k = s / n  # picture pixels per em-box pixel
+    cy = (ys.min() + ys.max() + 1) / 2 * k - (s - h) // 2
+    cx = (xs.min() + xs.max() + 1) / 2 * k - (s - w) // 2
+    size = max(int(round(side * k / FILL)), MIN_PICTURE_SIDE)
+    y0, x0 = int(round(cy - size / 2)), int(round(cx - size / 2))
+    out = np.full((size, size), float(np.quantile(grey, 0.9)))
+    ya, yb, xa, xb = max(y0, 0), min(y0 + size, h), max(x0, 0), min(x0 + size, w)
+    out[ya - y0 : yb - y0, xa - x0 : xb - x0] = grey[ya:yb, xa:xb]
+    return out
+
+
+def find_ink(grey: np.ndarray, n: int, name: str = "the picture") -> Ink:
+    """The ink of a picture's luminance on the em box's n x n grid (the picture cut round the
+    writing first when the writing is small in it, ``_framed``); PictureError when it holds no
+    writing (blank, mostly dark, no two tones, ink everywhere, too many pieces)."""
+    _check_ground(grey, name)
+    ink = _read_ink(grey, n, name)
+    framed = _framed(grey, ink)
+    if framed is not None:
+        ink = _read_ink(framed, n, name)
+    share = ink.mask.mean()
+    if ink.separation < MIN_SEPARATION or not INK_SHARE[0] <= share <= INK_SHARE[1]:
         raise PictureError(
             f"{name} does not look like dark writing on paper (ink {100 * share:.1f}% of the "
-            f"picture, two-tone {sep:.2f}; writing is {100 * INK_SHARE[0]:g}-"
+            f"picture, two-tone {ink.separation:.2f}; writing is {100 * INK_SHARE[0]:g}-"
             f"{100 * INK_SHARE[1]:g}% ink and two-tone above {MIN_SEPARATION})"
         )
-    pieces = M.label(mask)[1]
+    pieces = M.label(ink.mask)[1]
     if pieces > MAX_PIECES:
         raise PictureError(
             f"{name} breaks into {pieces} separate pieces of ink; writing has at most "
             f"{MAX_PIECES} (is it a photo or a page of text?)"
         )
-    return Ink(mask, dark, float(t), sep)
+    return ink

@@ -118,6 +118,18 @@ def test_a_red_seal_is_not_writing_but_red_writing_is():
     assert iou(read_picture(vermilion, 256).ink.mask, m) > 0.99
 
 
+def test_small_writing_in_a_large_picture_is_framed():
+    big = np.full((600, 900), 0.9)
+    big[400:520, 650:770] = picture("木", 120)  # a small character near a corner
+    im = read_picture(big, 512)
+    ys, xs = np.nonzero(im.ink.mask)
+    assert 0.7 * 512 < max(np.ptp(ys), np.ptp(xs)) < 0.9 * 512  # it fills the em box
+    assert len(im.strokes) == 4
+    # a character that fills its picture already is left as it is (the em box is the picture)
+    full = read_picture(picture("木", 256), 256)
+    assert iou(full.ink.mask, rasterise(unseen("木"), 256)) > 0.99
+
+
 def test_unseen_characters_strokes_order_and_direction():
     per = {}
     for c in CHARS:
