@@ -453,13 +453,19 @@ def texel_points(surface: Surface, W: int, H: int, chunk: int = 1 << 20) -> Texe
         stop = start + max(int(np.searchsorted(cum, chunk)), 1)
         _rasterise(coef, np.arange(start, stop), lo, nx, counts, W, best, owner)
         start = stop
-    idx = np.flatnonzero(owner >= 0)
-    tri = owner[idx]
-    bary = _bary(coef[tri], (idx % W).astype(float), (idx // W).astype(float))
-    xyz = np.einsum("kj,kjd->kd", bary, surface.corners[tri])
-    # 28 bytes a texel kept (float32 points are within 0.001 mm on a 5 m surface)
-    normal = surface.face_normals[tri].astype(np.float32)
-    return TexelPoints(idx.astype(np.int32), xyz.astype(np.float32), normal, W, H)
+    del best
+    idx = np.flatnonzero(owner >= 0).astype(np.int32)
+    # 28 bytes a texel kept (float32 points are within 0.001 mm on a 5 m surface), made a
+    # chunk at a time (a texel's barycentric and corner arrays cost 100 bytes)
+    xyz = np.empty((idx.size, 3), np.float32)
+    normal = np.empty((idx.size, 3), np.float32)
+    for k0 in range(0, idx.size, chunk):
+        i = idx[k0 : k0 + chunk]
+        tri = owner[i]
+        bary = _bary(coef[tri], (i % W).astype(float), (i // W).astype(float))
+        xyz[k0 : k0 + chunk] = np.einsum("kj,kjd->kd", bary, surface.corners[tri])
+        normal[k0 : k0 + chunk] = surface.face_normals[tri]
+    return TexelPoints(idx, xyz, normal, W, H)
 
 
 def _edge_functions(uvp) -> np.ndarray:
@@ -505,12 +511,17 @@ class SpatialHash:
     """Points binned in cubes of ``cell`` mm: the points near a place in time proportional to
     the points there."""
 
-    def __init__(self, xyz: np.ndarray, cell: float):
+    def __init__(self, xyz: np.ndarray, cell: float, chunk: int = 1 << 20):
         self.cell = float(cell)
-        ijk = np.floor(xyz / self.cell).astype(np.int64)
-        self.lo = ijk.min(axis=0) if len(ijk) else np.zeros(3, np.int64)
-        self.dims = (ijk.max(axis=0) - self.lo + 1) if len(ijk) else np.ones(3, np.int64)
-        keys = self._key(ijk)
+        if len(xyz):
+            self.lo = np.floor(xyz.min(axis=0) / self.cell).astype(np.int64)
+            self.dims = np.floor(xyz.max(axis=0) / self.cell).astype(np.int64) - self.lo + 1
+        else:
+            self.lo, self.dims = np.zeros(3, np.int64), np.ones(3, np.int64)
+        keys = np.empty(len(xyz), np.int64)
+        for k in range(0, len(xyz), chunk):  # a chunk at a time: 8 bytes a point at most
+            ijk = np.floor(xyz[k : k + chunk] / self.cell).astype(np.int64)
+            keys[k : k + chunk] = self._key(np.clip(ijk, self.lo, self.lo + self.dims - 1))
         self.order = np.argsort(keys, kind="stable")
         self.keys = keys[self.order]
 
