@@ -445,13 +445,16 @@ def texel_points(surface: Surface, W: int, H: int, chunk: int = 1 << 20) -> Texe
     counts = nx * np.maximum(hi[:, 1] - lo[:, 1], 0)
     coef = _edge_functions(uvp)
     counts[~np.isfinite(coef).all(axis=(1, 2))] = 0  # UV triangles of no area hold no texel
+    # each edge function over its gradient's length: the signed distance (texels) to the edge
+    with np.errstate(invalid="ignore"):
+        dist = (coef / np.hypot(coef[:, :, 0], coef[:, :, 1])[:, :, None]).astype(np.float32)
     best = np.full(W * H, -np.inf, dtype=np.float32)  # 8 bytes a texel while building
     owner = np.full(W * H, -1, dtype=np.int32)
     start = 0
     while start < len(counts):  # groups of triangles of about ``chunk`` candidate texels
         cum = np.cumsum(counts[start:])
         stop = start + max(int(np.searchsorted(cum, chunk)), 1)
-        _rasterise(coef, np.arange(start, stop), lo, nx, counts, W, best, owner)
+        _rasterise(dist, np.arange(start, stop), lo, nx, counts, W, best, owner)
         start = stop
     del best
     idx = np.flatnonzero(owner >= 0).astype(np.int32)
@@ -487,7 +490,7 @@ def _bary(coef, x, y) -> np.ndarray:
     return coef[:, :, 0] * x[:, None] + coef[:, :, 1] * y[:, None] + coef[:, :, 2]
 
 
-def _rasterise(coef, sel, lo, nx, counts, W, best, owner):
+def _rasterise(dist, sel, lo, nx, counts, W, best, owner):
     """One group of triangles' candidate texels: keep each texel's deepest triangle (its
     signed distance in texels to the nearest edge, the largest; the later one on a tie)."""
     n = counts[sel]
@@ -495,13 +498,13 @@ def _rasterise(coef, sel, lo, nx, counts, W, best, owner):
     k = np.arange(int(n.sum())) - np.repeat(np.cumsum(n) - n, n)
     x = lo[tri, 0] + k % nx[tri]
     y = lo[tri, 1] + k // nx[tri]
-    c = coef[tri]
-    # barycentric coordinate / its gradient's length = signed distance (texels) to the edge
-    grad = np.hypot(c[:, :, 0], c[:, :, 1])
-    depth = (_bary(c, x.astype(float), y.astype(float)) / grad).min(axis=1)
+    c = dist[tri]  # float32: the pad's edge needs no more
+    xf, yf = x.astype(np.float32), y.astype(np.float32)
+    depth = c[:, 0, 0] * xf + c[:, 0, 1] * yf + c[:, 0, 2]
+    for i in (1, 2):
+        np.minimum(depth, c[:, i, 0] * xf + c[:, i, 1] * yf + c[:, i, 2], out=depth)
     keep = depth >= -PAD_TEXELS
     flat, depth, tri = (y * W + x)[keep], depth[keep], tri[keep]
-    depth = depth.astype(np.float32)
     np.maximum.at(best, flat, depth)
     win = depth >= best[flat]
     owner[flat[win]] = tri[win]
