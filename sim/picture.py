@@ -2,16 +2,18 @@
 """Imitating a picture (Sec. 9, "automatic imitation"): from a picture of writing to a
 recording of the brush writing it.
 
-1. The ink (``picture_ink``): the picture fitted into the em box, the paper's uneven level
-   divided out, Otsu's threshold, specks and pin-holes cleaned.
+1. The ink (``picture_ink``): the picture fitted into the em box (small writing framed), the
+   paper's uneven level divided out, a red seal taken for paper, Otsu's threshold, specks and
+   pin-holes cleaned.
 2. The strokes (``picture_strokes``): the ink's skeleton as chains between junctions, spurs
    pruned, chains that continue each other by direction joined across junctions; each with its
    half-width along it (the distance transform).
 3. Direction and order (here), as calligraphy is taught: a stroke runs left to right when it
    lies flat, else top to bottom, except that a stroke that rises to the right starts at its
    thicker end (where the brush entered: a rising 提 or a flat 撇, whose tail is a point);
-   strokes go top to bottom, left to right, a horizontal before the stroke that crosses it or
-   hangs from it, and after one that stands on it.
+   side-by-side parts of the character go left to right, and in each the strokes top to
+   bottom, left to right, a horizontal before the stroke that crosses it or hangs from it, and
+   after one that stands on it.
 4. Character data (here): each stroke's median, and as its outline the picture's own ink round
    it (the ink within its width of its median, the rest of the ink to the nearest stroke),
    traced into polygons; so ``imitate.write_character`` presses as wide as the picture's
@@ -27,6 +29,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from . import picture_morph as M
+from .hanzi import MAX_STROKES
 from .outline import EM, TOP, discs
 from .picture_ink import Ink, PictureError, find_ink, grey_of, load_picture
 from .picture_strokes import Stroke, find_strokes
@@ -42,8 +45,7 @@ MEDIAN_EPS = 2.0  # px at 512: the median simplified this closely
 OUTLINE_EPS = 0.6  # px: the outline's polygons simplified this closely
 MAX_OUTLINE_POINTS = 1500  # per stroke (sim.hanzi takes up to 2000)
 MAX_MEDIAN_POINTS = 200  # per stroke (sim.hanzi takes up to 256)
-MAX_STROKES = 64
-PASSES = 5  # practice passes per stroke: the picture's ink is the target (3: IoU 0.03 lower)
+PASSES = 5  # practice passes per stroke: the picture's ink is the target (3: IoU 0.01 lower)
 
 
 @dataclass
