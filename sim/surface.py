@@ -7,10 +7,12 @@ The design, in three parts:
 
 1. **The local frame.** Each sample is taken where the brush's axis meets the surface (the
    closest surface point when the axis misses it): the point P, the smooth normal N there (the
-   paper's z: the brush's height above the surface and its tilts are measured against it) and a
-   tangent T (B = N x T). T is carried from sample to sample by the smallest rotation that keeps
-   it tangent (parallel transport, ``transport``); the first sample's T is the surface's x axis
-   projected on the tangent plane. The engine's sample is the brush's pose in that frame, so the
+   paper's z: the brush's height above the surface and its tilts are measured against it; faces
+   meeting at less than SMOOTH_ANGLE_DEG are smoothed, sharper edges stay) and a tangent T
+   (B = N x T). T is carried from sample to sample by the smallest rotation that keeps it
+   tangent (parallel transport, ``transport``); the first sample's T is the brush's own x axis
+   (baking) or the surface's x axis (painting) on the tangent plane, and the rotation r is kept
+   continuous. The engine's sample is the brush's pose in that frame, so the
    brush model, which only knows a flat paper at z = 0, is unchanged: it writes on the tangent
    plane at P.
 2. **The chart.** The brush's dynamics need one continuous plane to move on, so the surface is
