@@ -261,7 +261,9 @@ def _pairs(chains: list, nodes: list) -> dict:
         for cos, a, b in cand:
             if a in partner or b in partner:
                 continue
-            corner = len(node.chains) == 2 and _is_corner(ways[a], ways[b])
+            corner = len(node.chains) == 2 and (
+                _is_corner(ways[a], ways[b]) or _is_open_l(chains, a, b, ways)
+            )
             if cos < CONTINUE_COS or corner:
                 partner[a], partner[b] = b, a
         for cos, a, b in cand:  # a stroke's overhang at a corner of three continues it
@@ -280,6 +282,17 @@ def _is_corner(u: np.ndarray, v: np.ndarray) -> bool:
     turn_down = (u @ left > 0.8 and v @ down > 0.6) or (v @ left > 0.8 and u @ down > 0.6)
     hook = u[1] < -0.3 and v[1] < -0.3 and float(u @ v) > HOOK_COS
     return bool(turn_down or hook)
+
+
+def _is_open_l(chains: list, a, b, ways: dict) -> bool:
+    """A vertical turning right at its foot into a horizontal that ends free (the ㄴ of 亡 or
+    区): one stroke, 竖折. Where the horizontal runs on into another stroke (the foot of 口,
+    closed by its right side) the two are separate strokes."""
+    up, right = np.array([0.0, -1.0]), np.array([1.0, 0.0])
+    for v, h in ((a, b), (b, a)):
+        if ways[v] @ up > 0.8 and ways[h] @ right > 0.8:
+            return chains[h[0]].ends[1 - h[1]] < 0
+    return False
 
 
 def _line(a: np.ndarray, b: np.ndarray) -> np.ndarray:

@@ -118,6 +118,14 @@ def test_a_red_seal_is_not_writing_but_red_writing_is():
     assert iou(read_picture(vermilion, 256).ink.mask, m) > 0.99
 
 
+def test_corners_one_stroke_or_two():
+    # 亡's ㄴ (a vertical turning right into a horizontal that ends free) is one stroke, 竖折;
+    # 口's foot, closed by its right side, is two; 口's 横折 is one
+    for c in ("亡", "口"):
+        a = order_agreement(read_picture(picture(c, 256), 256).char, unseen(c), 256)
+        assert a["same"], (c, a)
+
+
 def test_small_writing_in_a_large_picture_is_framed():
     big = np.full((600, 900), 0.9)
     big[400:520, 650:770] = picture("木", 120)  # a small character near a corner
