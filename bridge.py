@@ -34,6 +34,7 @@ PRIMITIVE_COLLECTION = "HairyBrush Primitives"
 PAPER_TAG = "hairy_brush_paper"
 PAINTED_KEY = "painted_samples"  # in a recording's "blender" extra: samples painted live
 SHOWN_TAG = "hairy_brush_shown"  # on the paper image: how many samples it shows
+DENSITY_TAG = "hairy_brush_density"  # on the paper image: its ink density image (relief)
 SAMPLES_TAG = "hairy_brush_samples"  # on a recording text: its samples and dips when stored
 DIPS_TAG = "hairy_brush_dips"
 PRIMITIVE_TAG = "hairy_brush_primitive"
@@ -511,6 +512,68 @@ def show_paper(img, paper, index: int):
     img.pixels.foreach_set(view.flat())
     img.update()
     img[SHOWN_TAG] = int(index)
+    if DENSITY_TAG in img:
+        show_density(img, paper.ink)
+    tag_reliefs(img)
+
+
+def tag_reliefs(img):
+    """Objects whose Displace modifier reads the paper image (or its density image) are
+    evaluated again: new pixels alone do not move a relief's vertices."""
+    images = {img.name, img.get(DENSITY_TAG)}
+    for obj in bpy.data.objects:
+        for mod in obj.modifiers if obj.type == "MESH" else ():
+            tex = getattr(mod, "texture", None) if mod.type == "DISPLACE" else None
+            if tex is not None and getattr(tex, "image", None) is not None:
+                if tex.image.name in images:
+                    obj.update_tag()
+                    break
+
+
+def density_image(img, create: bool = False):
+    """The paper image's ink density image (a relief that follows the density reads it;
+    None when there is none and ``create`` is False)."""
+    name = img.get(DENSITY_TAG)
+    dens = bpy.data.images.get(name) if isinstance(name, str) else None
+    if dens is None and create:
+        w, h = img.size
+        dens = bpy.data.images.new(f"{img.name} Ink Density", w, h, float_buffer=True)
+        dens.colorspace_settings.name = "Non-Color"  # read as it is: the density
+        dens[PAPER_TAG] = 1  # packed on save with the paper
+        img[DENSITY_TAG] = dens.name
+    return dens
+
+
+def show_density(img, ink=None):
+    """Fill the paper image's density image: the mean of the ink's density (the engine's
+    ``Paper.ink``, bottom row first; None: the blank paper), grey. Costs a whole image, so
+    only a paper with a density relief has one."""
+    dens = density_image(img)
+    if dens is None:
+        return
+    w, h = img.size
+    if ink is None:
+        write_density(dens, np.zeros((h, w), np.float32))
+    else:
+        write_density(dens, np.clip(ink.mean(axis=2, dtype=np.float32), 0.0, 1.0))
+
+
+def write_density(dens, density):
+    """A density (H, W), bottom row first, into the density image, grey."""
+    h, w = density.shape
+    if tuple(dens.size) != (w, h):
+        dens.scale(w, h)
+    rgba = np.ones((h, w, 4), np.float32)
+    rgba[..., :3] = density[..., None]
+    dens.pixels.foreach_set(rgba.ravel())
+    dens.update()
+
+
+def density_from_image(st, img) -> np.ndarray:
+    """The ink density (H, W) the paper image shows: 1 - visible / the paper's colour, the
+    channels' mean (the inverse of ``Paper.rgb``, to the image's precision)."""
+    paper = np.maximum(np.asarray(blank_color(st), np.float32), 1e-6)
+    return np.clip(1.0 - image_rgb(img) / paper, 0.0, 1.0).mean(axis=2)
 
 
 def show_blank(st):
@@ -522,6 +585,7 @@ def show_blank(st):
     blank[:] = color
     write_image(img, blank)
     img[SHOWN_TAG] = 0
+    show_density(img)
     return img
 
 

@@ -5,14 +5,16 @@ meshes are carved (like a stone tablet) or embossed under the ink, through their
 It stays live: a Displace modifier reads the paper image, so re-simulating or a frame change
 updates the relief. Displacement along the normal is (texture value - paper's value) x
 strength, so the bare paper does not move and full ink moves by the depth; between them it
-follows the image's value (linear light for a float image, so thin ink moves a little more than
-in proportion to its density)."""
+follows the image's value (linear light for a float image, so thin ink moves more than in
+proportion to its density: half density, 79% of the depth). With ``follow='DENSITY'`` the
+modifier reads an ink density image instead (bridge.density_image, refreshed with the paper
+image), and the displacement is exactly the density x the depth."""
 
 from __future__ import annotations
 
 import bpy
 
-from .. import bridge
+from .. import bridge, playback
 from ..sim import display
 from . import polls
 
@@ -82,6 +84,24 @@ class HAIRY_BRUSH_OT_relief(bpy.types.Operator):
         description="How far full ink moves the surface, in millimetres of the mesh's own "
         "units (metres in a scene at scale 1)",
     )
+    follow: bpy.props.EnumProperty(
+        name="Depth Follows",
+        items=(
+            (
+                "VALUE",
+                "Image Value",
+                "The paper image's value (linear light): full ink moves by the depth, thin ink "
+                "somewhat more than its share",
+            ),
+            (
+                "DENSITY",
+                "Ink Density",
+                "The ink's density, exactly in proportion: the relief reads an ink density image "
+                "that follows the paper (it costs a second image refresh)",
+            ),
+        ),
+        default="VALUE",
+    )
     detail: bpy.props.IntProperty(
         name="Detail",
         default=0,
@@ -103,10 +123,18 @@ class HAIRY_BRUSH_OT_relief(bpy.types.Operator):
             self.report({"ERROR"}, "None of the selected meshes has a UV map to read the ink")
             return {"CANCELLED"}
         img = st.paper_image
-        mid = paper_value(st, img)
         sign = 1.0 if self.mode == "CARVE" else -1.0
-        strength = sign * self.depth_mm / bridge.MM / max(mid, 1e-6)
-        tex = relief_texture(img)
+        if self.follow == "DENSITY":  # displacement = density x (-sign depth)
+            dens = bridge.density_image(img, create=True)
+            try:  # the engine's own density at the sample the image shows (fills the image)
+                playback.show(context.scene, int(img[bridge.SHOWN_TAG]))
+            except (*bridge.USER_ERRORS, KeyError, MemoryError):  # else as the image shows it
+                bridge.write_density(dens, bridge.density_from_image(st, img))
+            mid, strength, tex = 0.0, -sign * self.depth_mm / bridge.MM, relief_texture(dens)
+        else:  # displacement = (value - paper's value) x strength: 0 bare, -sign depth full
+            mid = paper_value(st, img)
+            strength = sign * self.depth_mm / bridge.MM / max(mid, 1e-6)
+            tex = relief_texture(img)
         for obj in with_uv:
             add_relief(obj, tex, strength, mid, self.detail)
         skipped = [o.name for o in meshes if not o.data.uv_layers]

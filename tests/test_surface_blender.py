@@ -437,3 +437,36 @@ def test_a_stroke_along_a_uv_spheres_seam_and_over_its_pole_has_no_gap(hb):
     assert np.histogram(along, bins=np.arange(45.0, 135.0, 2.0))[0].min() > 0  # over the pole
     u = (tp.index % tp.W)[inked] / tp.W
     assert (u < 0.05).any() and (u > 0.95).any()  # on both sides of the seam
+
+
+def test_a_density_relief_moves_the_surface_in_proportion_to_the_ink_and_follows_frames(hb):
+    sc = bpy.context.scene
+    cyl = cylinder()
+    st = surface_scene(cyl)
+    n = 21
+    key_around(st, np.linspace(-30, 30, n), presses(n, 6.0, 2))
+    bpy.ops.hairy_brush.bake_samples()
+    bpy.ops.hairy_brush.simulate()
+    select_only(cyl)
+    assert bpy.ops.hairy_brush.relief(depth_mm=1.5, detail=4, follow="DENSITY") == {"FINISHED"}
+    relief = cyl.modifiers[ext().operators.relief.RELIEF]
+    r, uv = _radii_and_uvs(cyl)
+    relief.show_viewport = False
+    r0, _uv = _radii_and_uvs(cyl)
+    relief.show_viewport = True
+    density = ext().playback.playback_for(sc).sim.paper.ink.mean(axis=2)
+    w = density.shape[1]
+    px = np.clip((uv * w).astype(int), 1, w - 2)
+    win = np.stack(
+        [density[px[:, 1] + dy, px[:, 0] + dx] for dy in (-1, 0, 1) for dx in (-1, 0, 1)]
+    )
+    even = np.ptp(win, axis=0) < 0.02
+    moved = r0 - r
+    part = even & (win.min(axis=0) > 0.05)
+    assert part.sum() > 10 and (even & (win.max(axis=0) < 1e-6)).sum() > 1000
+    np.testing.assert_allclose(moved[part], 1.5 * win.mean(axis=0)[part], atol=0.03)
+    np.testing.assert_allclose(moved[even & (win.max(axis=0) < 1e-6)], 0.0, atol=1e-6)
+    # live: the relief follows the paper to an earlier frame (less written, less carved)
+    sc.frame_set(sc.frame_start + 10)  # a quarter of the way
+    early = r0 - _radii_and_uvs(cyl)[0]
+    assert 0.05 * moved.sum() < early.sum() < 0.5 * moved.sum()
