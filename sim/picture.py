@@ -38,6 +38,7 @@ FLAT = np.tan(np.radians(30.0))  # a stroke whose chord rises less than this lie
 STEEP = np.tan(np.radians(60.0))
 THICKER = 1.3  # an end this much thicker than the other is where the brush entered
 POINTED = 1.8  # a flat stroke must end this much thinner to be a 撇 (a 横 ends pressed)
+OVERHANG = 0.15  # of a piece of ink's width at either side: a tip reaching over, not a part
 MIN_SIDE = 0.2  # a side-by-side part of a character holds at least this share of its ink
 ROW = 0.05  # strokes starting within this share of the em box of each other are one row
 TUBE = (1.0, 0.5)  # a stroke's own ink: within its half-width of its median, plus pixels
@@ -110,6 +111,25 @@ def _must_precede(a: Stroke, b: Stroke) -> bool:
     return False
 
 
+def _cores(mask: np.ndarray) -> np.ndarray:
+    """The ink without the outer OVERHANG of each separate piece's width on either side: the
+    tip of 亻's 丿 reaching over the start of 也 does not join the two parts."""
+    lab, k = M.label(mask)
+    if k == 0:
+        return mask
+    cols = np.broadcast_to(np.arange(mask.shape[1]), mask.shape)[mask]
+    ids = lab[mask]
+    lo = np.full(k + 1, mask.shape[1])
+    hi = np.full(k + 1, -1)
+    np.minimum.at(lo, ids, cols)
+    np.maximum.at(hi, ids, cols)
+    cut = OVERHANG * (hi - lo)
+    keep = (cols >= (lo + cut)[ids]) & (cols <= (hi - cut)[ids])
+    out = np.zeros_like(mask)
+    out[mask] = keep
+    return out
+
+
 def _sides(strokes: list, idx: list, mask: np.ndarray, x0: int, x1: int) -> list[list]:
     """The strokes ``idx`` in side-by-side parts, left to right: the ink between columns x0
     and x1 is cut at the widest column free of ink that leaves two strokes or more and a
@@ -142,7 +162,8 @@ def writing_order(strokes: list, n: int, mask: np.ndarray | None = None) -> list
     k = len(strokes)
     side = np.zeros(k, dtype=int)
     if mask is not None:
-        for g, members in enumerate(_sides(strokes, list(range(k)), mask, 0, mask.shape[1])):
+        core = _cores(mask)
+        for g, members in enumerate(_sides(strokes, list(range(k)), core, 0, mask.shape[1])):
             side[members] = g
     after = {i: set() for i in range(k)}
     for i in range(k):
