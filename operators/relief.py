@@ -4,11 +4,12 @@ meshes are carved (like a stone tablet) or embossed under the ink, through their
 
 It stays live: a Displace modifier reads the paper image, so re-simulating or a frame change
 updates the relief. Displacement along the normal is (texture value - paper's value) x
-strength, so the bare paper does not move and full ink moves by the depth; between them it
-follows the image's value (linear light for a float image, so thin ink moves more than in
-proportion to its density: half density, 79% of the depth). With ``follow='DENSITY'`` the
-modifier reads an ink density image instead (bridge.density_image, refreshed with the paper
-image), and the displacement is exactly the density x the depth."""
+strength, so the bare paper does not move and full ink moves by the depth. By default
+(``follow='DENSITY'``, issue 17.3: "in proportion to the ink density") the modifier reads an ink
+density image (bridge.density_image, refreshed with the paper image), and the displacement is
+exactly the density x the depth. With ``follow='VALUE'`` it reads the paper image's value
+instead (linear light for a float image, so thin ink moves more than in proportion to its
+density: half density, 79% of the depth), which costs no second image refresh."""
 
 from __future__ import annotations
 
@@ -100,7 +101,7 @@ class HAIRY_BRUSH_OT_relief(bpy.types.Operator):
                 "that follows the paper (it costs a second image refresh)",
             ),
         ),
-        default="VALUE",
+        default="DENSITY",
     )
     detail: bpy.props.IntProperty(
         name="Detail",
