@@ -41,7 +41,9 @@ def test_paper_grain_makes_the_edge_ragged_and_keeps_the_body(monkeypatch):
     clean = _stroke(monkeypatch, 0.0)
     grainy = _stroke(monkeypatch, GRAIN_DEPTH)
     m0, m1 = clean.paper.ink[..., 0] > 0.5, grainy.paper.ink[..., 0] > 0.5
-    assert perimeter(m1) > 1.02 * perimeter(m0)
+    # (1.01: the default ink's radiation, Eq. 5's cr = -0.04 since issue 16, already pales the
+    # band towards its edge, so the grain moves fewer edge pixels across the threshold)
+    assert perimeter(m1) > 1.01 * perimeter(m0)
     assert np.count_nonzero(m1) > 0.95 * np.count_nonzero(m0)
     t0, t1 = texture_stats(clean.image()), texture_stats(grainy.image())
     assert t1.ragged_edge > 1.4 * t0.ragged_edge
