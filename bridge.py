@@ -6,6 +6,7 @@ The maths (units, poses, rays, frames) is in ``sim.placement``; here it meets Bl
 
 from __future__ import annotations
 
+import dataclasses
 import hashlib
 import json
 import math
@@ -384,13 +385,78 @@ def surface_paper(st, rec: Recording):
             f"The recording has no surface frames (it was made on flat paper): bake or paint "
             f"it again on '{st.paper_object.name}', or set up a flat paper to replay it"
         )
+    return surface_paper_base(surface, digest, rec).with_frames(frames)
+
+
+def surface_paper_base(surface, digest: str, rec: Recording, build: bool = True):
+    """The SurfacePaper (no frames) of a surface at the recording's texture size and px/mm,
+    kept for the session; None when it is not kept yet and ``build`` is False."""
     key = (digest, rec.width_px, rec.height_px, rec.px_per_mm)
     if key not in _PAPERS:
-        _PAPERS.clear()
-        _PAPERS[key] = surf.SurfacePaper(
-            surface, None, rec.width_px, rec.height_px, rec.px_per_mm, rec.width_mm
+        if not build:
+            return None
+        keep_surface_paper(
+            digest,
+            surf.SurfacePaper(
+                surface, None, rec.width_px, rec.height_px, rec.px_per_mm, rec.width_mm
+            ),
         )
-    return _PAPERS[key].with_frames(frames)
+    return _PAPERS[key]
+
+
+def keep_surface_paper(digest: str, paper):
+    """Keep a SurfacePaper built elsewhere (a worker) for the session."""
+    _PAPERS.clear()
+    _PAPERS[(digest, paper.W, paper.H, paper.ppm)] = paper
+
+
+class SurfaceWriting:
+    """Writing done on flat paper (Write Character, Imitate Picture) laid on the scene's surface
+    (issue 17) around the point under the brush empty. Made on Blender's thread; ``lay`` is
+    numpy only, so a worker runs it."""
+
+    def __init__(self, scene):
+        st = settings(scene)
+        self.surface, self.digest = mesh_surface(st.paper_object)
+        base, rot = surface_pose(st, st.brush_object.matrix_world)
+        hit = surf.axis_hit(self.surface, base, rot, surface_caster(st))
+        self.centre = np.array(surface_origin(st))  # the writing's centre: under the brush
+        self.start = surf.start_frame(self.surface, hit, self.centre, rot[:, 0])
+        self.template = settings_recording(scene)
+        self.paper = surface_paper_base(self.surface, self.digest, self.template, build=False)
+
+    def lay(self, flat: Recording, size_mm: float, progress=None):
+        """(recording on the surface, its finished Simulation) of a recording written on a
+        flat size_mm square: the samples moved so the square's centre is the chart's point
+        under the brush, their frames followed over the surface from there (sim.surface.lay_on),
+        the scene's settings (the texture keeps its size), simulated on the surface."""
+        from .sim.engine import Simulation
+        from .sim.recording import quantise
+
+        samples = np.array(flat.samples, dtype=float)
+        samples[:, :2] += self.centre - size_mm / 2
+        samples = quantise(samples)
+
+        def part(lo, hi, what):
+            return None if progress is None else (lambda f: progress(lo + (hi - lo) * f, what))
+
+        near = self.paper.near if self.paper is not None else surf.TriangleGrid(self.surface)
+        frames = surf.lay_on(self.surface, self.start, samples, near, part(0, 0.3, "laying"))
+        extra = {**self.template.extra, SURFACE_KEY: {"frames": frames.tolist()}}
+        rec = dataclasses.replace(self.template, samples=samples, dips=list(flat.dips))
+        rec.extra = extra
+        t = self.template
+        if self.paper is None:
+            self.paper = surf.SurfacePaper(
+                self.surface, None, t.width_px, t.height_px, t.px_per_mm, t.width_mm
+            )
+        sim = Simulation(rec, surface=self.paper.with_frames(frames))
+        return rec, sim.run(progress=part(0.3, 1.0, "simulating on the surface"))
+
+    def matrices(self, st, rec: Recording) -> list:
+        """World matrices of the brush along the laid recording (its surface poses)."""
+        frames = np.asarray(rec.extra[SURFACE_KEY]["frames"], dtype=float)
+        return [surface_matrix(st, f, s) for f, s in zip(frames, rec.samples, strict=True)]
 
 
 def surface_pose(st, mw) -> tuple[np.ndarray, np.ndarray]:
@@ -633,23 +699,30 @@ def hair_length(st) -> float:
 def keyframe_samples(scene, st, samples, rate_hz: float, frame_start: float):
     """Keyframe the brush empty along 6-DOF samples (one key per sample, linear), so the
     writing plays, can be edited, and bakes back into the same samples."""
+    paper_mw = st.paper_object.matrix_world
+    mats = [matrix_from_sample(st, paper_mw, s) for s in samples]
+    return keyframe_matrices(scene, st, mats, rate_hz, frame_start)
+
+
+def keyframe_matrices(scene, st, mats, rate_hz: float, frame_start: float):
+    """Keyframe the brush empty through world matrices, one a sample (linear); returns the
+    last key's frame."""
     from mathutils import Matrix
 
     obj = st.brush_object
     obj.rotation_mode = "ZYX"
     fps = scene.render.fps / scene.render.fps_base
-    frames = frame_start + np.arange(len(samples)) * fps / rate_hz
+    frames = frame_start + np.arange(len(mats)) * fps / rate_hz
     if obj.parent is not None:
         parent = np.array(obj.parent.matrix_world) @ np.array(obj.matrix_parent_inverse)
     else:
         parent = np.eye(4)
     inv_parent = np.linalg.inv(parent)
-    paper_mw = st.paper_object.matrix_world
-    loc = np.empty((len(samples), 3))
-    rot = np.empty((len(samples), 3))
+    loc = np.empty((len(mats), 3))
+    rot = np.empty((len(mats), 3))
     prev = None
-    for i, s in enumerate(samples):
-        basis = Matrix((inv_parent @ matrix_from_sample(st, paper_mw, s)).tolist())
+    for i, m in enumerate(mats):
+        basis = Matrix((inv_parent @ np.asarray(m)).tolist())
         t, q, _scale = basis.decompose()
         e = q.to_euler("ZYX", prev) if prev is not None else q.to_euler("ZYX")
         loc[i], rot[i], prev = t[:], e[:], e
@@ -662,7 +735,7 @@ def keyframe_samples(scene, st, samples, rate_hz: float, frame_start: float):
         for k in range(3):
             fc = curves[(path, k)]
             kp = fc.keyframe_points
-            kp.add(len(samples) - len(kp))
+            kp.add(len(mats) - len(kp))
             co = np.stack([frames, values[:, k]], axis=1).astype(np.float32)
             kp.foreach_set("co", co.ravel())
             for p in kp:

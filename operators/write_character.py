@@ -2,7 +2,11 @@
 """hairy_brush.write_character: write a character from stroke data (hanzi-writer-data files or
 Make Me a Hanzi's graphics.txt) with the brush, and keyframe the brush empty along the
 trajectory: press from the outline's width through the brush's calibrated response. From the
-sidebar the writing runs as a modal job (Esc stops it; the scene changes only at the end)."""
+sidebar the writing runs as a modal job (Esc stops it; the scene changes only at the end).
+
+On a surface paper (issue 17) the writing is laid on the surface around the point under the
+brush empty (bridge.SurfaceWriting): the brush is keyframed over the surface, the recording keeps
+its frames, the texture keeps its size and shows the writing simulated on the surface."""
 
 from __future__ import annotations
 
@@ -21,9 +25,17 @@ from .jobs import JobOperator, WorkerJob
 
 class WriteJob(WorkerJob):
     """The writing itself (calibration, practice passes) in a worker; ``finish`` sizes the
-    paper, keyframes the brush, stores the recording and shows the writing."""
+    paper, keyframes the brush, stores the recording and shows the writing. On a surface the
+    worker also lays the writing on it and simulates it there."""
 
     title = "Writing character"
+    on_surface = None  # bridge.SurfaceWriting when the paper is a surface (set by ``step``)
+
+    def step(self, budget_s: float) -> bool:
+        if self._thread is None and not self.finished:  # first, on Blender's thread
+            st = bridge.settings(self.scene)
+            self.on_surface = bridge.SurfaceWriting(self.scene) if bridge.is_surface(st) else None
+        return super().step(budget_s)
 
     def __init__(self, scene, char: dict, size_mm: float, passes: int):
         st = bridge.settings(scene)
@@ -55,6 +67,8 @@ class WriteJob(WorkerJob):
             progress=progress,
             px_per_mm=self.ppm,
         )
+        if self.on_surface is not None:
+            rec, sim = self.on_surface.lay(rec, size, progress)
         return size, rec, sim
 
     def describe(self, details) -> str:
@@ -64,11 +78,16 @@ class WriteJob(WorkerJob):
         size, rec, sim = self.result
         scene = self.scene
         st = bridge.settings(scene)
-        st.paper_width_mm = st.paper_height_mm = size  # the paper plane follows
-        rec = bridge.new_recording(scene, rec.samples, dips=rec.dips)
-        last = bridge.keyframe_samples(
-            scene, st, rec.samples, rec.sample_rate_hz, scene.frame_start
-        )
+        if self.on_surface is None:
+            st.paper_width_mm = st.paper_height_mm = size  # the paper plane follows
+            rec = bridge.new_recording(scene, rec.samples, dips=rec.dips)
+            last = bridge.keyframe_samples(
+                scene, st, rec.samples, rec.sample_rate_hz, scene.frame_start
+            )
+        else:  # laid on the surface (the texture keeps its size)
+            mats = self.on_surface.matrices(st, rec)
+            last = bridge.keyframe_matrices(scene, st, mats, rec.sample_rate_hz, scene.frame_start)
+            bridge.keep_surface_paper(self.on_surface.digest, self.on_surface.paper)
         scene.frame_end = math.ceil(last)
         bridge.store_recording(st, rec)
         playback.clear()

@@ -397,6 +397,37 @@ def follow(surface: Surface, prev, xy, near: TriangleGrid | None = None) -> np.n
     return new_frame(surface, closest_point(surface, guess, near), prev)
 
 
+LAY_STEP_MM = 2.0  # the longest step by which lay_on follows the surface (far below a radius)
+
+
+def start_frame(surface: Surface, hit: Hit, xy, first_t) -> np.ndarray:
+    """The frame at ``hit`` whose chart position is ``xy``, its tangent ``first_t`` (the
+    brush's own x axis) on the tangent plane: where writing done on flat paper is laid."""
+    n = normal_at(surface, hit)
+    return quantise(np.r_[np.asarray(xy, dtype=float), hit.point, transport(first_t, n), n])
+
+
+def lay_on(surface: Surface, start, samples, near=None, progress=None):
+    """Writing done on flat paper (samples (N, 6) in mm, on the chart whose position ``start``
+    has) laid on the surface: each sample's frame follows the previous one (``follow``, from
+    ``start`` for the first) over the surface to its chart position, in steps of at most
+    LAY_STEP_MM, so a jump in the air between strokes also goes round the surface. The
+    samples stay as they are (their height and tilts are then against each frame's normal);
+    returns their frames (N, FRAME_WIDTH)."""
+    xy = np.asarray(samples, dtype=float)[:, :2]
+    frames = np.empty((len(xy), FRAME_WIDTH))
+    prev = np.asarray(start, dtype=float)
+    for i, target in enumerate(xy):
+        c = prev[:2]
+        n = max(1, math.ceil(float(np.hypot(*(target - c))) / LAY_STEP_MM))
+        for k in range(1, n + 1):
+            prev = follow(surface, prev, c + (target - c) * (k / n), near)
+        frames[i] = prev
+        if progress is not None and i % 64 == 0:
+            progress(i / len(xy))
+    return frames
+
+
 def chart_xy(frame, point) -> tuple[float, float]:
     """The chart position of a surface point near the frame (the mouse's, while painting)."""
     c, p, t, b, _n = frame_parts(frame)
@@ -573,7 +604,7 @@ class SurfacePaper:
         self.surface = surface
         self.ppm = float(ppm)
         self.texels = texel_points(surface, W, H)
-        self.W = W
+        self.W, self.H = W, H
         # the chart is offset so that its pixels are never negative (samples reach 10 sides)
         self.offset = math.ceil(CHART_SIDES * side_mm * self.ppm) / self.ppm
         self.hash = SpatialHash(self.texels.xyz, HASH_CELL_MM)

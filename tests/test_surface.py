@@ -350,3 +350,33 @@ def test_a_stroke_over_a_spheres_pole_and_along_its_seam_has_no_gap():
     assert np.histogram(along, bins=np.arange(65.0, 115.0, 1.0))[0].min() > 0
     u = (tp.index % tp.W)[inked] / tp.W
     assert (u < 0.1).any() and (u > 0.9).any()  # the seam's both sides
+
+
+def test_flat_writing_laid_on_a_cylinder_goes_round_it_by_its_length():
+    """lay_on (Write Character on a surface): a flat horizontal line and a jump back in the
+    air laid on a cylinder from the point under the brush: the frames stay on the cylinder,
+    the line's length becomes arc length, a vertical stays vertical, and a flat grid's frames
+    are the plane's own points."""
+    cyl = cylinder()
+    hit = sf.closest_point(cyl, [0.0, -60.0, 60.0])  # the front (-y side), half way up
+    start = sf.start_frame(cyl, hit, (100.0, 100.0), np.array([1.0, 0.0, 0.0]))
+    xs = np.r_[np.linspace(80.0, 130.0, 51), 100.0]  # 30 mm right, then 30 mm back in one jump
+    samples = np.zeros((len(xs) + 20, 6))
+    samples[: len(xs), 0], samples[: len(xs), 1] = xs, 100.0
+    samples[len(xs) :, 0], samples[len(xs) :, 1] = 100.0, np.linspace(100.0, 120.0, 20)
+    frames = sf.lay_on(cyl, start, samples, sf.TriangleGrid(cyl))
+    P = frames[:, 2:5]
+    r = np.hypot(P[:, 0], P[:, 1])
+    assert (r > 40 * np.cos(np.pi / 48) - 1e-6).all() and (r < 40 + 1e-6).all()
+    arc = np.unwrap(np.arctan2(P[:51, 0], -P[:51, 1])) * 40.0  # the arc from the front
+    np.testing.assert_allclose(arc, xs[:51] - 100.0, atol=0.15)  # length kept as arc length
+    np.testing.assert_allclose(P[:51, 2], 60.0, atol=1e-3)
+    np.testing.assert_allclose(P[51], P[20], atol=0.05)  # the jump back lands where it was
+    np.testing.assert_allclose(P[52:, 2] - 60.0, samples[52:, 1] - 100.0, atol=1e-3)
+    np.testing.assert_allclose(P[52:, :2], P[51:52, :2].repeat(20, 0), atol=0.01)
+    flat = grid()[0]
+    hit = sf.closest_point(flat, [5.0, -7.0, 10.0])
+    start = sf.start_frame(flat, hit, (100.0, 100.0), np.array([1.0, 0.0, 0.0]))
+    frames = sf.lay_on(flat, start, samples, sf.TriangleGrid(flat))
+    want = samples[:, :2] - 100.0 + [5.0, -7.0]
+    np.testing.assert_allclose(frames[:, 2:4], want, atol=1e-4)

@@ -470,3 +470,102 @@ def test_a_density_relief_moves_the_surface_in_proportion_to_the_ink_and_follows
     sc.frame_set(sc.frame_start + 10)  # a quarter of the way
     early = r0 - _radii_and_uvs(cyl)[0]
     assert 0.05 * moved.sum() < early.sum() < 0.5 * moved.sum()
+
+
+# ----------------------------------------------------------------------------- Write Character
+def test_write_character_on_a_cylinder_lands_under_the_brush_at_its_size_and_replays(hb):
+    """Write Character on a surface paper: the writing is laid on the cylinder around the point
+    under the brush empty, at the size asked for (the texture keeps its size), the brush is
+    keyframed over the surface, and a re-simulation of the stored recording shows the same
+    image bit for bit."""
+    from conftest import ROOT
+
+    sc = bpy.context.scene
+    cyl = cylinder()
+    st = surface_scene(cyl, ppm=2.0)
+    side, size_px = st.paper_width_mm, tuple(st.paper_image.size)
+    b = st.brush_object
+    a, z0 = math.radians(35.0), 12.0  # the brush 35 degrees round the side, 12 mm up
+    b.rotation_mode = "XYZ"
+    dist = (R_MM + HAIR + 5.0) / 1000
+    b.location = (dist * math.sin(a), -dist * math.cos(a), z0 / 1000)
+    b.rotation_euler = (math.pi / 2, 0.0, a)
+    path = ROOT / "data" / "hanzi" / "十.json"
+    size = 40.0
+    assert bpy.ops.hairy_brush.write_character(filepath=str(path), size_mm=size, passes=1) == {
+        "FINISHED"
+    }
+    assert st.paper_width_mm == side and tuple(st.paper_image.size) == size_px  # not resized
+    rec = ext().bridge.recording_from_scene(sc)
+    frames = np.asarray(rec.extra["surface"]["frames"])
+    assert frames.shape == (len(rec.samples), 11)
+    # the frames lie on the cylinder (48 flat sides: radius between R cos(pi/48) and R)
+    P = frames[:, 2:5]
+    radius = np.hypot(P[:, 0], P[:, 1])
+    assert (radius > R_MM * math.cos(math.pi / 48) - 1e-3).all() and (radius < R_MM + 1e-3).all()
+    # the writing is centred under the brush and has the size asked for (arc length and height)
+    touch = rec.samples[:, 2] < HAIR
+    ang = np.arctan2(P[touch, 0], -P[touch, 1])
+    arc = (ang.max() - ang.min()) * R_MM
+    mid_arc = (ang.max() + ang.min()) / 2 * R_MM
+    zs = P[touch, 2]
+    assert (
+        abs(mid_arc - a * R_MM) < 0.15 * size and abs((zs.max() + zs.min()) / 2 - z0) < 0.15 * size
+    )
+    assert 0.6 * size < arc < 1.0 * size and 0.6 * size < np.ptp(zs) < 1.0 * size
+    # the texture shows the writing (compared below with a new simulation of the recording)
+    shown = np.empty(len(st.paper_image.pixels), np.float32)
+    st.paper_image.pixels.foreach_get(shown)
+    assert ink(st.paper_image).max() > 0.3
+    # the brush is keyframed over the surface: at sample i's frame, its pose is sample i's
+    fps = sc.render.fps / sc.render.fps_base
+    for i in (len(rec.samples) // 3, 2 * len(rec.samples) // 3):
+        f = sc.frame_start + i * fps / rec.sample_rate_hz
+        sc.frame_set(math.floor(f), subframe=f - math.floor(f))
+        base, rot = ext().bridge.surface_pose(st, b.matrix_world)
+        want_base, want_rot = ext().sim.surface.pose_from_sample(frames[i], rec.samples[i])
+        np.testing.assert_allclose(base, want_base, atol=0.01)
+        np.testing.assert_allclose(rot, want_rot, atol=1e-4)
+    sc.frame_set(sc.frame_end)  # simulating the stored recording again: the same, bit for bit
+    ext().playback.clear()
+    assert bpy.ops.hairy_brush.simulate() == {"FINISHED"}
+    again = np.empty(len(st.paper_image.pixels), np.float32)
+    st.paper_image.pixels.foreach_get(again)
+    np.testing.assert_array_equal(shown, again)
+    # the ink is on the cylinder where the writing is, at its size
+    tp = texels(sc)
+    pts = tp.xyz[ink(st.paper_image).ravel()[tp.index] > 0.2]
+    ang = np.arctan2(pts[:, 0], -pts[:, 1])
+    assert abs((ang.max() + ang.min()) / 2 - a) * R_MM < 0.15 * size
+    assert abs((pts[:, 2].max() + pts[:, 2].min()) / 2 - z0) < 0.15 * size
+    assert (
+        0.7 * size < np.ptp(ang) * R_MM < 1.1 * size and 0.7 * size < np.ptp(pts[:, 2]) < 1.1 * size
+    )
+
+
+def test_imitate_picture_on_a_cylinder_is_laid_on_it_too(hb):
+    """Imitate Picture writes through the same job: on a surface paper it is laid on it."""
+    import json
+
+    from conftest import ROOT
+
+    from sim.outline import rasterise
+
+    cyl = cylinder()
+    st = surface_scene(cyl, ppm=2.0)
+    side, size_px = st.paper_width_mm, tuple(st.paper_image.size)
+    char = json.loads((ROOT / "tests" / "data" / "unseen" / "王.json").read_text("utf-8"))
+    pic = np.where(rasterise(char, 96), 0.05, 0.95)
+    img = bpy.data.images.new("wang", 96, 96)
+    rgba = np.ones((96, 96, 4), np.float32)
+    rgba[..., :3] = pic[::-1, :, None]
+    img.pixels.foreach_set(rgba.ravel())
+    res = bpy.ops.hairy_brush.imitate_image(image="wang", size_mm=30.0, passes=1, detail=96)
+    assert res == {"FINISHED"}
+    assert st.paper_width_mm == side and tuple(st.paper_image.size) == size_px
+    rec = ext().bridge.recording_from_scene(bpy.context.scene)
+    P = np.asarray(rec.extra["surface"]["frames"])[:, 2:5]
+    assert np.abs(np.hypot(P[:, 0], P[:, 1]) - R_MM).max() < 0.2  # on the cylinder
+    touch = P[rec.samples[:, 2] < HAIR]
+    assert np.abs(touch[:, 0]).max() < 20.0 and (touch[:, 1] < 0).all()  # on the front
+    assert ink(st.paper_image).max() > 0.3
