@@ -46,9 +46,9 @@ MAX_INT_PROPERTY = 2**31 - 1  # Blender's IntProperty holds 32 bits
 # memory a paper pixel costs: the engine's buffers (ink 12, wetness 4, last step 4), the kept
 # display pixels (16) and Blender's float image (16)
 BYTES_PER_PIXEL = 52
-# and on a surface (sim.surface): a texel's 3D point, normal, index and cube (36) kept, and the
-# peak while they are built and sorted (measured 1.2 GB for 4096 x 4096 texels)
-SURFACE_BYTES_PER_PIXEL = 72
+# and on a surface (sim.surface.TexelTiles): a texel's owner triangle (4) and 3D point (12), built
+# where the marks reach (building takes at most BUILD_CHUNK texels' temporaries at a time)
+SURFACE_BYTES_PER_PIXEL = 16
 
 
 class UserError(Exception):

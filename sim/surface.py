@@ -23,12 +23,14 @@ The design, in three parts:
    sample, the frame (c, P, T, N) in ``surface.frames``; replay reads them, so it is bit for bit.
 3. **Where the ink lands** (``SurfacePaper.splat``). The marks are rasterised on the chart's own
    pixel grid at the paper's px/mm, then splatted into the texels whose 3D points lie under
-   them: every texel knows its 3D point (``texel_points``: each UV triangle rasterised in the
-   texture, plus a pad of PAD_TEXELS around it for filtering), a spatial hash finds the texels
-   near P, and each is projected on the tangent plane and takes the chart pixel it falls in.
+   them: every texel knows its 3D point (``TexelTiles``: each UV triangle rasterised in the
+   texture, plus a pad of PAD_TEXELS around it for filtering, a tile at a time when the marks
+   first reach it), the triangles' pieces binned in 3D find the texels near P, and each is
+   projected on the tangent plane and takes the chart pixel it falls in.
    So the UV map's stretch is exact (a texel's ink is decided in the surface's own millimetres)
    and seams are free (a mark straddling a seam inks the texels of both islands, whatever their
-   place in the texture). The work per sample is the texels near the mark, never the texture.
+   place in the texture). The work per sample is the texels near the mark, never the texture;
+   nor is the texture's whole set of texel points ever built before writing.
 
 What is approximate: a mark is the brush's cut by the tangent plane at P, projected along N onto
 the surface (a decal): on a surface curving with radius R a mark of radius r is off by about
@@ -57,7 +59,6 @@ CHART_SIDES = 11.0  # the chart's origin, in paper sides from its own 0 (samples
 CHART_SHAPE = (1 << 30, 1 << 30)  # the chart's pixel grid is unbounded for the marks
 NORMAL_DOT_MIN = 0.0  # a texel whose normal faces away from the frame's is on another side
 DEPTH_TOL_MM = 0.5  # plus half the mark's radius: how far off the tangent plane a texel may be
-HASH_CELL_MM = 1.0  # the spatial hash's cubes: a query takes little more than the marks' box
 GROUP_TILE = 64  # texture tiles by which one sample's texels are grouped for the paper
 
 
@@ -227,38 +228,34 @@ def _closest_among(surface: Surface, p: np.ndarray, tris) -> Hit:
     return Hit(tri, np.asarray(barys[k][i]), pts[k, i], float(dist[k, i]))
 
 
-class TriangleGrid:
-    """The triangles binned by their bounding boxes in cubes of ``cell`` mm: the triangles
-    within ``reach`` of a point, whatever the mesh's size (live painting's nearest points)."""
+class BoxGrid:
+    """Boxes binned in cubes of ``cell`` mm: the boxes that may meet a box, in time
+    proportional to the boxes there, whatever the mesh's size."""
 
-    def __init__(self, surface: Surface, cell: float | None = None):
-        c = surface.corners
-        lo, hi = c.min(axis=1), c.max(axis=1)
-        if cell is None:  # about a triangle's size, so each lies in a few cubes
-            cell = float(np.clip(np.median((hi - lo).max(axis=1)), 1.0, 50.0))
-        self.cell, self.reach = cell, 2 * cell
-        a = np.floor(lo / cell).astype(np.int64)
-        b = np.floor(hi / cell).astype(np.int64)
-        self.lo = a.min(axis=0)
-        self.dims = b.max(axis=0) - self.lo + 1
-        n = np.prod(b - a + 1, axis=1)
-        tri = np.repeat(np.arange(len(c)), n)
+    def __init__(self, lo: np.ndarray, hi: np.ndarray, cell: float):
+        self.cell = float(cell)
+        a = np.floor(lo / self.cell).astype(np.int64)
+        b = np.floor(hi / self.cell).astype(np.int64)
+        self.lo = a.min(axis=0) if len(a) else np.zeros(3, np.int64)
+        self.dims = (b.max(axis=0) - self.lo + 1) if len(a) else np.ones(3, np.int64)
+        ext = b - a + 1
+        n = np.prod(ext, axis=1)
+        box = np.repeat(np.arange(len(a)), n)
         k = np.arange(int(n.sum())) - np.repeat(np.cumsum(n) - n, n)
-        ext = (b - a + 1)[tri]
-        ijk = a[tri] + np.stack([k // (ext[:, 1] * ext[:, 2]), k // ext[:, 2] % ext[:, 1],
-                                 k % ext[:, 2]], axis=1)  # fmt: skip
+        e = ext[box]
+        ijk = a[box] + np.stack([k // (e[:, 1] * e[:, 2]), k // e[:, 2] % e[:, 1], k % e[:, 2]], 1)
         keys = self._key(ijk)
         order = np.argsort(keys, kind="stable")
-        self.keys, self.tris = keys[order], tri[order]
+        self.keys, self.ids = keys[order], box[order]
 
     def _key(self, ijk):
         r = ijk - self.lo
         return (r[:, 0] * self.dims[1] + r[:, 1]) * self.dims[2] + r[:, 2]
 
-    def query(self, point) -> np.ndarray:
-        """The triangles whose boxes meet the cube of half side ``reach`` around the point."""
-        a = np.maximum(np.floor((point - self.reach) / self.cell).astype(np.int64), self.lo)
-        b = np.floor((point + self.reach) / self.cell).astype(np.int64)
+    def query_box(self, lo, hi) -> np.ndarray:
+        """The boxes (sorted, once each) binned in the cubes that meet the box [lo, hi]."""
+        a = np.maximum(np.floor(np.asarray(lo) / self.cell).astype(np.int64), self.lo)
+        b = np.floor(np.asarray(hi) / self.cell).astype(np.int64)
         b = np.minimum(b, self.lo + self.dims - 1)
         if (b < a).any():
             return np.zeros(0, dtype=np.int64)
@@ -268,7 +265,24 @@ class TriangleGrid:
         e = np.searchsorted(self.keys, keys, "right")
         n = e - s
         pos = np.repeat(s - (np.cumsum(n) - n), n) + np.arange(int(n.sum()))
-        return np.unique(self.tris[pos])
+        return np.unique(self.ids[pos])
+
+
+class TriangleGrid(BoxGrid):
+    """The triangles binned by their bounding boxes in cubes of ``cell`` mm: the triangles
+    within ``reach`` of a point, whatever the mesh's size (live painting's nearest points)."""
+
+    def __init__(self, surface: Surface, cell: float | None = None):
+        c = surface.corners
+        lo, hi = c.min(axis=1), c.max(axis=1)
+        if cell is None:  # about a triangle's size, so each lies in a few cubes
+            cell = float(np.clip(np.median((hi - lo).max(axis=1)), 1.0, 50.0))
+        super().__init__(lo, hi, cell)
+        self.reach = 2 * self.cell
+
+    def query(self, point) -> np.ndarray:
+        """The triangles whose boxes meet the cube of half side ``reach`` around the point."""
+        return self.query_box(point - self.reach, point + self.reach)
 
 
 def hit_at(surface: Surface, tri: int, point, distance: float) -> Hit:
@@ -465,43 +479,165 @@ class TexelPoints:
     H: int
 
 
-def texel_points(surface: Surface, W: int, H: int, chunk: int = 1 << 20) -> TexelPoints:
-    """Rasterise the UV triangles into the W x H texture: a texel's centre gets the 3D point
-    of the triangle it lies in (by its barycentric coordinates), or within PAD_TEXELS of, the
-    triangle it lies deepest in winning."""
-    uvp = surface.uvs * np.array([W, H]) - 0.5  # texel centres at integers
-    lo = np.floor(uvp.min(axis=1) - PAD_TEXELS).astype(np.int64) + 1
-    hi = np.ceil(uvp.max(axis=1) + PAD_TEXELS).astype(np.int64)
-    lo = np.maximum(lo, 0)
-    hi = np.minimum(hi, [W, H])
-    nx = np.maximum(hi[:, 0] - lo[:, 0], 0)
-    counts = nx * np.maximum(hi[:, 1] - lo[:, 1], 0)
-    coef = _edge_functions(uvp)
-    counts[~np.isfinite(coef).all(axis=(1, 2))] = 0  # UV triangles of no area hold no texel
-    # each edge function over its gradient's length: the signed distance (texels) to the edge
-    with np.errstate(invalid="ignore"):
-        dist = (coef / np.hypot(coef[:, :, 0], coef[:, :, 1])[:, :, None]).astype(np.float32)
-    best = np.full(W * H, -np.inf, dtype=np.float32)  # 8 bytes a texel while building
-    owner = np.full(W * H, -1, dtype=np.int32)
-    start = 0
-    while start < len(counts):  # groups of triangles of about ``chunk`` candidate texels
-        cum = np.cumsum(counts[start:])
-        stop = start + max(int(np.searchsorted(cum, chunk)), 1)
-        _rasterise(dist, np.arange(start, stop), lo, nx, counts, W, best, owner)
-        start = stop
-    del best
-    idx = np.flatnonzero(owner >= 0).astype(np.int32)
-    # 28 bytes a texel kept (float32 points are within 0.001 mm on a 5 m surface), made a
-    # chunk at a time (a texel's barycentric and corner arrays cost 100 bytes)
-    xyz = np.empty((idx.size, 3), np.float32)
-    normal = np.empty((idx.size, 3), np.float32)
-    for k0 in range(0, idx.size, chunk):
-        i = idx[k0 : k0 + chunk]
-        tri = owner[i]
-        bary = _bary(coef[tri], (i % W).astype(float), (i // W).astype(float))
-        xyz[k0 : k0 + chunk] = np.einsum("kj,kjd->kd", bary, surface.corners[tri])
-        normal[k0 : k0 + chunk] = surface.face_normals[tri]
-    return TexelPoints(idx, xyz, normal, W, H)
+def texel_points(surface: Surface, W: int, H: int) -> TexelPoints:
+    """Every texel's 3D point in a W x H texture (see TexelTiles, which builds them only where
+    the writing reaches)."""
+    return TexelTiles(surface, W, H).all()
+
+
+TEXEL_TILE = 16  # texels a side of the tiles in which texel points are built on first use
+BUILD_CHUNK = 1 << 20  # candidate texels rasterised together at most (bounds the memory)
+
+
+class TexelTiles:
+    """The 3D point of every texel a UV triangle (or its pad of PAD_TEXELS) covers, built a
+    TEXEL_TILE tile at a time when a splat first reaches it and kept: so no frame change or
+    first stroke pays for the whole texture, only for the tiles its marks touch. A texel's
+    point comes from the triangle it lies deepest in (its signed distance in texels to the
+    nearest edge, the largest; the later triangle on a tie), whatever the order in which the
+    tiles are built.
+
+    Made at once, in time proportional to the triangles: each triangle's part in each tile it
+    covers (a "piece": its texel rectangle there) and that piece's 3D box (the affine image of
+    the rectangle holds every point the triangle gives its texels there), binned in a BoxGrid.
+    A query's 3D box finds the pieces, hence the tiles, that may hold texels in it."""
+
+    def __init__(self, surface: Surface, W: int, H: int):
+        self.surface, self.W, self.H = surface, int(W), int(H)
+        uvp = surface.uvs * np.array([W, H]) - 0.5  # texel centres at integers
+        lo = np.maximum(np.floor(uvp.min(axis=1) - PAD_TEXELS).astype(np.int64) + 1, 0)
+        hi = np.minimum(np.ceil(uvp.max(axis=1) + PAD_TEXELS).astype(np.int64), [W, H])
+        self.coef = _edge_functions(uvp)
+        # each edge function over its gradient's length: the signed distance (texels) to it
+        with np.errstate(invalid="ignore"):
+            norm = np.hypot(self.coef[:, :, 0], self.coef[:, :, 1])[:, :, None]
+            self.dist = (self.coef / norm).astype(np.float32)
+        tri = np.flatnonzero(np.isfinite(self.coef).all(axis=(1, 2)) & (hi > lo).all(axis=1))
+        self.tiles_x = -(-self.W // TEXEL_TILE)
+        n_tiles = self.tiles_x * -(-self.H // TEXEL_TILE)
+        key, ptri, rect = self._pieces(tri, lo, hi)
+        order = np.lexsort((ptri, key))  # by tile, then triangle
+        self.key, self.tri, self.rect = key[order], ptri[order], rect[order]
+        plo, phi = self._piece_boxes()
+        self.box_lo, self.box_hi = plo, phi
+        cell = float(np.clip(np.median((phi - plo).max(axis=1)), 1.0, 50.0)) if len(plo) else 1.0
+        self.grid = BoxGrid(plo, phi, cell)
+        self.owner = np.full(self.W * self.H, -1, np.int32)  # the triangle that gives its point
+        self.xyz = np.zeros((self.W * self.H, 3), np.float32)  # pages touched when built only
+        self.built = np.zeros(n_tiles, bool)
+
+    def _pieces(self, tri, lo, hi):
+        """(tile key, triangle, texel rectangle x0, x1, y0, y1) of each triangle in each tile
+        its padded rectangle covers."""
+        T = TEXEL_TILE
+        t0, t1 = lo[tri] // T, (hi[tri] - 1) // T
+        ext = t1 - t0 + 1
+        n = ext[:, 0] * ext[:, 1]
+        j = np.repeat(np.arange(len(tri)), n)
+        k = np.arange(int(n.sum())) - np.repeat(np.cumsum(n) - n, n)
+        tx, ty = t0[j, 0] + k % ext[j, 0], t0[j, 1] + k // ext[j, 0]
+        ptri = tri[j]
+        rect = np.stack(
+            [
+                np.maximum(lo[ptri, 0], tx * T),
+                np.minimum(hi[ptri, 0], tx * T + T),
+                np.maximum(lo[ptri, 1], ty * T),
+                np.minimum(hi[ptri, 1], ty * T + T),
+            ],
+            axis=1,
+        )
+        return ty * self.tiles_x + tx, ptri, rect
+
+    def _piece_boxes(self):
+        """Each piece's 3D box: its texel rectangle's corners through the triangle's map."""
+        corners = self.surface.corners[self.tri]
+        pts = []
+        for x, y in ((0, 2), (0, 3), (1, 2), (1, 3)):
+            xs = self.rect[:, x] - (x == 1)  # the last texel of [x0, x1)
+            ys = self.rect[:, y] - (y == 3)
+            bary = _bary(self.coef[self.tri], xs.astype(float), ys.astype(float))
+            pts.append(np.einsum("kj,kjd->kd", bary, corners))
+        pts = np.stack(pts)
+        return pts.min(axis=0) - 1e-3, pts.max(axis=0) + 1e-3  # float32 points: a margin
+
+    def query_box(self, lo, hi) -> np.ndarray:
+        """The texels (flat indices, by tile then row) whose points lie in the box [lo, hi],
+        looked for in the tiles that may hold them; those tiles are built first if they are
+        not yet."""
+        lo, hi = np.asarray(lo, dtype=float), np.asarray(hi, dtype=float)
+        p = self.grid.query_box(lo, hi)
+        p = p[((self.box_lo[p] <= hi) & (self.box_hi[p] >= lo)).all(axis=1)]
+        tiles = np.unique(self.key[p])
+        self.build(tiles[~self.built[tiles]])
+        idx = self._tile_texels(tiles)
+        idx = idx[self.owner[idx] >= 0]
+        xyz = self.xyz[idx]
+        return idx[((xyz >= lo) & (xyz <= hi)).all(axis=1)]
+
+    def _tile_texels(self, tiles) -> np.ndarray:
+        T = TEXEL_TILE
+        r = np.arange(T)
+        ys = (tiles // self.tiles_x)[:, None, None] * T + r[None, :, None]
+        xs = (tiles % self.tiles_x)[:, None, None] * T + r[None, None, :]
+        ys, xs = np.broadcast_arrays(ys, xs)
+        inside = (ys < self.H) & (xs < self.W)
+        return (ys * self.W + xs)[inside]
+
+    def normal(self, idx) -> np.ndarray:
+        return self.surface.face_normals[self.owner[idx]].astype(np.float32)
+
+    def build(self, tiles):
+        """Rasterise the triangles' pieces in these tiles (a chunk of tiles at a time)."""
+        if len(tiles) == 0:
+            return
+        s = np.searchsorted(self.key, tiles, "left")
+        e = np.searchsorted(self.key, tiles, "right")
+        self.built[tiles[e == s]] = True  # no triangle there: no texel
+        tiles, s, e = tiles[e > s], s[e > s], e[e > s]
+        if len(tiles) == 0:
+            return
+        r = self.rect
+        size = (r[:, 1] - r[:, 0]) * (r[:, 3] - r[:, 2])
+        per_tile = np.add.reduceat(size, s)
+        start = 0
+        while start < len(tiles):
+            cum = np.cumsum(per_tile[start:])
+            stop = start + max(int(np.searchsorted(cum, BUILD_CHUNK)), 1)
+            n = e[start:stop] - s[start:stop]
+            pos = np.repeat(s[start:stop] - (np.cumsum(n) - n), n) + np.arange(int(n.sum()))
+            self._rasterise(pos)
+            self.built[tiles[start:stop]] = True
+            start = stop
+
+    def _rasterise(self, pieces):
+        """Each texel of these pieces goes to its deepest triangle; its point is made."""
+        r = self.rect[pieces]
+        nx = r[:, 1] - r[:, 0]
+        n = nx * (r[:, 3] - r[:, 2])
+        j = np.repeat(np.arange(len(pieces)), n)
+        k = np.arange(int(n.sum())) - np.repeat(np.cumsum(n) - n, n)
+        x, y = r[j, 0] + k % nx[j], r[j, 2] + k // nx[j]
+        tri = self.tri[pieces][j]
+        c = self.dist[tri]  # float32: the pad's edge needs no more
+        xf, yf = x.astype(np.float32), y.astype(np.float32)
+        depth = c[:, 0, 0] * xf + c[:, 0, 1] * yf + c[:, 0, 2]
+        for i in (1, 2):
+            np.minimum(depth, c[:, i, 0] * xf + c[:, i, 1] * yf + c[:, i, 2], out=depth)
+        keep = depth >= -PAD_TEXELS
+        flat, depth, tri, x, y = (y * self.W + x)[keep], depth[keep], tri[keep], x[keep], y[keep]
+        order = np.lexsort((tri, depth, flat))  # the last of each texel: deepest, then latest
+        flat, tri, x, y = flat[order], tri[order], x[order], y[order]
+        last = np.r_[flat[1:] != flat[:-1], True] if flat.size else np.zeros(0, bool)
+        flat, tri, x, y = flat[last], tri[last], x[last], y[last]
+        bary = _bary(self.coef[tri], x.astype(float), y.astype(float))
+        self.xyz[flat] = np.einsum("kj,kjd->kd", bary, self.surface.corners[tri])
+        self.owner[flat] = tri
+
+    def all(self) -> TexelPoints:
+        """Every texel's point (all tiles built): tests, pictures."""
+        self.build(np.flatnonzero(~self.built))
+        idx = np.flatnonzero(self.owner >= 0).astype(np.int32)
+        return TexelPoints(idx, self.xyz[idx], self.normal(idx), self.W, self.H)
 
 
 def _edge_functions(uvp) -> np.ndarray:
@@ -523,78 +659,6 @@ def _bary(coef, x, y) -> np.ndarray:
     return coef[:, :, 0] * x[:, None] + coef[:, :, 1] * y[:, None] + coef[:, :, 2]
 
 
-def _rasterise(dist, sel, lo, nx, counts, W, best, owner):
-    """One group of triangles' candidate texels: keep each texel's deepest triangle (its
-    signed distance in texels to the nearest edge, the largest; the later one on a tie)."""
-    n = counts[sel]
-    tri = np.repeat(sel, n)
-    k = np.arange(int(n.sum())) - np.repeat(np.cumsum(n) - n, n)
-    x = lo[tri, 0] + k % nx[tri]
-    y = lo[tri, 1] + k // nx[tri]
-    c = dist[tri]  # float32: the pad's edge needs no more
-    xf, yf = x.astype(np.float32), y.astype(np.float32)
-    depth = c[:, 0, 0] * xf + c[:, 0, 1] * yf + c[:, 0, 2]
-    for i in (1, 2):
-        np.minimum(depth, c[:, i, 0] * xf + c[:, i, 1] * yf + c[:, i, 2], out=depth)
-    keep = depth >= -PAD_TEXELS
-    flat, depth, tri = (y * W + x)[keep], depth[keep], tri[keep]
-    np.maximum.at(best, flat, depth)
-    win = depth >= best[flat]
-    owner[flat[win]] = tri[win]
-
-
-class SpatialHash:
-    """Points binned in cubes of ``cell`` mm: the points near a place in time proportional to
-    the points there."""
-
-    def __init__(self, xyz: np.ndarray, cell: float, chunk: int = 1 << 20):
-        self.cell = float(cell)
-        if len(xyz):
-            self.lo = np.floor(xyz.min(axis=0) / self.cell).astype(np.int64)
-            self.dims = np.floor(xyz.max(axis=0) / self.cell).astype(np.int64) - self.lo + 1
-        else:
-            self.lo, self.dims = np.zeros(3, np.int64), np.ones(3, np.int64)
-        keys = np.empty(len(xyz), np.int64)
-        for k in range(0, len(xyz), chunk):  # a chunk at a time: 8 bytes a point at most
-            ijk = np.floor(xyz[k : k + chunk] / self.cell).astype(np.int64)
-            keys[k : k + chunk] = self._key(np.clip(ijk, self.lo, self.lo + self.dims - 1))
-        self.order = np.argsort(keys, kind="stable")
-        self.keys = keys[self.order]
-
-    def _key(self, ijk):
-        r = ijk - self.lo
-        return (r[:, 0] * self.dims[1] + r[:, 1]) * self.dims[2] + r[:, 2]
-
-    def query(self, centre, radius: float) -> np.ndarray:
-        """Indices of the points in the cubes that meet the ball (a superset of the ball)."""
-        c = np.asarray(centre, dtype=float)
-        return self.query_box(c - radius, c + radius)
-
-    def query_box(self, lo, hi) -> np.ndarray:
-        """Indices of the points in the cubes that meet the box [lo, hi] (a superset)."""
-        a = np.maximum(np.floor(np.asarray(lo) / self.cell).astype(np.int64), self.lo)
-        b = np.floor(np.asarray(hi) / self.cell).astype(np.int64)
-        b = np.minimum(b, self.lo + self.dims - 1)
-        if (b < a).any():
-            return np.zeros(0, dtype=np.int64)
-        axes = [np.arange(a[k], b[k] + 1) for k in range(3)]
-        grid = np.stack(np.meshgrid(*axes, indexing="ij"), axis=-1).reshape(-1, 3)
-        keys = self._key(grid)
-        s = np.searchsorted(self.keys, keys, "left")
-        e = np.searchsorted(self.keys, keys, "right")
-        n = e - s
-        if n.sum() == 0:
-            return np.zeros(0, dtype=np.int64)
-        pos = np.repeat(s - (np.cumsum(n) - n), n) + np.arange(int(n.sum()))
-        return pos if self.order is None else self.order[pos]
-
-    def sorted_points(self):
-        """From now on the caller keeps the points in ``order`` (sorted by cube): queries
-        return positions in that order, and the points near each other lie together."""
-        order, self.order = self.order, None
-        return order
-
-
 # ------------------------------------------------------------------------------ the paper
 class SurfacePaper:
     """What the engine needs to write on a surface: the frames of the recording's samples,
@@ -603,16 +667,17 @@ class SurfacePaper:
     def __init__(self, surface: Surface, frames, W: int, H: int, ppm: float, side_mm: float):
         self.surface = surface
         self.ppm = float(ppm)
-        self.texels = texel_points(surface, W, H)
+        self.tiles = TexelTiles(surface, W, H)  # texel points, built where the marks reach
         self.W, self.H = W, H
         # the chart is offset so that its pixels are never negative (samples reach 10 sides)
         self.offset = math.ceil(CHART_SIDES * side_mm * self.ppm) / self.ppm
-        self.hash = SpatialHash(self.texels.xyz, HASH_CELL_MM)
         self.near = TriangleGrid(surface)  # the frames of live samples
-        # the texels in the hash's order, so a query's texels lie together in memory
-        tp, order = self.texels, self.hash.sorted_points()
-        self.texels = TexelPoints(tp.index[order], tp.xyz[order], tp.normal[order], tp.W, tp.H)
         self._set_frames(frames)
+
+    @property
+    def texels(self) -> TexelPoints:
+        """Every texel's point (builds them all: for tests and pictures, not the splat)."""
+        return self.tiles.all()
 
     def _set_frames(self, frames):
         self.frames = list(np.asarray(frames, dtype=float)) if frames is not None else []
@@ -671,15 +736,16 @@ class SurfacePaper:
                 for h in (-tol, tol)
             ]
         )
-        cand = self.hash.query_box(corners.min(axis=0), corners.max(axis=0))
-        d = self.texels.xyz[cand] - p
-        ok = (np.abs(d @ n) <= tol) & (self.texels.normal[cand] @ n > NORMAL_DOT_MIN)
+        tiles = self.tiles
+        cand = tiles.query_box(corners.min(axis=0), corners.max(axis=0))
+        d = tiles.xyz[cand] - p
+        ok = (np.abs(d @ n) <= tol) & (tiles.normal(cand) @ n > NORMAL_DOT_MIN)
         cand, d = cand[ok], d[ok]
         col = np.floor((c[0] + d @ t) * ppm).astype(np.int64)
         row = np.floor((c[1] + d @ b) * ppm).astype(np.int64)
         out = []
         for mk in marks:
-            tm = self._texture_mark(mk, row, col, self.texels.index[cand])
+            tm = self._texture_mark(mk, row, col, cand)
             if tm is not None:
                 out.append(tm)
         return group_marks(out)

@@ -287,8 +287,9 @@ def test_work_per_sample_is_the_texels_near_the_mark():
     samples, frames = sf.develop(s, bases, rots, (side / 2, side / 2))
     rec = Recording(samples, width_mm=side, height_mm=side, px_per_mm=PPM)
     sp = sf.SurfacePaper(s, frames, rec.width_px, rec.height_px, PPM, side)
-    looked_at, query = [], sp.hash.query_box
-    sp.hash.query_box = lambda lo, hi: looked_at.append(query(lo, hi)) or looked_at[-1]
+    assert not sp.tiles.built.any()  # nothing is built before the first mark
+    looked_at, query = [], sp.tiles.query_box
+    sp.tiles.query_box = lambda lo, hi: looked_at.append(query(lo, hi)) or looked_at[-1]
     sim = Simulation(rec, surface=sp)
     inked = []
     while not sim.done:
@@ -297,7 +298,38 @@ def test_work_per_sample_is_the_texels_near_the_mark():
     assert len(looked_at) > 30 and max(inked) > 50
     # each sample looks at a few times the texels it inks, a sliver of the texture's
     assert max(len(q) for q in looked_at) < 6 * max(inked)
-    assert max(len(q) for q in looked_at) < 0.01 * sp.texels.index.size
+    assert max(len(q) for q in looked_at) < 0.01 * rec.width_px * rec.height_px
+    # only the tiles the marks reached have their texel points built (20 degrees of 360)
+    assert 0 < sp.tiles.built.mean() < 0.02
+
+
+def test_texels_built_in_any_order_give_the_same_ink_bit_for_bit():
+    """The texel points are built a tile at a time where the marks reach: building them all
+    first, or other tiles in a shuffled order first, changes nothing in the points or the ink."""
+    s = cylinder()
+    n = 90
+    bases, rots = around(np.linspace(-30.0, 30.0, n), stroke_press(n, 3.0, lead=8))
+    a, sp = simulate_on(s, bases, rots)
+    every = sp.tiles.all()
+    tiles = sf.TexelTiles(s, sp.W, sp.H)
+    order = np.random.default_rng(1).permutation(tiles.built.size)
+    for k in range(0, order.size, 37):  # shuffled groups of tiles
+        tiles.build(order[k : k + 37])
+    np.testing.assert_array_equal(tiles.owner, sp.tiles.owner)
+    np.testing.assert_array_equal(tiles.xyz, sp.tiles.xyz)
+    assert every.index.size == np.count_nonzero(tiles.owner >= 0)
+    rec = a.rec
+    frames = sf.frames_from_dict(rec.extra["surface"], len(rec.samples))
+    for prepare in ("all", "shuffled half"):
+        side = sf.texture_side_mm(s)
+        other = sf.SurfacePaper(s, frames, rec.width_px, rec.height_px, PPM, side)
+        if prepare == "all":
+            other.tiles.all()
+        else:
+            other.tiles.build(order[: order.size // 2])
+        b = Simulation(rec, surface=other).run()
+        assert np.array_equal(a.paper.ink, b.paper.ink), prepare
+        assert np.array_equal(a.paper.wet, b.paper.wet), prepare
 
 
 def sphere(radius=50.0, n=48, m=24):
