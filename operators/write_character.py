@@ -120,8 +120,8 @@ class HAIRY_BRUSH_OT_write_character(JobOperator, bpy.types.Operator, ImportHelp
         default=0.0,
         min=0.0,
         max=2000.0,
-        description="Character size in mm (the paper becomes this square); 0 sizes the "
-        "character to the brush",
+        description="Character size in mm (a flat paper becomes this square; on a surface the "
+        "character is laid at this size under the brush); 0 sizes the character to the brush",
     )
     passes: bpy.props.IntProperty(
         name="Practice Passes",
