@@ -436,6 +436,13 @@ class SurfaceWriting:
         samples = np.array(flat.samples, dtype=float)
         samples[:, :2] += self.centre - size_mm / 2
         samples = quantise(samples)
+        reach = 10 * max(self.template.width_mm, self.template.height_mm)  # what a recording holds
+        if np.abs(samples[:, :2]).max() > reach:
+            raise UserError(
+                f"A {size_mm:.0f} mm character is far larger than the surface it is laid on "
+                f"(its texture covers {self.template.width_mm:.0f} mm a side): choose a smaller "
+                "size"
+            )
 
         def part(lo, hi, what):
             return None if progress is None else (lambda f: progress(lo + (hi - lo) * f, what))
