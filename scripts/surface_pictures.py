@@ -2,7 +2,9 @@
 """Writing on 3D surfaces (issue 17), rendered with Cycles: the demo's 永 written by the brush
 on a porcelain vase, and carved into a curved stone stele. Run after `bash scripts/demo.sh` (it
 reads out/demo_recording.json); writes out/surface_vase.png (the front and, beside it, the back
-where the texture's seam is: the ring stroke crosses it) and out/surface_tablet.png.
+where the texture's seam is: the ring stroke crosses it), out/surface_tablet.png, and
+out/surface_cup.png (永 written on a cup by the Write Character operator itself, laid on the
+surface under the brush; it needs no demo recording).
 
 Each picture goes through the artist's path: the mesh is made the paper with
 ``setup(surface=True)``, the brush empty is keyframed along the character's strokes laid on the
@@ -10,7 +12,7 @@ surface (each flat sample's pose in the surface's frame at that place), ``bake_s
 it on the surface, ``simulate`` writes the ink into the mesh's texture, and for the stele
 ``relief(mode='CARVE')`` cuts it in.
 
-    .venv/bin/python scripts/surface_pictures.py [vase|tablet ...]"""
+    .venv/bin/python scripts/surface_pictures.py [vase|tablet|sphere|cup ...]"""
 
 from __future__ import annotations
 
@@ -367,6 +369,50 @@ def sun_direction(towards) -> tuple:
     return tuple(Vector(tuple(-np.asarray(towards))).to_track_quat("-Z", "Y").to_euler())
 
 
+def cup():
+    """永 written on a cup by Write Character itself (issue 17's follow-up): the brush empty is
+    turned to face the cup's front, and the operator lays the writing on the surface there."""
+    bpy.ops.wm.read_homefile(use_empty=True)
+
+    def radius(z):  # metres: a tumbler widening a little to the lip
+        return 0.04 + 0.006 * z / 0.11
+
+    obj = revolved("Cup", radius, 0.0, 0.11, 40, 160, cap=True)
+    material(obj, (0.9, 0.9, 0.86), 0.3)
+    sc = bpy.context.scene
+    st = sc.hairy_brush
+    st.paper_color = (1.0, 1.0, 1.0)
+    st.px_per_mm = 8.0
+    for o in sc.objects:
+        o.select_set(o == obj)
+    bpy.context.view_layer.objects.active = obj
+    assert bpy.ops.hairy_brush.setup(surface=True) == {"FINISHED"}
+    b = st.brush_object
+    b.location.z = 0.055  # half way up: the writing is centred under the brush
+    t0 = time.perf_counter()
+    res = bpy.ops.hairy_brush.write_character(character="永", size_mm=70.0, passes=2)
+    assert res == {"FINISHED"}
+    print(
+        f"Cup: Write Character {time.perf_counter() - t0:.1f} s, image {tuple(st.paper_image.size)}"
+    )
+    sc.frame_set(sc.frame_end)
+    b.hide_render = True
+    for child in b.children:
+        child.hide_render = True
+    floor = bpy.data.objects.new("Floor", _plane(2.0))
+    sc.collection.objects.link(floor)
+    material(floor, (0.35, 0.33, 0.3), 0.8)
+    stage(
+        (0.06, -0.36, 0.12),
+        (0.0, 0.0, 0.058),
+        60,
+        (math.radians(55), 0.0, math.radians(-35)),
+        3.0,
+        (480, 480),
+        OUT / "surface_cup.png",
+    )
+
+
 def _plane(size):
     me = bpy.data.meshes.new("Floor")
     h = size / 2
@@ -376,9 +422,9 @@ def _plane(size):
 
 def main(argv) -> int:
     bench_live.install()
-    which = argv or ["vase", "tablet", "sphere"]
+    which = argv or ["vase", "tablet", "sphere", "cup"]
     for name in which:
-        {"vase": vase, "tablet": tablet, "sphere": sphere}[name]()
+        {"vase": vase, "tablet": tablet, "sphere": sphere, "cup": cup}[name]()
     return 0
 
 
