@@ -9,10 +9,10 @@ every first Simulate or frame change paid before the points were built lazily).
 
     .venv/bin/python scripts/surface_bench.py [--ppm 5 10] [--glibc-trim]
 
-Measured on this machine, a process that has freed a large paper (the flat run before) and
-then allocates another runs every stage of the engine 3-4 times slower: glibc's malloc trims and
-grows its heap again and again (page faults). ``--glibc-trim`` sets a fixed trim threshold
-(mallopt) first, as MALLOC_TRIM_THRESHOLD_ would; the figures then show the engine's own cost."""
+Once, on this shared machine, a process that had freed a large paper ran every stage 3-4 times
+slower, which looked like glibc's malloc trimming and growing its heap; it was not reproduced
+later (scripts/surface_malloc.py measures it: no slowdown). ``--glibc-trim`` sets a fixed trim
+threshold (mallopt) first, as MALLOC_TRIM_THRESHOLD_ would."""
 
 from __future__ import annotations
 
