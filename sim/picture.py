@@ -46,6 +46,7 @@ MEDIAN_EPS = 2.0  # px at 512: the median simplified this closely
 OUTLINE_EPS = 0.6  # px: the outline's polygons simplified this closely
 MAX_OUTLINE_POINTS = 1500  # per stroke (sim.hanzi takes up to 2000)
 MAX_MEDIAN_POINTS = 200  # per stroke (sim.hanzi takes up to 256)
+BLOT_CURL = np.radians(35.0)  # a median's end that turns more than this inside its blot
 PASSES = 5  # practice passes per stroke: the picture's ink is the target (3: IoU 0.01 lower)
 
 
@@ -98,16 +99,35 @@ def is_flat(s: Stroke) -> bool:
     return abs(float(d[1])) <= FLAT * abs(float(d[0]))
 
 
+def ends_flat(s: Stroke) -> bool:
+    """A stroke that comes down and turns into a horizontal at its foot (竖折, the 凵 of 山 and
+    出): its first third stands, its last third lies flat."""
+    k = max(len(s.pts) // 3, 1)
+    if len(s.pts) < 6:
+        return False
+    d0, d1 = s.pts[k] - s.pts[0], s.pts[-1] - s.pts[-1 - k]
+    return abs(float(d0[1])) > STEEP * abs(float(d0[0])) and abs(float(d1[1])) <= FLAT * float(
+        d1[0]
+    )
+
+
+def _lies_flat(s: Stroke) -> bool:
+    return is_flat(s) or ends_flat(s)
+
+
 def _must_precede(a: Stroke, b: Stroke) -> bool:
-    """A flat stroke ``a`` comes before a standing one ``b`` that crosses it or starts on it;
-    ``b`` comes first when it ends on ``a``."""
-    if not is_flat(a) or is_flat(b):
+    """A flat stroke ``a`` (or a 竖折's horizontal) comes before a standing one ``b`` that
+    crosses it or starts on it; ``b`` comes first when it ends on ``a``. A 竖折 comes before
+    the standing stroke its horizontal runs into at its end (凵's right side)."""
+    if not _lies_flat(a) or is_flat(b):
         return False
     for node in a.through:
         if node in b.through:
             return True
         if node in b.touches:
             return _starts_at(b, node)
+    if ends_flat(a) and not ends_flat(b):
+        return any(not _starts_at(a, node) for node in a.touches if node in b.through | b.touches)
     return False
 
 
@@ -196,7 +216,7 @@ def _starts_at(s: Stroke, node: int) -> bool:
 def _stands_on(b: Stroke, a: Stroke) -> bool:
     """Standing stroke ``b`` comes before flat stroke ``a``: it ends on it (the foot of 王's
     vertical), or both start at one corner (口's left side before its top)."""
-    if not is_flat(a) or is_flat(b):
+    if not _lies_flat(a) or is_flat(b) or ends_flat(b):
         return False
     for node in b.touches:
         if node in a.through and not _starts_at(b, node):
@@ -314,14 +334,37 @@ def outline_svg(region: np.ndarray, n: int) -> str:
         eps *= 1.6
 
 
+def _straight_start(pts: np.ndarray, radius: np.ndarray) -> np.ndarray:
+    """The median's start straightened inside the blot where the brush landed: the skeleton of
+    a round blot (the head of the scan's 永 撇) curls within the blot's half-width of the end,
+    and the writer takes such a curl for a sharp turn (it lifts and lands again there: a false
+    折 and a second blot). Where the heading within the blot differs from the stroke's heading
+    beyond it by more than BLOT_CURL, the median runs straight on along the stroke's heading
+    there instead. (The stroke's last end is left alone: a hook turns inside its foot.)"""
+    p = pts.astype(np.float64).copy()
+    s = np.concatenate([[0.0], np.cumsum(np.linalg.norm(np.diff(p, axis=0), axis=1))])
+    reach = float(radius[: max(len(radius) // 4, 1)].max())
+    i = int(np.searchsorted(s, reach))
+    j = int(np.searchsorted(s, s[min(i, len(s) - 1)] + reach))
+    if i < 2 or j >= len(p) - 1 or s[-1] < 3.0 * reach:
+        return p
+    beyond, inside = p[i] - p[j], p[0] - p[i]
+    cos = beyond @ inside / max(float(np.linalg.norm(beyond) * np.linalg.norm(inside)), 1e-9)
+    if np.arccos(np.clip(cos, -1.0, 1.0)) > BLOT_CURL:
+        u = beyond / max(float(np.linalg.norm(beyond)), 1e-9)
+        p[:i] = p[i] + u * (s[i] - s[:i])[:, None]
+    return p
+
+
 def _median(s: Stroke, n: int) -> list:
     """The stroke's centre line as a polyline within MEDIAN_EPS of it (the skeleton's jitter
-    gone, its corners kept), in data units."""
+    gone, its corners kept, its start straight inside its blot), in data units."""
     eps = MEDIAN_EPS * n / 512
-    pts = simplify(s.pts, eps, closed=False)
+    line = _straight_start(s.pts, s.radius)
+    pts = simplify(line, eps, closed=False)
     while len(pts) > MAX_MEDIAN_POINTS:
         eps *= 1.5
-        pts = simplify(s.pts, eps, closed=False)
+        pts = simplify(line, eps, closed=False)
     return [[round(float(x), 1), round(float(y), 1)] for x, y in _to_data(pts, n)]
 
 

@@ -285,13 +285,37 @@ def _is_corner(u: np.ndarray, v: np.ndarray) -> bool:
 
 
 def _is_open_l(chains: list, a, b, ways: dict) -> bool:
-    """A vertical turning right at its foot into a horizontal that ends free (the ㄴ of 亡 or
-    区): one stroke, 竖折. Where the horizontal runs on into another stroke (the foot of 口,
-    closed by its right side) the two are separate strokes."""
+    """A vertical turning right at its foot into a horizontal, not closing a box: one stroke,
+    竖折 (the ㄴ of 亡 or 区, whose horizontal ends free; 山's and 出's 凵, whose horizontal
+    runs on into the strokes standing on it). Where the corner closes a box (the foot of 口,
+    日, 田: the vertical's top and the horizontal's end are joined by other strokes) the two
+    are separate strokes."""
     up, right = np.array([0.0, -1.0]), np.array([1.0, 0.0])
     for v, h in ((a, b), (b, a)):
         if ways[v] @ up > 0.8 and ways[h] @ right > 0.8:
-            return chains[h[0]].ends[1 - h[1]] < 0
+            far_v, far_h = chains[v[0]].ends[1 - v[1]], chains[h[0]].ends[1 - h[1]]
+            corner = chains[v[0]].ends[v[1]]
+            return far_h < 0 or not _joined(chains, far_v, far_h, {v[0], h[0]}, corner)
+    return False
+
+
+def _joined(chains: list, start: int, goal: int, without: set, avoid: int) -> bool:
+    """Whether junctions ``start`` and ``goal`` are joined by chains other than ``without``,
+    not through junction ``avoid`` (a free end, -1, is joined to nothing)."""
+    if start < 0 or goal < 0:
+        return False
+    seen, todo = {start, avoid}, [start]
+    while todo:
+        node = todo.pop()
+        if node == goal:
+            return True
+        for ci, c in enumerate(chains):
+            if ci in without or node not in c.ends:
+                continue
+            for other in c.ends:
+                if other >= 0 and other not in seen:
+                    seen.add(other)
+                    todo.append(other)
     return False
 
 

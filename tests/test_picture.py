@@ -14,9 +14,17 @@ import numpy as np
 import pytest
 
 from sim import picture_morph as M
+from sim.hanzi import find_char
 from sim.imitate import coverage_mask, write_character
 from sim.outline import fill, iou, rasterise, stroke_polygons, to_image
-from sim.picture import imitate, order_agreement, read_picture, simplify, trace_outline
+from sim.picture import (
+    _straight_start,
+    imitate,
+    order_agreement,
+    read_picture,
+    simplify,
+    trace_outline,
+)
 from sim.picture_ink import PictureError, find_ink
 from sim.png import PNGError, write_png
 from sim.recording import Recording
@@ -120,10 +128,34 @@ def test_a_red_seal_is_not_writing_but_red_writing_is():
 
 def test_corners_one_stroke_or_two():
     # 亡's ㄴ (a vertical turning right into a horizontal that ends free) is one stroke, 竖折;
-    # 口's foot, closed by its right side, is two; 口's 横折 is one
-    for c in ("亡", "口"):
-        a = order_agreement(read_picture(picture(c, 256), 256).char, unseen(c), 256)
+    # so are 凶's and 山's 凵, whose horizontal runs into the strokes standing on it, and the
+    # 竖折 comes before its right side; 口's foot, which closes a box, is two; 口's 横折 is one
+    for c in ("亡", "口", "凶", "山"):
+        known = unseen(c) if c != "山" else find_char("山")
+        pic = np.where(rasterise(known, 256), 0.05, 0.95)
+        a = order_agreement(read_picture(pic, 256).char, known, 256)
         assert a["same"], (c, a)
+    # 出: two 凵, each one stroke (it read 7 strokes for 5 before), in order but the middle
+    # vertical (calligraphy writes it after the upper 凵's right side)
+    a = order_agreement(read_picture(picture("出", 256), 256).char, unseen("出"), 256)
+    assert a["found"] == a["known"] == 5 and a["pairs"] >= 0.9, a
+
+
+def test_a_curl_inside_the_landing_blot_is_straightened():
+    # the skeleton of a round blot where the brush landed curls (a false sharp turn the writer
+    # would lift at); the curl goes, the rest of the stroke and a hook at its foot stay
+    t = np.linspace(0.0, 1.0, 80)
+    body = np.stack([200 - 120 * t, 100 + 150 * t], axis=1)  # a 撇 from upper right
+    curl = body[0] + np.stack([np.linspace(-14, 0, 12), np.zeros(12)], axis=1)  # the curl
+    hook = body[-1] + np.stack([np.linspace(0, 6, 8), -np.linspace(0, 12, 8)], axis=1)[1:]
+    pts = np.concatenate([curl, body[1:], hook])
+    radius = np.concatenate([np.full(12, 14.0), np.full(79, 6.0), np.full(7, 5.0)])
+    out = _straight_start(pts, radius)
+    way = (body[-1] - body[0]) / np.linalg.norm(body[-1] - body[0])
+    head = out[:12] - out[12]
+    assert np.all(np.abs(head[:, 0] * way[1] - head[:, 1] * way[0]) < 1e-6)  # on the line
+    assert np.array_equal(out[14:], pts[14:])
+    assert np.array_equal(_straight_start(body, np.full(80, 6.0)), body)  # straight: kept
 
 
 def test_small_writing_in_a_large_picture_is_framed():
