@@ -25,7 +25,7 @@ os.environ["BLENDER_USER_RESOURCES"] = str(OUT / "picture_user")  # the user's B
 import bpy  # noqa: E402
 import numpy as np  # noqa: E402
 from build_extension import build  # noqa: E402
-from picture_scan import scan_picture  # noqa: E402
+from picture_scan import scan_picture, written_size_mm  # noqa: E402
 
 from sim.display import linear_to_srgb  # noqa: E402
 from sim.hanzi import find_char  # noqa: E402
@@ -58,14 +58,15 @@ def main() -> int:
     scene = bpy.context.scene
     st = scene.hairy_brush
     st.brush_preset, st.paper_preset, st.ink_preset = "wolf_stiff", "smooth", "sumi_black"
-    st.px_per_mm = 10.0
+    size = written_size_mm(find_char("永"))  # the piece's own size (Size (mm))
+    st.px_per_mm = 512 / size  # the resolution of the engine's figure (picture_scan.png)
     bpy.ops.hairy_brush.setup()
     scan, _ = scan_picture(find_char("永"), 512)
     path = OUT / "picture_scan.png"
     write_png(path, scan)
     img = bpy.data.images.load(str(path))
     t0 = time.perf_counter()
-    res = bpy.ops.hairy_brush.imitate_image(image=img.name)
+    res = bpy.ops.hairy_brush.imitate_image(image=img.name, size_mm=size)
     assert res == {"FINISHED"}, res
     print(f"imitated {path.name} in {time.perf_counter() - t0:.1f} s")
     st.sync_frames = True

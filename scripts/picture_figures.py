@@ -5,7 +5,8 @@
   strokes read off the picture, numbered in the writing order found, each from where it starts
   | the brush's imitation;
 - picture_scan.png: the same for a scan-like picture (the brush's 永 on raw xuan, aged: tinted
-  paper, uneven light, stains, fibres, noise);
+  paper, uneven light, stains, fibres, noise), imitated at the piece's own size (as
+  ``--size-mm`` gives it: the auto size, read off the blots, is 30 % smaller);
 - picture_replay.png: the imitation's recording replayed, at five moments of the writing.
 
     python scripts/picture_figures.py [--size 512]
@@ -23,7 +24,7 @@ ROOT = Path(__file__).resolve().parent.parent
 sys.path.insert(0, str(ROOT))
 
 from scripts.picture_eval import template  # noqa: E402
-from scripts.picture_scan import font_picture, scan_picture  # noqa: E402
+from scripts.picture_scan import font_picture, scan_picture, written_size_mm  # noqa: E402
 from sim.engine import Simulation  # noqa: E402
 from sim.hanzi import find_char  # noqa: E402
 from sim.picture import imitate  # noqa: E402
@@ -100,8 +101,8 @@ def _row(*panels, gap: int = 8) -> np.ndarray:
     return np.concatenate(parts[:-1], axis=1)
 
 
-def figure(picture, n: int):
-    rec, _, sim, im = imitate(picture, template(), n)
+def figure(picture, n: int, size_mm: float | None = None):
+    rec, _, sim, im = imitate(picture, template(), n, size_mm=size_mm)
     return _row(picture, strokes_figure(im, n), sim.image()), rec
 
 
@@ -127,7 +128,7 @@ def main(argv=None) -> int:
     font, _ = figure(font_picture(find_char(args.char), n), n)
     write_png(OUT / "picture_font.png", font)
     scan, _ = scan_picture(find_char("永"), n)
-    row, rec = figure(scan, n)
+    row, rec = figure(scan, n, written_size_mm(find_char("永")))  # the piece's own size
     write_png(OUT / "picture_scan.png", row)
     write_png(OUT / "picture_replay.png", replay(rec))
     print(f"{OUT}/picture_font.png, picture_scan.png, picture_replay.png")

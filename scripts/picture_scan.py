@@ -31,21 +31,33 @@ def font_picture(char: dict, n: int = 512) -> np.ndarray:
     return np.where(rasterise(char, n), 0.05, 0.95)
 
 
-def written(char: dict, n: int = 512, seed: int = 0, paper: str = "raw_xuan"):
-    """The brush's own writing of ``char`` (one pass, so it keeps the brush's texture): the
-    RGB image and its ink (coverage above half), top row first."""
-    from sim.imitate import coverage_mask, write_character
+def _template(seed: int = 0, paper: str = "raw_xuan"):
     from sim.recording import Recording
 
-    template = Recording(
+    return Recording(
         np.zeros((1, 6)),
         seed=seed,
         brush={"preset": "wolf_stiff"},
         paper_preset=paper,
         ink={"preset": "sumi_black"},
     )
-    _, _, sim = write_character(char, n, template, passes=1)
+
+
+def written(char: dict, n: int = 512, seed: int = 0, paper: str = "raw_xuan"):
+    """The brush's own writing of ``char`` (one pass, so it keeps the brush's texture): the
+    RGB image and its ink (coverage above half), top row first."""
+    from sim.imitate import coverage_mask, write_character
+
+    _, _, sim = write_character(char, n, _template(seed, paper), passes=1)
     return sim.image(), coverage_mask(sim)
+
+
+def written_size_mm(char: dict, seed: int = 0, paper: str = "raw_xuan") -> float:
+    """The size (mm) the scan's piece was written at (the writer's own size for ``char``): a
+    scan of a real piece has a size too, which ``--size-mm`` gives the imitation."""
+    from sim.imitate import auto_size_mm, calibrate
+
+    return auto_size_mm(char, calibrate(_template(seed, paper)))
 
 
 def age(rgb: np.ndarray, seed: int = 0) -> np.ndarray:
