@@ -140,6 +140,7 @@ def cmd_imitate(args) -> int:
         size_mm=args.size_mm,
         passes=args.passes,
         progress=None if args.quiet else _progress_after_reading,
+        piece=args.piece,
     )
     write_png(args.output, sim.image8())
     if args.recording:
@@ -438,6 +439,12 @@ def _parser() -> argparse.ArgumentParser:
     im.add_argument("--size", type=size, default=512, help="image size N (the em box)")
     im.add_argument("--recording", default=None, help="also save the recording it made")
     im.add_argument("--char-data", default=None, help="also save the strokes read (JSON)")
+    im.add_argument(
+        "--piece",
+        action="store_true",
+        help="a piece of several characters: columns right to left, each top to bottom, each "
+        "character written in its own square of the sheet",
+    )
     im.add_argument("-q", "--quiet", action="store_true")
     common(im)
     im.set_defaults(func=cmd_imitate, passes=PASSES)

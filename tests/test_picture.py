@@ -316,3 +316,26 @@ def test_cli_imitate_writes_a_recording_that_replays(tmp_path):
     cmd = [sys.executable, "-m", "sim", "render", str(rec), "-o", str(again), "-q"]
     assert subprocess.run(cmd, cwd=ROOT).returncode == 0
     assert again.read_bytes() == out.read_bytes()
+
+
+def test_a_piece_is_read_in_columns_right_to_left():
+    # two columns: 木 over 王 on the right, 口 over 禾 on the left; read 木 王 口 禾, each
+    # character in its own square of the sheet with its strokes as read alone, in its order
+    h, order = 160, "木王口禾"
+    pic = np.full((2 * h + 40, 2 * h + 60), 0.95)
+    corners = ((10, h + 50), (h + 30, h + 50), (10, 10), (h + 30, 10))
+    for c, (y, x) in zip(order, corners, strict=True):
+        pic[y : y + h, x : x + h] = np.where(rasterise(unseen(c), h), 0.05, 0.95)
+    got = read_picture(pic, 256, piece=True).char
+    assert read_picture(pic, 256).char["medians"] != got["medians"]  # without: one character
+    cells = {"木": (1, 0), "王": (1, 1), "口": (0, 0), "禾": (0, 1)}  # (column, row) in halves
+    k = 0
+    for c in order:
+        alone = read_picture(picture(c, 256), 256).char
+        n = len(alone["medians"])
+        assert n == len(unseen(c)["medians"]), c
+        for med in got["medians"][k : k + n]:
+            x, y = np.mean(to_image(np.array(med, dtype=float), 256), axis=0)
+            assert (int(x // 128), int(y // 128)) == cells[c], (c, x, y)
+        k += n
+    assert k == len(got["medians"]) == len(got["strokes"])
