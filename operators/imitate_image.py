@@ -67,7 +67,9 @@ class ImitateJob(WriteJob):
 
     title = "Imitating picture"
 
-    def __init__(self, scene, picture, name: str, size_mm: float, passes: int, detail: int):
+    def __init__(
+        self, scene, picture, name: str, size_mm: float, passes: int, detail: int, piece=False
+    ):
         st = bridge.settings(scene)
         self.scene, self.char, self.name = scene, None, name
         self.template = bridge.settings_recording(scene)
@@ -76,12 +78,12 @@ class ImitateJob(WriteJob):
         if size_mm:
             self._check(size_mm)
         WorkerJob.__init__(
-            self, lambda progress: self._imitate(picture, detail, size_mm, passes, progress)
+            self, lambda progress: self._imitate(picture, detail, size_mm, passes, progress, piece)
         )
 
-    def _imitate(self, picture, detail: int, size_mm: float, passes: int, progress):
+    def _imitate(self, picture, detail: int, size_mm: float, passes: int, progress, piece):
         progress(0.0, "reading the picture")
-        im = read_picture(picture, detail, self.name)
+        im = read_picture(picture, detail, self.name, piece=piece)
         self.char, self.strokes = im.char, len(im.strokes)
 
         def writing(frac, *details):
@@ -137,6 +139,13 @@ class HAIRY_BRUSH_OT_imitate_image(JobOperator, bpy.types.Operator, ImportHelper
         "and ink); the writing itself is at the paper's resolution",
     )
 
+    piece: bpy.props.BoolProperty(
+        name="Several Characters",
+        default=False,
+        description="The picture is a piece of several characters in columns: read them right "
+        "to left, top to bottom, and write each in its own square of the paper",
+    )
+
     @classmethod
     def poll(cls, context):
         return polls.brush_and_paper(cls, context)
@@ -158,7 +167,9 @@ class HAIRY_BRUSH_OT_imitate_image(JobOperator, bpy.types.Operator, ImportHelper
                 picture, name = image_grey(img), img.name
             else:
                 picture, name = file_picture(self.filepath), bpy.path.basename(self.filepath)
-            job = ImitateJob(scene, picture, name, self.size_mm, self.passes, self.detail)
+            job = ImitateJob(
+                scene, picture, name, self.size_mm, self.passes, self.detail, self.piece
+            )
         except (*bridge.USER_ERRORS, ValueError, OSError) as exc:
             self.report({"ERROR"}, str(exc))
             return {"CANCELLED"}

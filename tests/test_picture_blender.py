@@ -66,6 +66,27 @@ def test_imitate_a_png_keyframes_the_brush_and_replays(hb, tmp_path):
     np.testing.assert_allclose(baked[: len(written)], written, atol=2e-3)
 
 
+def test_imitate_a_piece_of_two_characters(hb, tmp_path):
+    # two columns, 王 on the left and 口 on the right: with Several Characters each is read in
+    # its own square, the right column first (read as one character, 王 comes first)
+    st = setup_scene()
+    kou = json.loads((ROOT / "tests" / "data" / "unseen" / "口.json").read_text("utf-8"))
+    pic = np.full((140, 280), 0.95)
+    pic[6:134, 5:133] = picture()
+    pic[6:134, 147:275] = np.where(rasterise(kou, 128), 0.05, 0.95)
+    path = tmp_path / "piece.png"
+    write_png(path, pic)
+    res = bpy.ops.hairy_brush.imitate_image(
+        filepath=str(path), size_mm=120.0, passes=1, detail=192, piece=True
+    )
+    assert res == {"FINISHED"}
+    samples = np.array(json.loads(st.recording.as_string())["samples"])
+    down = samples[:, 2] < samples[:, 2].max() - 1e-6  # the brush on the paper
+    starts = np.flatnonzero(down[1:] & ~down[:-1]) + 1
+    left = (samples[starts, 0] < 60.0).astype(int)  # landings in the left half of the paper
+    assert 0 < left.sum() < len(left) and np.all(np.diff(left) >= 0), samples[starts, 0]
+
+
 def test_imitate_an_image_datablock_and_bad_pictures(hb, tmp_path):
     st = setup_scene()
     pic = picture(96)
