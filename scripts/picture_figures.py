@@ -7,7 +7,10 @@
 - picture_scan.png: the same for a scan-like picture (the brush's 永 on raw xuan, aged: tinted
   paper, uneven light, stains, fibres, noise), imitated at the piece's own size (as
   ``--size-mm`` gives it: the auto size, read off the blots, is 30 % smaller);
-- picture_replay.png: the imitation's recording replayed, at five moments of the writing.
+- picture_replay.png: the imitation's recording replayed, at five moments of the writing;
+- picture_piece.png: a piece of four characters in two columns (font-like renders of unseen
+  characters) | the imitation with ``piece=True``: read right to left, top to bottom, each
+  character written in its own square (the strokes numbered in the writing order).
 
     python scripts/picture_figures.py [--size 512]
 """
@@ -24,7 +27,12 @@ ROOT = Path(__file__).resolve().parent.parent
 sys.path.insert(0, str(ROOT))
 
 from scripts.picture_eval import template  # noqa: E402
-from scripts.picture_scan import font_picture, scan_picture, written_size_mm  # noqa: E402
+from scripts.picture_scan import (  # noqa: E402
+    font_picture,
+    piece_picture,
+    scan_picture,
+    written_size_mm,
+)
 from sim.engine import Simulation  # noqa: E402
 from sim.hanzi import find_char  # noqa: E402
 from sim.picture import imitate  # noqa: E402
@@ -131,7 +139,14 @@ def main(argv=None) -> int:
     row, rec = figure(scan, n, written_size_mm(find_char("永")))  # the piece's own size
     write_png(OUT / "picture_scan.png", row)
     write_png(OUT / "picture_replay.png", replay(rec))
-    print(f"{OUT}/picture_font.png, picture_scan.png, picture_replay.png")
+    unseen = ROOT / "tests" / "data" / "unseen"
+    cols = [[find_char(str(unseen / f"{c}.json")) for c in col] for col in ("木王", "口禾")]
+    piece = piece_picture(cols)
+    rec, _, sim, im = imitate(piece, template(), n, piece=True)
+    side = n * piece.shape[1] // piece.shape[0]
+    shown = np.stack([resize(piece, n, side)] * 3, axis=2)
+    write_png(OUT / "picture_piece.png", _row(shown, sim.image()))
+    print(f"{OUT}/picture_font.png, picture_scan.png, picture_replay.png, picture_piece.png")
     return 0
 
 

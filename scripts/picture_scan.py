@@ -31,6 +31,19 @@ def font_picture(char: dict, n: int = 512) -> np.ndarray:
     return np.where(rasterise(char, n), 0.05, 0.95)
 
 
+def piece_picture(columns: list[list[dict]], h: int = 200, gap: int = 40) -> np.ndarray:
+    """A piece of characters (font-like renders) in columns, ``columns`` listed right to left,
+    each top to bottom, as a piece is read: (H, W) grey in [0, 1]."""
+    rows = max(len(c) for c in columns)
+    pic = np.full((rows * (h + gap) + gap, len(columns) * (h + gap) + gap), 0.95)
+    for k, col in enumerate(columns):
+        x = gap + (len(columns) - 1 - k) * (h + gap)
+        for r, char in enumerate(col):
+            y = gap + r * (h + gap)
+            pic[y : y + h, x : x + h] = np.where(rasterise(char, h), 0.05, 0.95)
+    return pic
+
+
 def _template(seed: int = 0, paper: str = "raw_xuan"):
     from sim.recording import Recording
 
