@@ -117,23 +117,48 @@ SMOOTH_ANGLE_DEG = 60.0  # faces meeting at a sharper angle keep their edge shar
 def corner_normals(tris, cross, fn) -> np.ndarray:
     """(T, 3, 3) each triangle corner's smooth normal: the area-weighted mean of the normals
     of the faces around its vertex that meet this face at less than SMOOTH_ANGLE_DEG (so a
-    cylinder's side is round and its rim stays a rim)."""
+    cylinder's side is round and its rim stays a rim). A vertex whose faces all lie within
+    half that angle of their mean has every pair near: its sum is taken once for all its
+    corners (a fan of many faces costs no more than its faces); only the other vertices'
+    corners compare their faces pairwise."""
     v = tris.ravel()  # corner c = 3 t + k
-    order = np.argsort(v, kind="stable")
-    counts = np.bincount(v, minlength=int(v.max()) + 1)
-    starts = np.cumsum(counts) - counts
-    n = counts[v]  # faces around each corner's vertex
-    corner = np.repeat(np.arange(v.size), n)
-    k = np.arange(int(n.sum())) - np.repeat(np.cumsum(n) - n, n)
-    other = order[np.repeat(starts[v], n) + k] // 3
-    own = corner // 3
-    near = np.einsum("ij,ij->i", fn[own], fn[other]) > math.cos(math.radians(SMOOTH_ANGLE_DEG))
-    w = cross[other] * near[:, None]
-    out = np.stack([np.bincount(corner, w[:, d], minlength=v.size) for d in range(3)], axis=1)
+    nv = int(v.max()) + 1
+    face_of = np.arange(v.size) // 3
+    total = np.stack([np.bincount(v, cross[face_of, d], minlength=nv) for d in range(3)], 1)
+    tl = np.linalg.norm(total, axis=1)
+    mean = total / np.maximum(tl, 1e-300)[:, None]
+    has_area = np.einsum("ij,ij->i", fn, fn)[face_of] > 0.5
+    half = math.cos(math.radians(SMOOTH_ANGLE_DEG / 2 - 0.1))  # a margin for rounding
+    off = has_area & (np.einsum("ij,ij->i", fn[face_of], mean[v]) <= half)
+    rough = (np.bincount(v, off, minlength=nv) > 0) | (tl <= 1e-30)
+    out = np.where(has_area[:, None], total[v], 0.0)
+    pairwise = np.flatnonzero(has_area & rough[v])
+    for part in np.array_split(pairwise, max(1, -(-_pair_count(v, pairwise) // 4_000_000))):
+        out[part] = _pairwise_normals(v, cross, fn, part)
     ln = np.linalg.norm(out, axis=1)
-    face = fn[np.arange(v.size) // 3]  # a corner of a face of no area: the face's normal
+    face = fn[face_of]  # a corner of a face of no area: the face's normal
     out = np.where(ln[:, None] > 1e-30, out / np.maximum(ln, 1e-30)[:, None], face)
     return out.reshape(-1, 3, 3)
+
+
+def _pair_count(v, corners) -> int:
+    return int(np.bincount(v)[v[corners]].sum())
+
+
+def _pairwise_normals(v, cross, fn, corners) -> np.ndarray:
+    """(len(corners), 3) the sums of the face areas around each corner's vertex that meet
+    the corner's face at less than SMOOTH_ANGLE_DEG (corner_normals' general case)."""
+    order = np.argsort(v, kind="stable")
+    counts = np.bincount(v)
+    starts = np.cumsum(counts) - counts
+    n = counts[v[corners]]  # faces around each corner's vertex
+    row = np.repeat(np.arange(len(corners)), n)
+    k = np.arange(int(n.sum())) - np.repeat(np.cumsum(n) - n, n)
+    other = order[np.repeat(starts[v[corners]], n) + k] // 3
+    own = corners[row] // 3
+    near = np.einsum("ij,ij->i", fn[own], fn[other]) > math.cos(math.radians(SMOOTH_ANGLE_DEG))
+    w = cross[other] * near[:, None]
+    return np.stack([np.bincount(row, w[:, d], minlength=len(corners)) for d in range(3)], 1)
 
 
 def _check_manifold(tris: np.ndarray, name: str):
@@ -228,6 +253,9 @@ def _closest_among(surface: Surface, p: np.ndarray, tris) -> Hit:
     return Hit(tri, np.asarray(barys[k][i]), pts[k, i], float(dist[k, i]))
 
 
+MAX_BOX_CELLS = 512  # a box over more cubes (one huge triangle among small ones) is not binned
+
+
 class BoxGrid:
     """Boxes binned in cubes of ``cell`` mm: the boxes that may meet a box, in time
     proportional to the boxes there, whatever the mesh's size."""
@@ -240,6 +268,9 @@ class BoxGrid:
         self.dims = (b.max(axis=0) - self.lo + 1) if len(a) else np.ones(3, np.int64)
         ext = b - a + 1
         n = np.prod(ext, axis=1)
+        big = n > MAX_BOX_CELLS  # a box far larger than the cell: checked by its box instead
+        self.big, self.big_lo, self.big_hi = np.flatnonzero(big), lo[big], hi[big]
+        n = np.where(big, 0, n)
         box = np.repeat(np.arange(len(a)), n)
         k = np.arange(int(n.sum())) - np.repeat(np.cumsum(n) - n, n)
         e = ext[box]
@@ -253,7 +284,12 @@ class BoxGrid:
         return (r[:, 0] * self.dims[1] + r[:, 1]) * self.dims[2] + r[:, 2]
 
     def query_box(self, lo, hi) -> np.ndarray:
-        """The boxes (sorted, once each) binned in the cubes that meet the box [lo, hi]."""
+        """The boxes (sorted, once each) binned in the cubes that meet the box [lo, hi], and
+        the oversized ones that meet it."""
+        meet = ((self.big_lo <= np.asarray(hi)) & (self.big_hi >= np.asarray(lo))).all(axis=1)
+        return np.union1d(self._binned(lo, hi), self.big[meet])
+
+    def _binned(self, lo, hi) -> np.ndarray:
         a = np.maximum(np.floor(np.asarray(lo) / self.cell).astype(np.int64), self.lo)
         b = np.floor(np.asarray(hi) / self.cell).astype(np.int64)
         b = np.minimum(b, self.lo + self.dims - 1)

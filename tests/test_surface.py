@@ -412,3 +412,59 @@ def test_flat_writing_laid_on_a_cylinder_goes_round_it_by_its_length():
     frames = sf.lay_on(flat, start, samples, sf.TriangleGrid(flat))
     want = samples[:, :2] - 100.0 + [5.0, -7.0]
     np.testing.assert_allclose(frames[:, 2:4], want, atol=1e-4)
+
+
+def small_and_huge(n=2000, huge=400.0):
+    """n disjoint 1 mm triangles on a 10 mm wide strip and one huge tilted triangle."""
+    rng = np.random.default_rng(7)
+    at = rng.uniform(0, 10, (n, 3))
+    small = at[:, None, :] + np.array([[0, 0, 0], [1, 0, 0], [0, 1, 0.2]])
+    big = np.array([[[-huge / 2, -huge / 2, -huge / 3], [huge, 0, huge / 2], [0, huge, huge]]])
+    corners = np.concatenate([small, big]).reshape(-1, 3)
+    tris = np.arange(len(corners)).reshape(-1, 3)
+    uvs = np.tile([[0.1, 0.1], [0.2, 0.1], [0.1, 0.2]], (len(tris), 1, 1))
+    return sf.surface_from_arrays(corners, tris, uvs)
+
+
+def test_one_huge_triangle_among_small_ones_keeps_the_grid_small_and_is_still_found():
+    s = small_and_huge()
+    grid = sf.TriangleGrid(s)
+    assert grid.cell == 1.0  # the median triangle's size
+    assert len(grid.keys) < 20 * len(s.tris)  # unbinned: 64 M cubes for the huge one
+    assert list(grid.big) == [len(s.tris) - 1]
+    for p in ([100.0, 100.0, 120.0], [5.0, 5.0, 5.0], [-150.0, -150.0, -90.0]):
+        p = np.array(p)
+        near = sf.closest_point(s, p, grid)
+        full = sf.closest_point(s, p)
+        assert near.tri == full.tri and np.allclose(near.point, full.point)
+    far = grid.query(np.array([1000.0, 1000.0, 1000.0]))
+    assert len(far) == 0
+
+
+def test_a_fan_of_thousands_of_faces_gets_its_normals_in_linear_time():
+    n = 4000
+    ang = np.linspace(0, 2 * np.pi, n, endpoint=False)
+    rim = np.c_[np.cos(ang), np.sin(ang), np.zeros(n)] * 30
+    verts = np.r_[[[0.0, 0.0, 0.0]], rim]
+    tris = np.c_[np.zeros(n, int), 1 + np.arange(n), 1 + (np.arange(n) + 1) % n]
+    c = verts[tris]
+    cross = np.cross(c[:, 1] - c[:, 0], c[:, 2] - c[:, 0])
+    fn = cross / np.linalg.norm(cross, axis=1)[:, None]
+    calls = []
+    real = sf._pairwise_normals
+    try:
+        sf._pairwise_normals = lambda v, cr, f, corners: calls.append(len(corners)) or real(
+            v, cr, f, corners
+        )
+        cn = sf.corner_normals(tris, cross, fn)
+    finally:
+        sf._pairwise_normals = real
+    assert np.allclose(cn, [0, 0, 1])
+    assert sum(calls) == 0  # a flat fan: no pairs (n^2 = 16 M before)
+    # a sharp vertex still compares its faces pairwise: a cube's corner keeps its faces' normals
+    box = np.array([[0, 0, 0], [1, 0, 0], [0, 1, 0], [0, 0, 1]], float)
+    t = np.array([[0, 2, 1], [0, 1, 3], [0, 3, 2]])
+    cb = box[t]
+    crb = np.cross(cb[:, 1] - cb[:, 0], cb[:, 2] - cb[:, 0])
+    fnb = crb / np.linalg.norm(crb, axis=1)[:, None]
+    assert np.allclose(sf.corner_normals(t, crb, fnb)[:, 0], fnb)
