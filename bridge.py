@@ -328,7 +328,7 @@ def surface_space(paper_obj) -> np.ndarray:
 
 
 _SURFACES: dict = {}  # (object name, digest) -> sim.surface.Surface
-_PAPERS: dict = {}  # (digest, W, H, px/mm) -> sim.surface.SurfacePaper without frames
+_PAPERS: dict = {}  # (digest, W, H, px/mm, width mm) -> sim.surface.SurfacePaper without frames
 
 
 def mesh_arrays(obj) -> tuple[np.ndarray, np.ndarray, np.ndarray | None]:
@@ -391,7 +391,7 @@ def surface_paper(st, rec: Recording):
 def surface_paper_base(surface, digest: str, rec: Recording, build: bool = True):
     """The SurfacePaper (no frames) of a surface at the recording's texture size and px/mm,
     kept for the session; None when it is not kept yet and ``build`` is False."""
-    key = (digest, rec.width_px, rec.height_px, rec.px_per_mm)
+    key = (digest, rec.width_px, rec.height_px, rec.px_per_mm, rec.width_mm)  # all it depends on
     if key not in _PAPERS:
         if not build:
             return None
@@ -407,7 +407,7 @@ def surface_paper_base(surface, digest: str, rec: Recording, build: bool = True)
 def keep_surface_paper(digest: str, paper):
     """Keep a SurfacePaper built elsewhere (a worker) for the session."""
     _PAPERS.clear()
-    _PAPERS[(digest, paper.W, paper.H, paper.ppm)] = paper
+    _PAPERS[(digest, paper.W, paper.H, paper.ppm, paper.side_mm)] = paper
 
 
 class SurfaceWriting:

@@ -704,7 +704,7 @@ class SurfacePaper:
         self.surface = surface
         self.ppm = float(ppm)
         self.tiles = TexelTiles(surface, W, H)  # texel points, built where the marks reach
-        self.W, self.H = W, H
+        self.W, self.H, self.side_mm = W, H, float(side_mm)
         # the chart is offset so that its pixels are never negative (samples reach 10 sides)
         self.offset = math.ceil(CHART_SIDES * side_mm * self.ppm) / self.ppm
         self.near = TriangleGrid(surface)  # the frames of live samples

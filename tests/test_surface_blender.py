@@ -571,3 +571,23 @@ def test_imitate_picture_on_a_cylinder_is_laid_on_it_too(hb):
     touch = P[rec.samples[:, 2] < HAIR]
     assert np.abs(touch[:, 0]).max() < 20.0 and (touch[:, 1] < 0).all()  # on the front
     assert ink(st.paper_image).max() > 0.3
+
+
+def test_the_kept_surface_paper_is_the_one_a_fresh_session_would_build(hb):
+    """The kept paper's chart offset depends on the recording's width in mm, not only on its
+    texture's size: a recording 0.1 mm wider (same pixels) must not reuse the other's."""
+    from sim.recording import Recording
+
+    b = ext().bridge
+    s = b.surf.surface_from_arrays(
+        [[0, 0, 0], [10, 0, 0], [0, 10, 0]], [[0, 1, 2]], [[[0, 0], [1, 0], [0, 1]]]
+    )
+    a = Recording(np.zeros((1, 6)), width_mm=100.0, height_mm=100.0, px_per_mm=3.0)
+    c = Recording(np.zeros((1, 6)), width_mm=100.1, height_mm=100.0, px_per_mm=3.0)
+    assert (a.width_px, a.height_px) == (c.width_px, c.height_px)
+    b._PAPERS.clear()
+    fresh = b.surface_paper_base(s, "d", c).offset
+    b._PAPERS.clear()
+    b.surface_paper_base(s, "d", a)
+    assert b.surface_paper_base(s, "d", c).offset == fresh
+    assert b.surface_paper_base(s, "d", a).offset != fresh
