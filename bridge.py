@@ -447,16 +447,16 @@ class SurfaceWriting:
         def part(lo, hi, what):
             return None if progress is None else (lambda f: progress(lo + (hi - lo) * f, what))
 
-        near = self.paper.near if self.paper is not None else surf.TriangleGrid(self.surface)
+        t = self.template
+        if self.paper is None:  # its triangle grid also serves lay_on
+            self.paper = surf.SurfacePaper(
+                self.surface, None, t.width_px, t.height_px, t.px_per_mm, t.width_mm
+            )
+        near = self.paper.near
         frames = surf.lay_on(self.surface, self.start, samples, near, part(0, 0.3, "laying"))
         extra = {**self.template.extra, SURFACE_KEY: {"frames": frames.tolist()}}
         rec = dataclasses.replace(self.template, samples=samples, dips=list(flat.dips))
         rec.extra = extra
-        t = self.template
-        if self.paper is None:
-            self.paper = surf.SurfacePaper(
-                self.surface, None, t.width_px, t.height_px, t.px_per_mm, t.width_mm
-            )
         sim = Simulation(rec, surface=self.paper.with_frames(frames))
         return rec, sim.run(progress=part(0.3, 1.0, "simulating on the surface"))
 

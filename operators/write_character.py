@@ -23,6 +23,14 @@ from . import polls
 from .jobs import JobOperator, WorkerJob
 
 
+WRITE_SHARE = 0.6  # of the progress bar on a surface: the flat writing (then laying it)
+
+
+def _share(progress, lo: float, hi: float):
+    """progress(fraction, *details) reported on the part [lo, hi] of the bar."""
+    return lambda f, *details: progress(lo + (hi - lo) * f, *details)
+
+
 class WriteJob(WorkerJob):
     """The writing itself (calibration, practice passes) in a worker; ``finish`` sizes the
     paper, keyframes the brush, stores the recording and shows the writing. On a surface the
@@ -58,17 +66,19 @@ class WriteJob(WorkerJob):
             progress(0.0, "calibrating the brush")
             size_mm = auto_size_mm(self.char, calibrate(self.template))
         size = self._check(size_mm)
+        flat = progress if self.on_surface is None else _share(progress, 0.0, WRITE_SHARE)
         rec, _, sim = write_character(
             self.char,
             0,
             self.template,
             size_mm=size,
             passes=passes,
-            progress=progress,
+            progress=flat,
             px_per_mm=self.ppm,
         )
         if self.on_surface is not None:
-            rec, sim = self.on_surface.lay(rec, size, progress)
+            del sim  # the flat paper, before the surface's is simulated
+            rec, sim = self.on_surface.lay(rec, size, _share(progress, WRITE_SHARE, 1.0))
         return size, rec, sim
 
     def describe(self, details) -> str:

@@ -591,3 +591,26 @@ def test_the_kept_surface_paper_is_the_one_a_fresh_session_would_build(hb):
     b.surface_paper_base(s, "d", a)
     assert b.surface_paper_base(s, "d", c).offset == fresh
     assert b.surface_paper_base(s, "d", a).offset != fresh
+
+
+def test_write_character_on_a_surface_reports_progress_forwards_only(hb):
+    """The flat writing takes the first part of the bar and laying/simulating on the surface
+    the rest: the bar never runs backwards and ends at most full."""
+    from conftest import ROOT
+
+    cyl = cylinder()
+    st = surface_scene(cyl, ppm=2.0)
+    b = st.brush_object
+    b.rotation_mode = "XYZ"
+    b.location = (0.0, -(R_MM + HAIR + 5.0) / 1000, 0.0)
+    b.rotation_euler = (math.pi / 2, 0.0, 0.0)
+    mod = ext().operators.write_character
+    char = ext().sim.hanzi.find_char(str(ROOT / "data" / "hanzi" / "十.json"))
+    job = mod.WriteJob(bpy.context.scene, char, 30.0, 1)
+    seen = []
+    job._progress = lambda f, *details: seen.append((float(f), details))
+    assert job.step(math.inf)
+    fr = [f for f, _ in seen]
+    assert fr == sorted(fr) and 0.0 <= fr[0] and fr[-1] <= 1.0
+    first = next(i for i, (_, d) in enumerate(seen) if d and d[0] == "laying")
+    assert 0 < first and max(fr[:first]) <= mod.WRITE_SHARE <= fr[first] and fr[-1] > 0.9
