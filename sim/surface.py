@@ -96,6 +96,11 @@ def surface_from_arrays(verts_mm, tris, uvs, name: str = "The mesh") -> Surface:
     uvs = np.asarray(uvs, dtype=float).reshape(-1, 3, 2)
     if not (np.isfinite(verts).all() and np.isfinite(uvs).all()):
         raise SurfaceError(f"{name} has coordinates that are not numbers")
+    if uvs.min() < -UV_SLACK or uvs.max() > 1 + UV_SLACK:
+        raise SurfaceError(
+            f"{name}'s UV map reaches outside the image (0..1, e.g. tiled or UDIM): pack its "
+            "islands into it (UV > Pack Islands) to write on it"
+        )
     _check_manifold(tris, name)
     c = verts[tris]
     cross = np.cross(c[:, 1] - c[:, 0], c[:, 2] - c[:, 0])
@@ -110,6 +115,8 @@ def surface_from_arrays(verts_mm, tris, uvs, name: str = "The mesh") -> Surface:
     cn = corner_normals(tris, cross, fn)
     return Surface(verts, tris, uvs, fn, cn, float(area.sum()), uv_area)
 
+
+UV_SLACK = 1e-4  # how far (UV units) a UV may lie outside 0..1: rounding, not a tile
 
 SMOOTH_ANGLE_DEG = 60.0  # faces meeting at a sharper angle keep their edge sharp
 

@@ -170,6 +170,9 @@ def test_meshes_that_cannot_be_paper_get_one_message():
         sf.surface_from_arrays(s.verts, s.tris, None, "Mesh 'Cube'")
     with pytest.raises(sf.SurfaceError, match="UV map has no area"):
         sf.surface_from_arrays(s.verts, s.tris, np.zeros_like(s.uvs), "Mesh 'Cube'")
+    for shift in (1.0, -0.01):  # a UDIM tile (1002), an island just off the image
+        with pytest.raises(sf.SurfaceError, match=r"UV map reaches outside the image \(0..1"):
+            sf.surface_from_arrays(s.verts, s.tris, s.uvs + [shift, 0.0], "Mesh 'Cube'")
     fin = np.array([[0, 1, 2], [0, 1, 3], [0, 1, 4]])  # three faces on one edge
     v = np.array([[0, 0, 0], [1, 0, 0], [0, 1, 0], [0, -1, 0], [0, 0, 1.0]])
     with pytest.raises(sf.SurfaceError, match="not manifold: 1 edge"):

@@ -173,7 +173,15 @@ def test_meshes_that_cannot_be_paper_and_a_brush_that_never_touches_get_clear_me
     select_only(fin)
     with pytest.raises(RuntimeError, match="Mesh 'Fin' is not manifold: 1 edge"):
         bpy.ops.hairy_brush.setup(surface=True)
+    tiled = cylinder()
+    tiled.name = "Tiled"
+    for d in tiled.data.uv_layers.active.data:
+        d.uv = (d.uv[0] + 1.0, d.uv[1])  # the UDIM tile 1002
+    select_only(tiled)
+    with pytest.raises(RuntimeError, match=r"Mesh 'Tiled''s UV map reaches outside the image"):
+        bpy.ops.hairy_brush.setup(surface=True)
     assert st.paper_object is None  # nothing was set up
+    bpy.data.objects.remove(tiled)
     cyl = cylinder()
     st = surface_scene(cyl)
     key_around(st, np.linspace(-20, 20, 11), np.full(11, -4.0))  # 4 mm short of the surface
