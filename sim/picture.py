@@ -125,11 +125,11 @@ def _must_precede(a: Stroke, b: Stroke) -> bool:
     the standing stroke its horizontal runs into at its end (凵's right side)."""
     if not _lies_flat(a) or is_flat(b):
         return False
-    for node in a.through:
-        if node in b.through:
-            return True
-        if node in b.touches:
-            return _starts_at(b, node)
+    if a.through & b.through:  # a crossing anywhere decides, whatever else b touches
+        return True
+    on_a = sorted(a.through & b.touches)
+    if on_a:
+        return any(_starts_at(b, node) for node in on_a)
     if ends_flat(a) and not ends_flat(b):
         return any(not _starts_at(a, node) for node in a.touches if node in b.through | b.touches)
     return False

@@ -18,6 +18,7 @@ from sim.hanzi import find_char
 from sim.imitate import coverage_mask, write_character
 from sim.outline import fill, iou, rasterise, stroke_polygons, to_image
 from sim.picture import (
+    _must_precede,
     _straight_start,
     imitate,
     order_agreement,
@@ -26,6 +27,7 @@ from sim.picture import (
     trace_outline,
 )
 from sim.picture_ink import PictureError, find_ink
+from sim.picture_strokes import Stroke
 from sim.png import PNGError, write_png
 from sim.recording import Recording
 from sim.texture import _gaussian, score, texture_stats
@@ -156,6 +158,22 @@ def test_a_curl_inside_the_landing_blot_is_straightened():
     assert np.all(np.abs(head[:, 0] * way[1] - head[:, 1] * way[0]) < 1e-6)  # on the line
     assert np.array_equal(out[14:], pts[14:])
     assert np.array_equal(_straight_start(body, np.full(80, 6.0)), body)  # straight: kept
+
+
+def test_a_crossing_decides_the_order_whatever_else_is_touched_first():
+    # a horizontal through nodes 1 (left) and 2 (right); a vertical ending on node 1 (from
+    # above) and crossing at node 2: the crossing puts the horizontal first, whichever of the
+    # shared nodes is looked at first
+    joints = {1: np.array([20.0, 50.0]), 2: np.array([80.0, 50.0])}
+    flat = Stroke(np.array([[0.0, 50.0], [100.0, 50.0]]), np.full(2, 4.0), {1, 2}, set(), joints)
+    down = Stroke(np.array([[20.0, 0.0], [20.0, 50.0]]), np.full(2, 4.0), {2}, {1}, joints)
+    assert _must_precede(flat, down)
+    # without the crossing: one that ends on the horizontal (stands on it) does not follow it,
+    alone = Stroke(down.pts, down.radius, set(), {1}, joints)
+    assert not _must_precede(flat, alone)
+    # one that starts on it (hangs from it) does
+    up = Stroke(down.pts[::-1].copy(), down.radius, set(), {1}, joints)
+    assert _must_precede(flat, up)
 
 
 def test_small_writing_in_a_large_picture_is_framed():
