@@ -40,15 +40,16 @@ def sample_brush(scene, st, frame_start: int, frame_end: int, rate: float, progr
     meets the surface, developed into its chart (sim.surface.develop)."""
     if bridge.is_surface(st):
         surface = bridge.mesh_surface(st.paper_object)[0]
-        poses = _brush_poses(
-            scene, st, frame_start, rate, _count(scene, frame_start, frame_end, rate), progress
-        )
+        n = _count(scene, frame_start, frame_end, rate)
+        poses = _brush_poses(scene, st, frame_start, rate, n, _half(progress, 0.0))
         return surf.develop(
             surface,
             poses[:, :3],
             poses[:, 3:].reshape(-1, 3, 3),
             bridge.surface_origin(st),
             bridge.surface_caster(st),
+            surf.TriangleGrid(surface),  # the nearest points where the axis misses
+            _half(progress, 0.5),
         )
     fps = scene.render.fps / scene.render.fps_base
     n = _count(scene, frame_start, frame_end, rate)
@@ -68,6 +69,11 @@ def sample_brush(scene, st, frame_start: int, frame_end: int, rate: float, progr
         finally:
             scene.frame_set(keep[0], subframe=keep[1])
     return out
+
+
+def _half(progress, lo: float):
+    """progress(fraction) reported on [lo, lo + 0.5] of the bar (None: None)."""
+    return None if progress is None else (lambda f: progress(lo + 0.5 * f))
 
 
 def _count(scene, frame_start, frame_end, rate) -> int:

@@ -224,14 +224,21 @@ def ray_hit(surface: Surface, origin, direction) -> Hit | None:
 def closest_point(surface: Surface, point, near: TriangleGrid | None = None) -> Hit:
     """The surface point nearest ``point`` (the triangles at once: the projection on its plane
     when inside, else the nearest point of its three edges). With ``near``, only the triangles
-    in its cells around the point are looked at, and all of them only when none is that near."""
+    in its cells around the point are looked at: in a cube twice as wide while none is there,
+    then in the cube as wide as the nearest found is far (a point off the surface costs a
+    few looks at the triangles near it, not every triangle)."""
     p = np.asarray(point, dtype=float)
     if near is not None:
-        tris = near.query(p)
-        if tris.size:
-            hit = _closest_among(surface, p, tris)
-            if hit.distance <= near.reach:  # every triangle that near was looked at: exact
-                return hit
+        reach, span = near.reach, float(np.ptp(surface.verts, axis=0).max()) + 2 * near.reach
+        while reach <= 2 * span:
+            tris = near.query_box(p - reach, p + reach)
+            if tris.size:
+                hit = _closest_among(surface, p, tris)
+                if hit.distance <= reach:  # every triangle that near was looked at: exact
+                    return hit
+                reach = max(hit.distance + 1e-6, 1.001 * reach)  # holds all nearer than it
+            else:
+                reach *= 2
     return _closest_among(surface, p, None)
 
 
@@ -420,24 +427,30 @@ def pose_from_sample(frame, sample) -> tuple[np.ndarray, np.ndarray]:
     return base, F @ rotation_matrix(*s[3:6])
 
 
-def axis_hit(surface: Surface, base_mm, rot, cast=None) -> Hit:
+def axis_hit(surface: Surface, base_mm, rot, cast=None, near=None) -> Hit:
     """Where the brush's axis (its -z, from the base) meets the surface; the closest surface
-    point when it does not. ``cast(origin, direction)`` finds a ray's first hit (ray_hit, or
-    the caller's faster one: Blender's BVH tree)."""
+    point when it does not (through ``near``, a TriangleGrid, when given). ``cast(origin,
+    direction)`` finds a ray's first hit (ray_hit, or the caller's faster one: Blender's BVH
+    tree)."""
     cast = (lambda o, d: ray_hit(surface, o, d)) if cast is None else cast
     hit = cast(np.asarray(base_mm, dtype=float), -np.asarray(rot, dtype=float)[:, 2])
-    return hit if hit is not None else closest_point(surface, base_mm)
+    return hit if hit is not None else closest_point(surface, base_mm, near)
 
 
-def develop(surface: Surface, bases, rots, origin_xy, cast=None) -> tuple[np.ndarray, np.ndarray]:
+def develop(
+    surface: Surface, bases, rots, origin_xy, cast=None, near=None, progress=None
+) -> tuple[np.ndarray, np.ndarray]:
     """Baked brush poses (N bases in mm, N rotations, in the surface's space) -> the engine's
     chart samples (N, 6) and their frames (N, FRAME_WIDTH); see new_frame for origin_xy and
-    axis_hit for cast. The rotation r is kept continuous (no jump of 360 degrees)."""
+    axis_hit for cast and near. The rotation r is kept continuous (no jump of 360 degrees).
+    ``progress(fraction)`` is told how far it is."""
     frames = np.empty((len(bases), FRAME_WIDTH))
     samples = np.empty((len(bases), 6))
     prev = None
     for i, (base, rot) in enumerate(zip(bases, rots, strict=True)):
-        hit = axis_hit(surface, base, rot, cast)
+        if progress is not None and i % 64 == 0:
+            progress(i / len(bases))
+        hit = axis_hit(surface, base, rot, cast, near)
         prev = frames[i] = new_frame(surface, hit, prev, origin_xy, np.asarray(rot)[:, 0])
         samples[i] = local_sample(prev, base, rot)
         if i:

@@ -471,3 +471,34 @@ def test_a_fan_of_thousands_of_faces_gets_its_normals_in_linear_time():
     crb = np.cross(cb[:, 1] - cb[:, 0], cb[:, 2] - cb[:, 0])
     fnb = crb / np.linalg.norm(crb, axis=1)[:, None]
     assert np.allclose(sf.corner_normals(t, crb, fnb)[:, 0], fnb)
+
+
+def test_closest_point_through_the_grid_is_exact_and_cheap_far_off_the_surface():
+    """A brush beside a vase (its axis missing the surface) finds the nearest point through
+    the triangle grid, widening the cube it looks in, not by looking at every triangle."""
+    s = cylinder(n=96, m=24)
+    grid = sf.TriangleGrid(s)
+    looked = []
+    real = sf._closest_among
+    try:
+        sf._closest_among = lambda surface, p, tris: looked.append(
+            len(surface.tris) if tris is None else len(tris)
+        ) or real(surface, p, tris)
+        cost = []
+        for p in ([80.0, 10.0, 60.0], [35.0, 2.0, 60.0], [0.0, 300.0, -50.0]):
+            p = np.array(p)
+            looked.clear()
+            got = sf.closest_point(s, p, grid)
+            cost.append(sum(looked))
+            want = real(s, p, None)
+            assert got.tri == want.tri and np.array_equal(got.point, want.point)
+    finally:
+        sf._closest_among = real
+    # beside the cylinder (40 mm off its side, 5 mm inside it): a small part of it is looked at
+    assert max(cost[:2]) < len(s.tris) / 4
+    # develop uses the grid where the axis misses: poses beside the cylinder, pointing away
+    bases = np.array([[70.0, 0.0, 60.0], [70.0, 1.0, 60.0]])
+    rots = np.array([rotation_matrix(0.0, 90.0, 0.0)] * 2)
+    a = sf.develop(s, bases, rots, (0.0, 0.0), near=grid)
+    b = sf.develop(s, bases, rots, (0.0, 0.0))
+    assert np.array_equal(a[0], b[0]) and np.array_equal(a[1], b[1])
