@@ -22,7 +22,6 @@ from ..sim.imitate import auto_size_mm, calibrate, write_character
 from . import polls
 from .jobs import JobOperator, WorkerJob
 
-
 WRITE_SHARE = 0.6  # of the progress bar on a surface: the flat writing (then laying it)
 
 

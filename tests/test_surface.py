@@ -456,8 +456,8 @@ def test_a_fan_of_thousands_of_faces_gets_its_normals_in_linear_time():
     calls = []
     real = sf._pairwise_normals
     try:
-        sf._pairwise_normals = lambda v, cr, f, corners: calls.append(len(corners)) or real(
-            v, cr, f, corners
+        sf._pairwise_normals = lambda v, cr, f, corners: (
+            calls.append(len(corners)) or real(v, cr, f, corners)
         )
         cn = sf.corner_normals(tris, cross, fn)
     finally:
@@ -481,9 +481,10 @@ def test_closest_point_through_the_grid_is_exact_and_cheap_far_off_the_surface()
     looked = []
     real = sf._closest_among
     try:
-        sf._closest_among = lambda surface, p, tris: looked.append(
-            len(surface.tris) if tris is None else len(tris)
-        ) or real(surface, p, tris)
+        sf._closest_among = lambda surface, p, tris: (
+            looked.append(len(surface.tris) if tris is None else len(tris))
+            or real(surface, p, tris)
+        )
         cost = []
         for p in ([80.0, 10.0, 60.0], [35.0, 2.0, 60.0], [0.0, 300.0, -50.0]):
             p = np.array(p)
