@@ -387,6 +387,8 @@ def read_strokes(ink: Ink) -> tuple[list, list, dict]:
     strokes = [found[i] for i in writing_order(found, n, ink.mask)]
     regions = stroke_regions(strokes, ink.mask)
     keep = [i for i, r in enumerate(regions) if r.sum() >= 4]
+    if not keep:  # every stroke's own ink is a few pixels: nothing the writer could write
+        raise PictureError("no strokes found in the picture's ink")
     strokes, regions = [strokes[i] for i in keep], [regions[i] for i in keep]
     char = {
         "strokes": [outline_svg(r, n) for r in regions],

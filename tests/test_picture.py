@@ -23,10 +23,11 @@ from sim.picture import (
     imitate,
     order_agreement,
     read_picture,
+    read_strokes,
     simplify,
     trace_outline,
 )
-from sim.picture_ink import PictureError, find_ink
+from sim.picture_ink import Ink, PictureError, find_ink
 from sim.picture_strokes import Stroke
 from sim.png import PNGError, write_png
 from sim.recording import Recording
@@ -303,6 +304,17 @@ def test_bad_pictures_get_one_clear_message(tmp_path):
         assert r.stderr.strip().startswith("error:") and "Traceback" not in r.stderr
         assert r.stderr.count("error:") == 1
         assert not out.exists()
+
+
+def test_ink_too_small_for_any_stroke_gets_the_pictures_message():
+    # a 3-px dash has a skeleton (one stroke) but its own ink is under 4 px: the writer would
+    # get no strokes and say something about stroke data; the picture's message instead
+    mask = np.zeros((64, 64), dtype=bool)
+    mask[30, 20:23] = True
+    with pytest.raises(PictureError, match="no strokes found in the picture's ink"):
+        read_strokes(Ink(mask, mask.astype(np.float64), 0.5, 1.0))
+    mask[30, 20:24] = True  # 4 px: one stroke
+    assert len(read_strokes(Ink(mask, mask.astype(np.float64), 0.5, 1.0))[0]) == 1
 
 
 def test_other_formats_through_pillow_when_it_is_there(tmp_path):
