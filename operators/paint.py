@@ -56,7 +56,8 @@ def ray_to_paper(st, ray, sim=None):
         hit = bridge.surface_ray(st, *ray)
         if hit is None or sim is None or not sim.surface.frames:
             return None
-        return surf.chart_xy(sim.surface.frames[-1], hit.point)
+        paper = sim.surface
+        return surf.chart_xy_over(paper.surface, paper.frames[-1], hit.point, paper.near)
     return placement.ray_to_paper(bridge.engine_to_world(st, st.paper_object), *ray)
 
 
@@ -80,7 +81,12 @@ def start_on_surface(scene, ray) -> tuple[Simulation, tuple | None]:
         rec = bridge.new_recording(scene, [[frame[0], frame[1], hover, 0.0, 0.0, 0.0]])
         rec.extra[bridge.SURFACE_KEY] = {"frames": [frame.tolist()]}
         sim = Simulation(rec, bridge.surface_paper(st, rec)).run()
-    xy = surf.chart_xy(sim.surface.frames[-1], hit.point) if hit is not None else None
+    paper = sim.surface
+    xy = (
+        None
+        if hit is None
+        else surf.chart_xy_over(paper.surface, paper.frames[-1], hit.point, paper.near)
+    )
     return sim, xy
 
 

@@ -488,14 +488,38 @@ def lay_on(surface: Surface, start, samples, near=None, progress=None):
     frames = np.empty((len(xy), FRAME_WIDTH))
     prev = np.asarray(start, dtype=float)
     for i, target in enumerate(xy):
-        c = prev[:2]
-        n = max(1, math.ceil(float(np.hypot(*(target - c))) / LAY_STEP_MM))
-        for k in range(1, n + 1):
-            prev = follow(surface, prev, c + (target - c) * (k / n), near)
-        frames[i] = prev
+        prev = frames[i] = step_to(surface, prev, target, near)
         if progress is not None and i % 64 == 0:
             progress(i / len(xy))
     return frames
+
+
+def step_to(surface: Surface, prev, target, near=None) -> np.ndarray:
+    """The frame at chart position ``target`` followed from the frame ``prev`` over the surface
+    in steps of at most LAY_STEP_MM (lay_on's and live painting's)."""
+    prev = np.asarray(prev, dtype=float)
+    c, target = prev[:2], np.asarray(target, dtype=float)
+    n = max(1, math.ceil(float(np.hypot(*(target - c))) / LAY_STEP_MM))
+    for k in range(1, n + 1):
+        prev = follow(surface, prev, c + (target - c) * (k / n), near)
+    return prev
+
+
+def chart_xy_over(surface: Surface, frame, point, near=None) -> tuple[float, float]:
+    """The chart position of a surface point however far from the frame: walked towards it
+    over the surface in steps of LAY_STEP_MM, each seen on the last step's tangent plane (on
+    the far side of a cup, not the point's shadow on the first frame's plane)."""
+    frame = np.asarray(frame, dtype=float)
+    for _ in range(MAX_WALK_STEPS):
+        xy = np.array(chart_xy(frame, point))
+        d = float(np.hypot(*(xy - frame[:2])))
+        if d <= LAY_STEP_MM:
+            break
+        frame = follow(surface, frame, frame[:2] + (xy - frame[:2]) * (LAY_STEP_MM / d), near)
+    return float(xy[0]), float(xy[1])
+
+
+MAX_WALK_STEPS = 2000  # chart_xy_over's steps (4 m of surface)
 
 
 def chart_xy(frame, point) -> tuple[float, float]:
@@ -757,7 +781,7 @@ class SurfacePaper:
             if not self.frames:
                 raise SurfaceError("a surface recording's first sample has no frame")
             k = len(self.frames)
-            self.frames.append(follow(self.surface, self.frames[-1], xy, self.near))
+            self.frames.append(step_to(self.surface, self.frames[-1], xy, self.near))
             self._followed[k] = xy
         return self.frames[i]
 

@@ -503,3 +503,19 @@ def test_closest_point_through_the_grid_is_exact_and_cheap_far_off_the_surface()
     a = sf.develop(s, bases, rots, (0.0, 0.0), near=grid)
     b = sf.develop(s, bases, rots, (0.0, 0.0))
     assert np.array_equal(a[0], b[0]) and np.array_equal(a[1], b[1])
+
+
+def test_a_live_stroke_started_across_the_cylinder_lands_under_the_cursor():
+    """Live painting: the mouse's next point 120 degrees round the cylinder (a new stroke on
+    its far side) gets a chart position walked over the surface, and the frame made for it,
+    followed in short steps, lies where the mouse is."""
+    s = cylinder()
+    bases, rots = around([-90.0], [-5.0])
+    samples, frames = sf.develop(s, bases, rots, (100.0, 100.0))
+    sp = sf.SurfacePaper(s, frames, 64, 64, PPM, 100.0)
+    for ang, z in ((30.0, 80.0), (-130.0, 40.0), (-80.0, 62.0)):
+        a = np.radians(ang)
+        hit = sf.closest_point(s, [40 * np.cos(a), 40 * np.sin(a), z], sp.near)
+        xy = sf.chart_xy_over(s, sp.frames[-1], hit.point, sp.near)
+        p = sp.frame(len(sp.frames), xy)[2:5]
+        assert np.linalg.norm(p - hit.point) < 1.0, (ang, p, hit.point)
