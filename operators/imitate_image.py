@@ -119,8 +119,8 @@ class HAIRY_BRUSH_OT_imitate_image(JobOperator, bpy.types.Operator, ImportHelper
         default=0.0,
         min=0.0,
         max=2000.0,
-        description="The picture's size in mm (the paper becomes this square); 0 sizes the "
-        "writing to the brush",
+        description="The picture's size in mm (a flat paper becomes this square; on a surface "
+        "the picture is laid at this size under the brush); 0 sizes the writing to the brush",
     )
     passes: bpy.props.IntProperty(
         name="Practice Passes",

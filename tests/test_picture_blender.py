@@ -143,3 +143,9 @@ def test_imitate_is_greyed_out_without_a_brush_and_paper(hb):
     assert not bpy.ops.hairy_brush.imitate_image.poll()
     with pytest.raises(RuntimeError, match="No brush empty"):
         bpy.ops.hairy_brush.imitate_image(image="anything")
+
+
+def test_the_size_tooltip_says_what_size_does_on_a_surface(hb):
+    props = bpy.ops.hairy_brush.imitate_image.get_rna_type().properties
+    tip = props["size_mm"].description
+    assert "flat paper becomes this square" in tip and "on a surface" in tip, tip
