@@ -585,22 +585,31 @@ def show_paper(img, paper, index: int):
     img.pixels.foreach_set(view.flat())
     img.update()
     img[SHOWN_TAG] = int(index)
-    if DENSITY_TAG in img:
+    if density_read(img, tag_reliefs(img)):
         show_density(img, paper.ink)
-    tag_reliefs(img)
 
 
-def tag_reliefs(img):
+def tag_reliefs(img) -> set:
     """Objects whose Displace modifier reads the paper image (or its density image) are
-    evaluated again: new pixels alone do not move a relief's vertices."""
+    evaluated again: new pixels alone do not move a relief's vertices. Returns the names of
+    those of the two images that a relief reads."""
     images = {img.name, img.get(DENSITY_TAG)}
+    read = set()
     for obj in bpy.data.objects:
         for mod in obj.modifiers if obj.type == "MESH" else ():
             tex = getattr(mod, "texture", None) if mod.type == "DISPLACE" else None
             if tex is not None and getattr(tex, "image", None) is not None:
                 if tex.image.name in images:
                     obj.update_tag()
-                    break
+                    read.add(tex.image.name)
+    return read
+
+
+def density_read(img, read: set) -> bool:
+    """Whether the paper image's density image is among the images reliefs read (``read``, from
+    tag_reliefs): only then is it refreshed (a whole second image)."""
+    name = img.get(DENSITY_TAG)
+    return isinstance(name, str) and name in read
 
 
 def density_image(img, create: bool = False):
@@ -617,6 +626,11 @@ def density_image(img, create: bool = False):
     return dens
 
 
+def density_of(ink) -> np.ndarray:
+    """(H, W) the grey density an image shows of the engine's ``Paper.ink``."""
+    return np.clip(ink.mean(axis=2, dtype=np.float32), 0.0, 1.0)
+
+
 def show_density(img, ink=None):
     """Fill the paper image's density image: the mean of the ink's density (the engine's
     ``Paper.ink``, bottom row first; None: the blank paper), grey. Costs a whole image, so
@@ -628,7 +642,7 @@ def show_density(img, ink=None):
     if ink is None:
         write_density(dens, np.zeros((h, w), np.float32))
     else:
-        write_density(dens, np.clip(ink.mean(axis=2, dtype=np.float32), 0.0, 1.0))
+        write_density(dens, density_of(ink))
 
 
 def write_density(dens, density):
@@ -658,7 +672,8 @@ def show_blank(st):
     blank[:] = color
     write_image(img, blank)
     img[SHOWN_TAG] = 0
-    show_density(img)
+    if density_read(img, tag_reliefs(img)):
+        show_density(img)
     return img
 
 

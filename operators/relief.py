@@ -126,11 +126,13 @@ class HAIRY_BRUSH_OT_relief(bpy.types.Operator):
         img = st.paper_image
         sign = 1.0 if self.mode == "CARVE" else -1.0
         if self.follow == "DENSITY":  # displacement = density x (-sign depth)
-            dens = bridge.density_image(img, create=True)
-            try:  # the engine's own density at the sample the image shows (fills the image)
-                playback.show(context.scene, int(img[bridge.SHOWN_TAG]))
+            try:  # the engine's own density at the sample the image shows
+                ink = playback.show(context.scene, int(img[bridge.SHOWN_TAG])).paper.ink
+                density = bridge.density_of(ink)
             except (*bridge.USER_ERRORS, KeyError, MemoryError):  # else as the image shows it
-                bridge.write_density(dens, bridge.density_from_image(st, img))
+                density = bridge.density_from_image(st, img)
+            dens = bridge.density_image(img, create=True)  # made once nothing can fail
+            bridge.write_density(dens, density)
             mid, strength, tex = 0.0, -sign * self.depth_mm / bridge.MM, relief_texture(dens)
         else:  # displacement = (value - paper's value) x strength: 0 bare, -sign depth full
             mid = paper_value(st, img)

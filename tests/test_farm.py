@@ -163,3 +163,47 @@ def test_relief_needs_a_uv_map(hb):
     assert st.paper_image is not None
     with pytest.raises(RuntimeError, match="has a UV map"):
         bpy.ops.hairy_brush.relief()
+
+
+def test_a_density_relief_leaves_nothing_when_it_fails_and_its_image_is_refreshed_only_while_read(
+    hb, monkeypatch
+):
+    st = setup_scene(bpy, ppm=2.0)
+    keyframe_stroke(bpy, st, press=8.0)
+    bpy.ops.hairy_brush.bake_samples()
+    bpy.ops.hairy_brush.simulate()
+    img, tag = st.paper_image, "hairy_brush_density"
+    grid = _grid_over_paper(n=8)
+    select_only(grid)
+
+    def fails(*_args, **_kw):
+        raise RuntimeError("the re-simulation failed")
+
+    with monkeypatch.context() as m:
+        m.setattr(ext().playback, "show", fails)
+        with pytest.raises(RuntimeError, match="the re-simulation failed"):
+            bpy.ops.hairy_brush.relief(follow="DENSITY")
+    assert tag not in img and not [i for i in bpy.data.images if "Ink Density" in i.name]
+    assert not [m for m in grid.modifiers if m.type == "DISPLACE"]
+    assert bpy.ops.hairy_brush.relief(follow="DENSITY") == {"FINISHED"}
+    dens = bpy.data.images[img[tag]]
+    n = int(img[ext().bridge.SHOWN_TAG])
+
+    def density():
+        a = np.empty(len(dens.pixels), np.float32)
+        dens.pixels.foreach_get(a)
+        return a.reshape(dens.size[1], dens.size[0], 4)[..., 0]
+
+    full = density()
+    assert full.max() > 0.2
+    marker = np.full(len(dens.pixels), 0.5, np.float32)
+    dens.pixels.foreach_set(marker)
+    ext().playback.clear()
+    ext().playback.show(bpy.context.scene, n)  # read by the relief: refreshed
+    np.testing.assert_array_equal(density(), full)
+    for mod in [m for m in grid.modifiers if m.type == "DISPLACE"]:
+        grid.modifiers.remove(mod)
+    dens.pixels.foreach_set(marker)
+    ext().playback.clear()
+    ext().playback.show(bpy.context.scene, n)  # no relief reads it: left as it is
+    assert (density() == 0.5).all()
