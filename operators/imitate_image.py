@@ -12,7 +12,7 @@ import numpy as np
 from bpy_extras.io_utils import ImportHelper
 
 from .. import bridge
-from ..sim.picture import PASSES, read_picture
+from ..sim.picture import MAX_DETAIL, PASSES, read_picture
 from ..sim.picture_ink import MAX_PICTURE_PIXELS, PictureError, load_picture
 from ..sim.png import SIGNATURE
 from . import polls
@@ -134,7 +134,7 @@ class HAIRY_BRUSH_OT_imitate_image(JobOperator, bpy.types.Operator, ImportHelper
         name="Detail (px)",
         default=512,
         min=64,
-        max=2048,
+        max=MAX_DETAIL,
         description="The picture is read at this many pixels a side (its strokes, widths "
         "and ink); the writing itself is at the paper's resolution",
     )

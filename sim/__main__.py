@@ -125,7 +125,7 @@ def cmd_imitate(args) -> int:
 
     from .imitate import coverage_mask
     from .outline import iou
-    from .picture import imitate
+    from .picture import imitate, ink_on
     from .png import write_png
     from .texture import score, texture_stats
 
@@ -149,10 +149,11 @@ def cmd_imitate(args) -> int:
         with open(args.char_data, "w", encoding="utf-8") as f:
             json.dump(im.char, f, separators=(",", ":"))
     if not args.quiet:
+        ink = ink_on(im.ink.mask, args.size)  # read at most MAX_DETAIL a side
         print(
             f"{args.output}: {len(im.strokes)} strokes read in {im.seconds:.1f} s, "
             f"{len(rec.samples)} samples, character {rec.width_mm:.1f} mm, IoU with the "
-            f"picture's ink {iou(coverage_mask(sim), im.ink.mask):.3f}, texture score "
+            f"picture's ink {iou(coverage_mask(sim), ink):.3f}, texture score "
             f"{score(texture_stats(sim.image())):.2f}, {time.perf_counter() - t0:.1f} s"
         )
     return 0
@@ -395,7 +396,7 @@ def _add_fit(sub, size, common):
 
 def _parser() -> argparse.ArgumentParser:
     from .imitate import MAX_PASSES, MIN_SHEET_PX
-    from .picture import PASSES
+    from .picture import MAX_DETAIL, PASSES
 
     seed = _whole(0, MAX_SEED)
     size = _whole(MIN_SHEET_PX, MAX_PAPER_SIDE_PX)
@@ -436,7 +437,12 @@ def _parser() -> argparse.ArgumentParser:
     im = sub.add_parser("imitate", help="read a picture of writing and write it with the brush")
     im.add_argument("image", help="dark writing on a light ground: PNG (JPEG etc. with Pillow)")
     im.add_argument("-o", "--output", required=True)
-    im.add_argument("--size", type=size, default=512, help="image size N (the em box)")
+    im.add_argument(
+        "--size",
+        type=size,
+        default=512,
+        help=f"image size N (the em box) written; the picture is read at N, at most {MAX_DETAIL}",
+    )
     im.add_argument("--recording", default=None, help="also save the recording it made")
     im.add_argument("--char-data", default=None, help="also save the strokes read (JSON)")
     im.add_argument(

@@ -52,6 +52,7 @@ SQUARE = 1.25  # a character is at most this times as tall as its column is wide
 NARROW = 0.5  # a column narrower than this share of the widest is part of its neighbour
 PIECE_FILL = 0.8  # a character fills this share of its own square (as in a font's em box)
 PASSES = 5  # practice passes per stroke: the picture's ink is the target (3: IoU 0.01 lower)
+MAX_DETAIL = 2048  # px a side: a picture is read at most this fine (Blender's Detail, the CLI)
 
 
 @dataclass
@@ -516,9 +517,11 @@ def read_piece(ink: Ink) -> tuple[list, list, dict] | None:
 
 def read_picture(source, n: int = 512, name: str | None = None, piece: bool = False) -> Imitation:
     """Read a picture (a PNG path, or an image array (H, W[, C])) into an Imitation on an
-    n x n em box; with ``piece``, a picture of several characters in columns is read as such
-    (``read_piece``: each character in its own square). PictureError (or PNGError) for a
-    picture this cannot imitate."""
+    n x n em box (n at most MAX_DETAIL); with ``piece``, a picture of several characters in
+    columns is read as such (``read_piece``: each character in its own square). PictureError
+    (or PNGError) for a picture this cannot imitate."""
+    if isinstance(n, bool) or not isinstance(n, (int, np.integer)) or not 0 < n <= MAX_DETAIL:
+        raise PictureError(f"a picture is read at 1 to {MAX_DETAIL} px a side, got {n!r}")
     t0 = time.perf_counter()
     if isinstance(source, (str, bytes)) or hasattr(source, "__fspath__"):
         grey = load_picture(source)
@@ -548,13 +551,15 @@ def imitate(
     piece: bool = False,
 ):
     """Read a picture and write it with the brush (``imitate.write_character``: press from the
-    picture's widths, practice passes against the picture's own ink). Returns the recording,
-    the response, the finished simulation and the Imitation."""
+    picture's widths, practice passes against the picture's own ink) on an n_px sheet; the
+    picture is read on an em box of n_px, at most MAX_DETAIL, px a side (the Imitation's ink is
+    at that size). Returns the recording, the response, the finished simulation and the
+    Imitation."""
     from .imitate import write_character
 
     if progress is not None:
         progress(0.0, "reading the picture")
-    im = read_picture(source, n_px, piece=piece)
+    im = read_picture(source, min(n_px, MAX_DETAIL), piece=piece)  # the writing is n_px
     if progress is not None:
         progress(0.05, f"{len(im.strokes)} strokes found; writing")
 
@@ -573,6 +578,13 @@ def imitate(
         px_per_mm=px_per_mm,
     )
     return rec, resp, sim, im
+
+
+def ink_on(mask: np.ndarray, n: int) -> np.ndarray:
+    """A square mask (the ink read off a picture) on an n x n grid, each pixel the one under
+    its centre (the ink read at MAX_DETAIL against a finer sheet)."""
+    idx = ((np.arange(n) + 0.5) * len(mask) / n).astype(np.int64)
+    return mask[idx[:, None], idx[None, :]]
 
 
 # ------------------------------------------------------------------ against known data

@@ -348,6 +348,30 @@ def test_cli_imitate_writes_a_recording_that_replays(tmp_path):
     assert again.read_bytes() == out.read_bytes()
 
 
+def test_the_picture_is_read_at_most_max_detail_and_written_at_the_size_asked(
+    tmp_path, monkeypatch, capsys
+):
+    import sim.picture
+    from sim.__main__ import main
+    from sim.png import read_png
+
+    with pytest.raises(PictureError, match=f"1 to {sim.picture.MAX_DETAIL} px a side"):
+        read_picture(picture("王", 128), sim.picture.MAX_DETAIL + 1)
+    src, out, data = tmp_path / "wang.png", tmp_path / "out.png", tmp_path / "char.json"
+    write_png(src, picture("王", 200))
+    fine = read_picture(src, 160).char
+    # `imitate --size 160` with reading capped at 128 (2048 for real): the strokes are read at
+    # 128 px, the writing is 160 px, and the report compares the two at the sheet's size
+    monkeypatch.setattr(sim.picture, "MAX_DETAIL", 128)
+    args = [str(src), "-o", str(out), "--size", "160", "--passes", "1", "--char-data", str(data)]
+    assert main(["imitate", *args]) == 0, capsys.readouterr().err
+    assert read_png(out).shape[:2] == (160, 160)
+    assert json.loads(data.read_text()) == read_picture(src, 128).char  # read at 128, not 160
+    assert json.loads(data.read_text()) != fine
+    iou_line = capsys.readouterr().out
+    assert float(iou_line.split("IoU with the picture's ink ")[1].split(",")[0]) > 0.7, iou_line
+
+
 def test_a_piece_is_read_in_columns_right_to_left():
     # two columns: 木 over 王 on the right, 口 over 禾 on the left; read 木 王 口 禾, each
     # character in its own square of the sheet with its strokes as read alone, in its order

@@ -149,3 +149,10 @@ def test_the_size_tooltip_says_what_size_does_on_a_surface(hb):
     props = bpy.ops.hairy_brush.imitate_image.get_rna_type().properties
     tip = props["size_mm"].description
     assert "flat paper becomes this square" in tip and "on a surface" in tip, tip
+
+
+def test_detail_is_capped_where_the_cli_caps_reading(hb):
+    from sim.picture import MAX_DETAIL
+
+    props = bpy.ops.hairy_brush.imitate_image.get_rna_type().properties
+    assert props["detail"].hard_max == MAX_DETAIL == ext().sim.picture.MAX_DETAIL
