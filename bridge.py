@@ -6,6 +6,7 @@ The maths (units, poses, rays, frames) is in ``sim.placement``; here it meets Bl
 
 from __future__ import annotations
 
+import contextlib
 import dataclasses
 import hashlib
 import json
@@ -369,9 +370,44 @@ def mesh_surface(obj) -> tuple[surf.Surface, str]:
     return _SURFACES[key], digest
 
 
+_DIGESTS: dict = {}  # a mesh's cheap key -> its digest, while no mesh changed (frame changes)
+_TRUST_DIGESTS = [False]
+
+
+@contextlib.contextmanager
+def trusting_digests():
+    """Within it (following frames), surface_digest takes a kept digest of the paper mesh while
+    its cheap key (name, datablock, sizes, matrices, UV map) holds and no mesh changed since
+    (handlers.on_depsgraph_update forgets them): a frame change neither reads nor hashes the
+    mesh. Elsewhere (operators) the mesh is read and hashed, and the digest kept."""
+    old, _TRUST_DIGESTS[0] = _TRUST_DIGESTS[0], True
+    try:
+        yield
+    finally:
+        _TRUST_DIGESTS[0] = old
+
+
+def forget_digests():
+    """A mesh changed (or undo, or another file): digests are computed again."""
+    _DIGESTS.clear()
+
+
+def _cheap_mesh_key(obj) -> tuple:
+    me, uv = obj.data, obj.data.uv_layers.active
+    mats = np.r_[np.ravel(obj.matrix_world), np.ravel(surface_space(obj))]
+    sizes = (len(me.vertices), len(me.loops), len(me.polygons))
+    return (obj.name, me.as_pointer(), sizes, mats.tobytes(), uv.name if uv else None)
+
+
 def surface_digest(st) -> str:
     """Changes whenever the surface the scene writes on changes ('' for the flat paper)."""
-    return _digest(*mesh_arrays(st.paper_object)) if is_surface(st) else ""
+    if not is_surface(st):
+        return ""
+    key = _cheap_mesh_key(st.paper_object)
+    if not _TRUST_DIGESTS[0] or key not in _DIGESTS:
+        _DIGESTS.clear()
+        _DIGESTS[key] = _digest(*mesh_arrays(st.paper_object))
+    return _DIGESTS[key]
 
 
 def surface_paper(st, rec: Recording):
@@ -524,6 +560,7 @@ def surface_origin(st) -> tuple[float, float]:
 
 
 def forget_surfaces():
+    _DIGESTS.clear()
     _SURFACES.clear()
     _PAPERS.clear()
     _CASTERS.clear()

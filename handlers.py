@@ -55,9 +55,10 @@ def follow_frame(scene) -> bool:
         return False
     frame = scene.frame_current + scene.frame_subframe
     try:
-        pb = playback.playback_for(scene)
-        target = bridge.samples_at_frame(pb.rec, scene, frame)
-        sim = playback.show(scene, target, should_stop=_deadline(exact_frames()))
+        with bridge.trusting_digests():  # the mesh is read again only after it changed
+            pb = playback.playback_for(scene)
+            target = bridge.samples_at_frame(pb.rec, scene, frame)
+            sim = playback.show(scene, target, should_stop=_deadline(exact_frames()))
     except bridge.USER_ERRORS as exc:
         _report(scene, str(exc))
         return False
@@ -94,7 +95,8 @@ def _catch_up_later(scene_name: str, frame: float, target: int):
             return None
         try:
             end = time.perf_counter() + CATCH_UP_SLICE_S
-            sim = playback.show(scene, target, should_stop=lambda: time.perf_counter() > end)
+            with bridge.trusting_digests():
+                sim = playback.show(scene, target, should_stop=lambda: time.perf_counter() > end)
         except Exception as exc:  # a timer must not raise into Blender
             _report(scene, f"catching up: {exc}")
             wm.progress_end()
@@ -115,11 +117,21 @@ def on_frame_change(scene, _depsgraph=None):
 
 
 @persistent
+def on_depsgraph_update(_scene, depsgraph=None):
+    """A mesh's geometry changed (an edit, a script that told the depsgraph): the paper mesh's
+    kept digest is computed again at the next frame change."""
+    updates = depsgraph.updates if depsgraph is not None else ()
+    if any(isinstance(u.id, bpy.types.Mesh) and u.is_updated_geometry for u in updates):
+        bridge.forget_digests()
+
+
+@persistent
 def on_undo_redo(_scene, _data=None):
     # Undo brings back the recording and the image's record of how many samples it showed, but
     # not its pixels: show that many samples of the recording again (the playback is kept while
     # the recording and settings are unchanged, so this costs a seek).
     bridge.forget_views()
+    bridge.forget_digests()  # the meshes may be back as they were
     for scene in bpy.data.scenes:
         st = bridge.settings(scene)
         img = st.paper_image
@@ -154,6 +166,7 @@ def on_load_post(_filepath="", _data=None):
 
 _HANDLERS = (
     ("frame_change_post", on_frame_change),
+    ("depsgraph_update_post", on_depsgraph_update),
     ("undo_post", on_undo_redo),
     ("redo_post", on_undo_redo),
     ("save_pre", on_save_pre),

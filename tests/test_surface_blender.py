@@ -622,3 +622,31 @@ def test_write_character_on_a_surface_reports_progress_forwards_only(hb):
     assert fr == sorted(fr) and 0.0 <= fr[0] and fr[-1] <= 1.0
     first = next(i for i, (_, d) in enumerate(seen) if d and d[0] == "laying")
     assert 0 < first and max(fr[:first]) <= mod.WRITE_SHARE <= fr[first] and fr[-1] > 0.9
+
+
+def test_frame_changes_read_the_paper_mesh_again_only_after_it_changed(hb, monkeypatch):
+    """Following frames, the paper mesh is neither read nor hashed while it is unchanged; an
+    edit (which the depsgraph reports) makes the next frame change use the mesh as it is."""
+    sc = bpy.context.scene
+    cyl = cylinder()
+    st = surface_scene(cyl)
+    key_around(st, np.linspace(-20, 20, 11), presses(11))
+    assert bpy.ops.hairy_brush.bake_samples() == {"FINISHED"}
+    st.sync_frames = True
+    b = ext().bridge
+    reads = []
+    real = b.mesh_arrays
+    monkeypatch.setattr(b, "mesh_arrays", lambda obj: reads.append(obj.name) or real(obj))
+    sc.frame_set(sc.frame_start)
+    key = ext().playback.playback_for(sc).key  # (read outside frame changes: counted)
+    reads.clear()
+    for f in (sc.frame_start + 3, sc.frame_end, sc.frame_start + 1):
+        sc.frame_set(f)
+    assert reads == [] and ext().handlers.last_error == ""
+    cyl.data.vertices[0].co.z += 0.001  # an edit the depsgraph reports
+    bpy.context.view_layer.update()
+    sc.frame_set(sc.frame_start + 2)
+    assert "Cylinder" in reads
+    with b.trusting_digests():
+        assert ext().playback.cache_key(sc) != key  # the new mesh's playback
+    assert ext().handlers.last_error == ""
