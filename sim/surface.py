@@ -46,6 +46,7 @@ from __future__ import annotations
 
 import copy
 import math
+import threading
 from dataclasses import dataclass, field, replace
 
 import numpy as np
@@ -605,6 +606,7 @@ class TexelTiles:
         self.owner = np.full(self.W * self.H, -1, np.int32)  # the triangle that gives its point
         self.xyz = np.zeros((self.W * self.H, 3), np.float32)  # pages touched when built only
         self.built = np.zeros(n_tiles, bool)
+        self._lock = threading.Lock()
 
     def _pieces(self, tri, lo, hi):
         """(tile key, triangle, texel rectangle x0, x1, y0, y1) of each triangle in each tile
@@ -648,7 +650,8 @@ class TexelTiles:
         p = self.grid.query_box(lo, hi)
         p = p[((self.box_lo[p] <= hi) & (self.box_hi[p] >= lo)).all(axis=1)]
         tiles = np.unique(self.key[p])
-        self.build(tiles[~self.built[tiles]])
+        with self._lock:  # a kept paper is shared by a worker (writing) and Blender's thread
+            self.build(tiles[~self.built[tiles]])
         idx = self._tile_texels(tiles)
         idx = idx[self.owner[idx] >= 0]
         xyz = self.xyz[idx]
@@ -715,7 +718,8 @@ class TexelTiles:
 
     def all(self) -> TexelPoints:
         """Every texel's point (all tiles built): tests, pictures."""
-        self.build(np.flatnonzero(~self.built))
+        with self._lock:
+            self.build(np.flatnonzero(~self.built))
         idx = np.flatnonzero(self.owner >= 0).astype(np.int32)
         return TexelPoints(idx, self.xyz[idx], self.normal(idx), self.W, self.H)
 

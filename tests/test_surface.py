@@ -519,3 +519,28 @@ def test_a_live_stroke_started_across_the_cylinder_lands_under_the_cursor():
         xy = sf.chart_xy_over(s, sp.frames[-1], hit.point, sp.near)
         p = sp.frame(len(sp.frames), xy)[2:5]
         assert np.linalg.norm(p - hit.point) < 1.0, (ang, p, hit.point)
+
+
+def test_texel_tiles_built_from_two_threads_at_once_give_the_same_points():
+    """A kept SurfacePaper is shared by a writing worker and Blender's thread: tiles built by
+    both at once (under the tiles' lock) hold the points built by one."""
+    import threading
+
+    s = cylinder(n=96, m=24)
+    one = sf.TexelTiles(s, 512, 512)
+    ref = one.all()
+    two = sf.TexelTiles(s, 512, 512)
+    boxes = [
+        (np.array([-50.0, -50.0, z]), np.array([50.0, 50.0, z + 30.0])) for z in range(0, 120, 30)
+    ]
+    ts = [
+        threading.Thread(target=lambda bs=bs: [two.query_box(lo, hi) for lo, hi in bs])
+        for bs in (boxes, boxes[::-1])
+    ]
+    for t in ts:
+        t.start()
+    for t in ts:
+        t.join()
+    got = two.all()
+    assert np.array_equal(got.index, ref.index) and np.array_equal(got.xyz, ref.xyz)
+    assert isinstance(two._lock, type(threading.Lock()))
