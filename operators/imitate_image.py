@@ -75,15 +75,18 @@ class ImitateJob(WriteJob):
         self.template = bridge.settings_recording(scene)
         self.ppm = float(st.px_per_mm)
         self.strokes = 0
+        self.picture = picture  # let go once read: a large picture is not kept while writing
         if size_mm:
             self._check(size_mm)
         WorkerJob.__init__(
-            self, lambda progress: self._imitate(picture, detail, size_mm, passes, progress, piece)
+            self, lambda progress: self._imitate(detail, size_mm, passes, progress, piece)
         )
 
-    def _imitate(self, picture, detail: int, size_mm: float, passes: int, progress, piece):
+    def _imitate(self, detail: int, size_mm: float, passes: int, progress, piece):
         progress(0.0, "reading the picture")
+        picture, self.picture = self.picture, None
         im = read_picture(picture, detail, self.name, piece=piece)
+        del picture
         self.char, self.strokes = im.char, len(im.strokes)
 
         def writing(frac, *details):

@@ -26,6 +26,8 @@ SPECK = 2e-4  # a piece of ink smaller than this share of the em box is a speck
 SEAL_CHROMA = 0.3  # max - min of a pixel's RGB above which it is a colour, not ink or paper
 FILL_MIN, FILL = 0.5, 0.8  # writing smaller than FILL_MIN of the picture is framed to fill FILL
 PIN_HOLE = 4e-4  # a hole in the ink smaller than this share of the em box is filled
+LUMA = tuple(np.float32(w) for w in (0.2126, 0.7152, 0.0722))  # Rec. 709 luminance weights
+ROWS = 256  # a picture is turned into luminance this many rows at a time (its float copies)
 
 
 class PictureError(ParameterError):
@@ -43,33 +45,57 @@ class Ink:
 
 
 def grey_of(img, name: str = "the picture") -> np.ndarray:
-    """Luminance in [0, 1] of a picture (H, W[, C]) of uint8 or floats in [0, 1], C in 1..4; an
-    alpha channel is laid over white paper."""
+    """Luminance in [0, 1] (float32) of a picture (H, W[, C]) of uint8 or floats in [0, 1], C in
+    1..4; an alpha channel is laid over white paper. The picture is converted ROWS rows at a
+    time: a picture at the size limit is never copied whole as floats per channel."""
     a = np.asarray(img)
     if a.ndim == 2:
         a = a[..., None]
     if a.ndim != 3 or a.shape[2] not in (1, 2, 3, 4) or a.size == 0:
         raise PictureError(f"{name} is not an image (shape {tuple(np.shape(img))})")
-    a = a.astype(np.float64) / 255.0 if a.dtype == np.uint8 else a.astype(np.float64)
-    if not np.isfinite(a).all():
-        raise PictureError(f"{name} has pixels that are not numbers")
-    a = np.clip(a, 0.0, 1.0)
-    c = a.shape[2]
-    alpha = a[..., -1] if c in (2, 4) else 1.0
-    lum = _without_seals(a[..., :3]) if c >= 3 else a[..., 0]
-    return lum * alpha + (1.0 - alpha)
-
-
-def _without_seals(rgb: np.ndarray) -> np.ndarray:
-    """Luminance, with strongly coloured marks (a red seal, a coloured stamp) taken as paper
-    when the picture also holds dark neutral ink (the writing); writing that is all in one
-    colour (vermilion, indigo) is kept."""
-    lum = rgb @ np.array([0.2126, 0.7152, 0.0722])
-    chroma = rgb.max(axis=2) - rgb.min(axis=2)
-    coloured = chroma > SEAL_CHROMA
-    if coloured.any() and np.mean((lum < 0.5) & (chroma < SEAL_CHROMA / 2)) > INK_SHARE[0]:
-        lum = np.where(coloured, float(np.quantile(lum[~coloured], 0.9)), lum)  # the paper's
+    h, c = a.shape[0], a.shape[2]
+    lum = np.empty(a.shape[:2], dtype=np.float32)
+    coloured = np.zeros(a.shape[:2], dtype=bool) if c >= 3 else None
+    neutral_dark = 0  # pixels of dark neutral ink (the writing, beside a coloured seal)
+    for y in range(0, h, ROWS):
+        part = _unit(a[y : y + ROWS, :, : 3 if c >= 3 else 1], name)
+        if c >= 3:
+            r, g, b = part[..., 0], part[..., 1], part[..., 2]
+            lum[y : y + ROWS] = r * LUMA[0] + g * LUMA[1] + b * LUMA[2]
+            chroma = np.maximum(np.maximum(r, g), b) - np.minimum(np.minimum(r, g), b)
+            coloured[y : y + ROWS] = chroma > SEAL_CHROMA
+            dark = (lum[y : y + ROWS] < 0.5) & (chroma < SEAL_CHROMA / 2)
+            neutral_dark += int(np.count_nonzero(dark))
+        else:
+            lum[y : y + ROWS] = part[..., 0]
+    if coloured is not None:
+        _without_seals(lum, coloured, neutral_dark)
+    if c in (2, 4):  # over white paper
+        for y in range(0, h, ROWS):
+            alpha = _unit(a[y : y + ROWS, :, c - 1], name)
+            lum[y : y + ROWS] *= alpha
+            lum[y : y + ROWS] += 1.0 - alpha
     return lum
+
+
+def _unit(part: np.ndarray, name: str) -> np.ndarray:
+    """Some of a picture's rows as float32 in [0, 1] (uint8 over 255; floats clipped)."""
+    if part.dtype == np.uint8:
+        out = part.astype(np.float32)
+        out /= np.float32(255.0)
+        return out
+    src = part if np.issubdtype(part.dtype, np.floating) else part.astype(np.float64)
+    if not np.isfinite(src).all():
+        raise PictureError(f"{name} has pixels that are not numbers")
+    return np.clip(src, 0.0, 1.0, out=np.empty(src.shape, dtype=np.float32))
+
+
+def _without_seals(lum: np.ndarray, coloured: np.ndarray, neutral_dark: int) -> None:
+    """Strongly coloured marks (a red seal, a coloured stamp) taken as paper, in place, when the
+    picture also holds dark neutral ink (the writing); writing that is all in one colour
+    (vermilion, indigo) is kept."""
+    if coloured.any() and neutral_dark / lum.size > INK_SHARE[0]:
+        lum[coloured] = np.quantile(lum[~coloured], 0.9, overwrite_input=True)  # the paper's
 
 
 def load_picture(path) -> np.ndarray:
@@ -110,11 +136,27 @@ def _read_other(path) -> np.ndarray:
         raise PictureError(f"{path} is not a picture this can read: {exc}") from None
 
 
+def _paper(grey: np.ndarray) -> float:
+    return float(np.quantile(grey, 0.9))
+
+
+def _shrunk(grey: np.ndarray, n: int) -> tuple[np.ndarray, int]:
+    """The picture block-averaged by halves while its longer side is 2n or more (``M.resize``
+    would average those blocks of the square anyway), and the factor it shrank by: a picture
+    at the size limit is read without a full-size square of it."""
+    f = 1
+    while max(grey.shape) >= 2 * n and min(grey.shape) >= 2:
+        hh, ww = grey.shape[0] // 2 * 2, grey.shape[1] // 2 * 2
+        grey = grey[:hh, :ww].reshape(hh // 2, 2, ww // 2, 2).mean(axis=(1, 3))
+        f *= 2
+    return grey, f
+
+
 def _square(grey: np.ndarray, n: int) -> np.ndarray:
     """The picture centred in a square of its paper's colour, resampled to n x n."""
     h, w = grey.shape
     s = max(h, w)
-    out = np.full((s, s), float(np.quantile(grey, 0.9)))
+    out = np.full((s, s), _paper(grey), dtype=grey.dtype)
     out[(s - h) // 2 : (s - h) // 2 + h, (s - w) // 2 : (s - w) // 2 + w] = grey
     return M.resize(out, n, n)
 
@@ -170,10 +212,11 @@ def _read_ink(grey: np.ndarray, n: int, name: str) -> Ink:
     return Ink(_clean(dark > t), dark, float(t), _separation(dark, t))
 
 
-def _framed(grey: np.ndarray, ink: Ink) -> np.ndarray | None:
+def _framed(grey: np.ndarray, small: np.ndarray, f: int, ink: Ink) -> np.ndarray | None:
     """When the writing fills less than FILL_MIN of the picture's side: the picture cut to a
     square round it in which it fills FILL (as a font's character fills its em box), the paper's
-    colour beyond the picture's edges. None when it fills the picture already."""
+    colour beyond the picture's edges. None when it fills the picture already. ``ink`` was read
+    off ``small``, the picture shrunk by ``f`` (``_shrunk``); the cut is the full picture's."""
     n = ink.mask.shape[0]
     ys, xs = np.nonzero(ink.mask)
     if ys.size == 0:
@@ -182,13 +225,14 @@ def _framed(grey: np.ndarray, ink: Ink) -> np.ndarray | None:
     if side >= FILL_MIN * n:
         return None
     h, w = grey.shape
-    s = max(h, w)
-    k = s / n  # picture pixels per em-box pixel
-    cy = (ys.min() + ys.max() + 1) / 2 * k - (s - h) // 2
-    cx = (xs.min() + xs.max() + 1) / 2 * k - (s - w) // 2
-    size = max(int(round(side * k / FILL)), MIN_PICTURE_SIDE)
+    hs, ws = small.shape
+    s = max(hs, ws)
+    k = s / n  # shrunk picture pixels per em-box pixel
+    cy = ((ys.min() + ys.max() + 1) / 2 * k - (s - hs) // 2) * f
+    cx = ((xs.min() + xs.max() + 1) / 2 * k - (s - ws) // 2) * f
+    size = max(int(round(side * k * f / FILL)), MIN_PICTURE_SIDE)
     y0, x0 = int(round(cy - size / 2)), int(round(cx - size / 2))
-    out = np.full((size, size), float(np.quantile(grey, 0.9)))
+    out = np.full((size, size), _paper(small), dtype=grey.dtype)
     ya, yb, xa, xb = max(y0, 0), min(y0 + size, h), max(x0, 0), min(x0 + size, w)
     out[ya - y0 : yb - y0, xa - x0 : xb - x0] = grey[ya:yb, xa:xb]
     return out
@@ -199,10 +243,12 @@ def find_ink(grey: np.ndarray, n: int, name: str = "the picture") -> Ink:
     writing first when the writing is small in it, ``_framed``); PictureError when it holds no
     writing (blank, mostly dark, no two tones, ink everywhere, too many pieces)."""
     _check_ground(grey, name)
-    ink = _read_ink(grey, n, name)
-    framed = _framed(grey, ink)
+    small, f = _shrunk(grey, n)
+    ink = _read_ink(small, n, name)
+    framed = _framed(grey, small, f, ink)
+    del small
     if framed is not None:
-        ink = _read_ink(framed, n, name)
+        ink = _read_ink(_shrunk(framed, n)[0], n, name)
     share = ink.mask.mean()
     if ink.separation < MIN_SEPARATION or not INK_SHARE[0] <= share <= INK_SHARE[1]:
         raise PictureError(

@@ -115,6 +115,39 @@ def test_ink_is_found_on_uneven_stained_noisy_paper():
     assert iou(plain, ink) < 0.9
 
 
+def test_a_large_picture_is_read_in_float32_and_shrunk_first():
+    import tracemalloc
+
+    from sim.picture_ink import grey_of
+
+    # a small character in a 1024 x 2048 RGBA picture, read on a 128 px em box: about 9 bytes
+    # a pixel at the peak (it was 64: float64 copies of all four channels and a full-size
+    # square); the picture is shrunk before it is read and the writing still framed
+    h, w, n = 1024, 2048, 128
+    grey = np.full((h, w), 0.95)
+    grey[100:612, 1300:1812] = picture("木", 512)
+    rgba = np.full((h, w, 4), 255, dtype=np.uint8)
+    rgba[..., :3] = np.round(grey * 255).astype(np.uint8)[..., None]
+    tracemalloc.start()
+    try:
+        im = read_picture(rgba, n)
+        peak = tracemalloc.get_traced_memory()[1]
+    finally:
+        tracemalloc.stop()
+    assert peak < 16 * h * w, peak / (h * w)
+    ys, xs = np.nonzero(im.ink.mask)
+    assert len(im.strokes) == 4 and 0.7 * n < max(np.ptp(ys), np.ptp(xs)) < 0.9 * n
+    # a picture 8 times the em box is read as the picture made that small
+    fine = read_picture(picture("木", 8 * n), n).ink.mask
+    assert iou(fine, read_picture(picture("木", n), n).ink.mask) > 0.97
+    # float32 luminance, alpha over white paper, as in float64 to float32's precision
+    rgba[:, :, 3] = np.arange(w) * 255 // (w - 1)
+    lum = grey_of(rgba)
+    alpha = rgba[..., 3] / 255.0
+    assert lum.dtype == np.float32
+    np.testing.assert_allclose(lum, np.round(grey * 255) / 255 * alpha + 1 - alpha, atol=1e-6)
+
+
 def test_a_red_seal_is_not_writing_but_red_writing_is():
     m = rasterise(unseen("木"), 256)
     rgb = np.where(m[..., None], 0.08, 0.95) * np.array([0.97, 0.92, 0.82])

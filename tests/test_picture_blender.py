@@ -134,6 +134,7 @@ def test_imitate_in_a_worker_stops_cleanly_and_finishes(hb):
         fractions.append(job.fraction)
         assert time.perf_counter() < end
     assert fractions and job.fraction == 1.0 and "strokes" in job.status_line()
+    assert job.picture is None  # the picture's pixels were let go once read
     level, message = job.finish(bpy.context)
     assert level == "INFO" and message.startswith("wang: 4 strokes")
     assert st.recording is not None and st.brush_object.animation_data.action is not None
