@@ -51,23 +51,12 @@ def sample_brush(scene, st, frame_start: int, frame_end: int, rate: float, progr
             surf.TriangleGrid(surface),  # the nearest points where the axis misses
             _half(progress, 0.5),
         )
-    fps = scene.render.fps / scene.render.fps_base
     n = _count(scene, frame_start, frame_end, rate)
     out = np.empty((n, 6))
-    keep = scene.frame_current, scene.frame_subframe
-    with handlers.suspended():
-        try:
-            for i in range(n):
-                f = frame_start + i * fps / rate
-                fi = math.floor(f)
-                scene.frame_set(fi, subframe=f - fi)
-                out[i] = bridge.sample_from_matrices(
-                    st, st.brush_object.matrix_world, st.paper_object.matrix_world
-                )
-                if progress is not None and i % 64 == 0:
-                    progress(i / n)
-        finally:
-            scene.frame_set(keep[0], subframe=keep[1])
+    for i in _at_frames(scene, frame_start, rate, n, progress):
+        out[i] = bridge.sample_from_matrices(
+            st, st.brush_object.matrix_world, st.paper_object.matrix_world
+        )
     return out
 
 
@@ -81,10 +70,10 @@ def _count(scene, frame_start, frame_end, rate) -> int:
     return int(math.floor((frame_end - frame_start) / fps * rate)) + 1
 
 
-def _brush_poses(scene, st, frame_start, rate, n, progress=None) -> np.ndarray:
-    """(n, 12): the brush's base (mm) and rotation (row-major) in the surface's space."""
+def _at_frames(scene, frame_start, rate, n, progress=None):
+    """Yield 0..n-1 with the scene at each sample's (sub)frame, frame handlers held back; the
+    scene's own frame is put back afterwards."""
     fps = scene.render.fps / scene.render.fps_base
-    out = np.empty((n, 12))
     keep = scene.frame_current, scene.frame_subframe
     with handlers.suspended():
         try:
@@ -92,12 +81,19 @@ def _brush_poses(scene, st, frame_start, rate, n, progress=None) -> np.ndarray:
                 f = frame_start + i * fps / rate
                 fi = math.floor(f)
                 scene.frame_set(fi, subframe=f - fi)
-                base, rot = bridge.surface_pose(st, st.brush_object.matrix_world)
-                out[i, :3], out[i, 3:] = base, rot.ravel()
+                yield i
                 if progress is not None and i % 64 == 0:
                     progress(i / n)
         finally:
             scene.frame_set(keep[0], subframe=keep[1])
+
+
+def _brush_poses(scene, st, frame_start, rate, n, progress=None) -> np.ndarray:
+    """(n, 12): the brush's base (mm) and rotation (row-major) in the surface's space."""
+    out = np.empty((n, 12))
+    for i in _at_frames(scene, frame_start, rate, n, progress):
+        base, rot = bridge.surface_pose(st, st.brush_object.matrix_world)
+        out[i, :3], out[i, 3:] = base, rot.ravel()
     bad = ~np.isfinite(out).all(axis=1)
     if bad.any():
         raise bridge.UserError(f"The brush's pose is not a number at sample {int(np.argmax(bad))}")
