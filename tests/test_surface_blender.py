@@ -290,7 +290,10 @@ def _one_frame_recording(st):
 
 
 # ----------------------------------------------------------------------------- relief, files
-def test_relief_carves_the_surface_under_the_ink_by_the_depth(hb):
+def _carved_cylinder(follow: str):
+    """A cylinder that is the paper, written round and carved 1.5 mm into itself; returns the
+    cylinder, the settings, the relief modifier and its vertices' radii with the relief on and
+    off (the same vertices) and their UVs."""
     cyl = cylinder()
     st = surface_scene(cyl)
     n = 21
@@ -298,14 +301,19 @@ def test_relief_carves_the_surface_under_the_ink_by_the_depth(hb):
     bpy.ops.hairy_brush.bake_samples()
     bpy.ops.hairy_brush.simulate()
     select_only(cyl)  # the paper itself can be carved
-    # the image value (the density relief, the default, is tested below)
-    res = bpy.ops.hairy_brush.relief(mode="CARVE", depth_mm=1.5, detail=4, follow="VALUE")
+    res = bpy.ops.hairy_brush.relief(mode="CARVE", depth_mm=1.5, detail=4, follow=follow)
     assert res == {"FINISHED"}
     relief = cyl.modifiers[ext().operators.relief.RELIEF]
     r, uv = _radii_and_uvs(cyl)
     relief.show_viewport = False
     r0, _uv = _radii_and_uvs(cyl)  # the same vertices, not displaced
     relief.show_viewport = True
+    return cyl, st, relief, r, r0, uv
+
+
+def test_relief_carves_the_surface_under_the_ink_by_the_depth(hb):
+    # the image value (the density relief, the default, is tested below)
+    cyl, st, relief, r, r0, uv = _carved_cylinder("VALUE")
     img = st.paper_image
     raw = np.empty(len(img.pixels), np.float32)
     img.pixels.foreach_get(raw)
@@ -451,19 +459,7 @@ def test_a_stroke_along_a_uv_spheres_seam_and_over_its_pole_has_no_gap(hb):
 
 def test_a_density_relief_moves_the_surface_in_proportion_to_the_ink_and_follows_frames(hb):
     sc = bpy.context.scene
-    cyl = cylinder()
-    st = surface_scene(cyl)
-    n = 21
-    key_around(st, np.linspace(-30, 30, n), presses(n, 6.0, 2))
-    bpy.ops.hairy_brush.bake_samples()
-    bpy.ops.hairy_brush.simulate()
-    select_only(cyl)
-    assert bpy.ops.hairy_brush.relief(depth_mm=1.5, detail=4, follow="DENSITY") == {"FINISHED"}
-    relief = cyl.modifiers[ext().operators.relief.RELIEF]
-    r, uv = _radii_and_uvs(cyl)
-    relief.show_viewport = False
-    r0, _uv = _radii_and_uvs(cyl)
-    relief.show_viewport = True
+    cyl, st, relief, r, r0, uv = _carved_cylinder("DENSITY")
     density = ext().playback.playback_for(sc).sim.paper.ink.mean(axis=2)
     w = density.shape[1]
     px = np.clip((uv * w).astype(int), 1, w - 2)
