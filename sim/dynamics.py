@@ -35,7 +35,14 @@ SLIP = 0.3  # share of the way hair held on the paper slides after the brush eac
 def move(brush, pose6, vel6, dt: float):
     """Move the bottom control circle to the virtual position S^t and adjust the middle
     control axes (Sec. 5.2): the current active point (Eq. 13), deformation under the paper
-    (Sec. 5.2.2), recovery (Eq. 14)."""
+    (Sec. 5.2.2), recovery (Eq. 14).
+
+    Eq. 14's recovery raises the key points of the free hair; hair lying on the paper is held
+    there by the hair pressing above it (and friction) and leaves the paper only when the
+    lifted base pulls it off (``constrain``: the hair is inextensible). Raised with the rest,
+    a lift of a hundredth of a millimetre freed all pressed hair at once, and it sprang back
+    to its rest shape: every easing of the press in a stroke changed the mark's shape (the
+    writer's IoU fell from 0.916 to 0.871 for a stress of at most 0.02)."""
     q = brush.q
     B0, R0 = brush.B, brush.R
     x, y, z, d, qq, rr = (float(v) for v in pose6)
@@ -62,8 +69,8 @@ def move(brush, pose6, vel6, dt: float):
     new = np.where(contact[..., None], held, carried)
     if speed > 1.0:
         brush.travel = vxy / speed
-    if lift > 0:  # Eq. 14: cz += gamma * |dsz| * tr(dsz)
-        new[:, 1:, 2] += brush.gamma[:, None] * lift
+    if lift > 0:  # Eq. 14: cz += gamma * |dsz| * tr(dsz), on the hair not held by the paper
+        new[:, 1:, 2] += np.where(contact[:, 1:], 0.0, brush.gamma[:, None] * lift)
     new[:, 0] = B1
     brush.B, brush.R = B1, R1
     insert_active_point(brush, new)

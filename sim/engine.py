@@ -51,6 +51,7 @@ class Simulation:
             self.paper_spec.capacity,
             dry_per_step=self.q.dry * DRY_RATE * self.dt,
             grain_seed=recording.seed,
+            fibre=self.paper_spec.fibre,
         )
         self.predictor = InertiaPredictor(self.dt)
         self.dips = recording.dips_or_default()

@@ -82,6 +82,7 @@ class Mark:
     wet: np.ndarray  # (P,) wetness of the brush at tau (Eq. 23)
     col: np.ndarray  # (P, 3) ink density of the brush at tau (Eq. 23)
     lateral: np.ndarray  # (P,) position across the primitive's major axis, [-1, 1]
+    depth: np.ndarray  # (P,) Eq. 23's f = |tau - V^| / |V - V^|: 0 on the axis, 1 at the surface
     shape: tuple  # window (h, w)
     segments: np.ndarray  # (M, 2, 2) the intersection curve cur_u, mm
     area_bbox: float  # S_i: area of the section's bounding box (mm^2), Eq. 10
@@ -353,6 +354,7 @@ def fill_marks(cuts: list[Cut | None], ppm: float) -> list[list[Mark]]:
                     wet=px.wet,
                     col=px.col,
                     lateral=px.lateral,
+                    depth=px.depth,
                     shape=(int(c.shape[j, 0]), int(c.shape[j, 1])),
                     segments=c.segments[j],
                     area_bbox=float(c.area[j]),
@@ -377,6 +379,7 @@ class PixelInk(NamedTuple):
     wet: np.ndarray  # (P,) float32
     col: np.ndarray  # (P, 3) float32 ink density
     lateral: np.ndarray  # (P,) position across the major axis, [-1, 1]
+    depth: np.ndarray  # (P,) Eq. 23's f: 0 on the middle control axis, 1 at the surface
 
 
 class WindowsInk(NamedTuple):
@@ -433,7 +436,7 @@ def _no_ink(k) -> WindowsInk:
     """``_marks_ink``'s answer for k windows without a pixel inside."""
     none_i, none_f = np.zeros(0, dtype=np.int64), np.zeros(0)
     wet, col = np.zeros(0, dtype=np.float32), np.zeros((0, 3), dtype=np.float32)
-    return WindowsInk([PixelInk(none_i, none_i, wet, col, none_f)] * k, np.zeros(k, dtype=bool))
+    return WindowsInk([PixelInk(none_i, none_i, wet, col, none_f, none_f)] * k, np.zeros(k, dtype=bool))
 
 
 class Scanlines(NamedTuple):
@@ -599,9 +602,10 @@ def _marks_ink(prims, win, lo, hi, ppm, rows: SurfaceRows) -> WindowsInk:
     inkp = rows.ink[prims, rows_k.j0 : rows_k.j1]
     wet, col = _pixel_ink(inkp, rows_k, sc, ent, slab, n_ok, sol.lam[ok], cols, ppm)
     lateral = np.clip(sol.p[ok], -1.0, 1.0)
+    depth = np.sqrt(sol.f2[ok])
     rws = sc.row[ent.entry_scan[ok]]
     cut = np.cumsum(np.bincount(ent.win, weights=n_ok, minlength=k)).astype(np.int64)[:-1]
-    fields = [np.split(a, cut) for a in (rws, cols, wet, col, lateral)]
+    fields = [np.split(a, cut) for a in (rws, cols, wet, col, lateral, depth)]
     return WindowsInk([PixelInk(*f) for f in zip(*fields, strict=True)], edge)
 
 

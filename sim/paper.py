@@ -50,6 +50,7 @@ class Paper:
         capacity: float = 1.0,
         dry_per_step: float = 0.0,
         grain_seed: int = 0,
+        fibre: float = 0.0,
     ):
         self.W, self.H = int(width_px), int(height_px)
         self.grain_seed = int(grain_seed)  # which sheet: the recording's seed (paper_grain)
@@ -61,6 +62,7 @@ class Paper:
         self.last = np.zeros((self.H, self.W), dtype=np.int32)
         self.step = 0
         self.dry_per_step = float(dry_per_step)  # Eq. 24's "- dry", per sample
+        self.fibre = float(fibre)  # the fibres' resistance to thin ink (paper_fibre), 0: none
         # saturation spreads one pixel ring per pass: passes scale with resolution so that the
         # halo has the same size in millimetres at any px_per_mm
         self.sat_passes = max(1, int(round(self.ppm / 4.0)))
@@ -149,6 +151,8 @@ class Paper:
         col = np.concatenate([mk.col for mk in marks]).astype(np.float32, copy=False)
         col = col.reshape(-1).view(_RGB)
         skip = _dry_brush(marks, gamma, hair_u, q)
+        if self.fibre > 0:  # model addition: thin ink is refused by the fibres (fibre_refuses)
+            skip |= self.fibre_refuses(marks, wet_tau, full)
         # the sheet's grain (model addition, see paper_grain)
         grain = (1.0 - GRAIN_DEPTH * paper_grain(full, self.grain_seed)).astype(np.float32)
         rank, visits = _visit_ranks(locs, hw * ww)
@@ -182,6 +186,21 @@ class Paper:
         self._saturate_window(w, ink)
         wet[...] = w
         last[...] = step
+
+    def fibre_refuses(self, marks, wet_tau, full) -> np.ndarray:
+        """Model addition (not in the paper): where a mark's pixel takes no ink this visit
+        because the ink offered there is thinner than the sheet's fibre resists. The offer is
+        the brush's wetness at the pixel (Eq. 23) times the hair's density there, which thins
+        over the outer HAIR_FRINGE of a section (Eq. 23's f, ``Mark.depth``): inside a loaded
+        stroke every pixel takes ink; at its edge only the pixels whose fibres resist little
+        do - the same pixels visit after visit, since the fibres are the sheet's - so the edge
+        is fibrous; and where the brush runs dry the fibres refuse ink inside the stroke too
+        (flying white late in a load)."""
+        depth = np.concatenate([mk.depth for mk in marks])
+        hair = np.clip((1.0 - depth) / HAIR_FRINGE, 0.0, 1.0)
+        offer = np.minimum(wet_tau, 1.0) * hair
+        rows, cols = np.divmod(full, self.W)
+        return offer < self.fibre * paper_fibre(rows, cols, self.ppm, self.grain_seed)
 
     def _window(self, marks) -> tuple[int, int, int, int]:
         """(y0, y1, x0, x1): the marks' pixels and the reach of saturation around them."""
@@ -285,6 +304,34 @@ def paper_grain(index, seed: int = 0) -> np.ndarray:
     x = (x ^ (x >> np.uint64(27))) * np.uint64(0x94D049BB133111EB)
     x = (x ^ (x >> np.uint64(31))).reshape(np.shape(index))
     return (x >> np.uint64(40)).astype(np.float64) / float(1 << 24)
+
+
+HAIR_FRINGE = 0.3  # outer share of a section's radius over which its hair thins (model addition)
+FIBRE_MM = 0.3  # spacing of the sheet's fibre field (model addition, paper_fibre)
+
+
+def paper_fibre(rows, cols, px_per_mm: float, seed: int = 0) -> np.ndarray:
+    """Model addition (not in the paper): the sheet's fibre, how much each pixel resists thin
+    ink, in [0, 1): half a field that varies smoothly over FIBRE_MM (bundles of fibres; value
+    noise on a lattice fixed in millimetres, so the same in millimetres at any px/mm), half
+    the pixel's own grain. Fixed per sheet like ``paper_grain`` (a hash, no generator drawn)."""
+    cell = FIBRE_MM * float(px_per_mm)
+    u = (np.asarray(cols, dtype=np.float64) + 0.5) / cell
+    v = (np.asarray(rows, dtype=np.float64) + 0.5) / cell
+    i, j = np.floor(u), np.floor(v)
+    fu, fv = u - i, v - j
+    fu, fv = fu * fu * (3 - 2 * fu), fv * fv * (3 - 2 * fv)
+    i, j = i.astype(np.int64) + 1, j.astype(np.int64) + 1
+    lattice_seed = int(seed) + 0x5EED
+
+    def at(a, b):
+        return paper_grain(b * (1 << 24) + a, lattice_seed)
+
+    low = at(i, j) * (1 - fu) + at(i + 1, j) * fu
+    high = at(i, j + 1) * (1 - fu) + at(i + 1, j + 1) * fu
+    smooth = low * (1 - fv) + high * fv
+    own = paper_grain(np.asarray(rows, dtype=np.int64) * (1 << 24) + cols, int(seed) + 0xF1B)
+    return 0.5 * smooth + 0.5 * own
 
 
 def _dry_brush(marks, gamma, hair_u, q) -> np.ndarray:

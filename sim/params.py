@@ -203,6 +203,7 @@ class PaperSpec:
 
     color: tuple = (1.0, 1.0, 1.0)
     capacity: float = 1.0
+    fibre: float = 0.0  # the fibres' resistance to thin ink, 0..1 (model addition, paper_fibre)
 
 
 @dataclass(frozen=True)
@@ -332,6 +333,7 @@ def paper_from_preset(preset: Preset | None) -> PaperSpec:
     return PaperSpec(
         color=_preset_vec(preset, d, "color", PaperSpec.color, 0.0, 1.0),
         capacity=_preset_num(preset, d, "capacity", PaperSpec.capacity, *PAPER_CAPACITY_RANGE),
+        fibre=_preset_num(preset, d, "fibre", PaperSpec.fibre, 0.0, 1.0),
     )
 
 

@@ -359,7 +359,7 @@ def _dips(d: dict, n_samples: int) -> list:
 
 
 def _paper_overrides(paper: dict) -> dict:
-    """The 'paper' section's own colour and capacity, checked."""
+    """The 'paper' section's own colour, capacity and fibre, checked."""
     out = {}
     if "color" in paper:
         col = paper["color"]
@@ -368,6 +368,8 @@ def _paper_overrides(paper: dict) -> dict:
         out["color"] = tuple(_num(c, f"'paper.color[{k}]'", 0.0, 1.0) for k, c in enumerate(col))
     if "capacity" in paper:
         out["capacity"] = _num(paper["capacity"], "'paper.capacity'", *PAPER_CAPACITY_RANGE)
+    if "fibre" in paper:
+        out["fibre"] = _num(paper["fibre"], "'paper.fibre'", 0.0, 1.0)
     return out
 
 

@@ -867,6 +867,7 @@ def _replace_pixels(mk, iy0, ix0, rows, cols, k, shape):
         wet=mk.wet[k],
         col=mk.col[k],
         lateral=mk.lateral[k],
+        depth=mk.depth[k],
         shape=shape,
     )
 

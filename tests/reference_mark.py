@@ -45,6 +45,7 @@ def reference_marks(brush, sec, ink_rows, ppm: float, paper_shape) -> list[Mark]
             wet=np.zeros(0),
             col=np.zeros((0, 3)),
             lateral=np.zeros(0),
+            depth=np.zeros(0),
             shape=(0, 0),
         )
         if ix1 <= ix0 or iy1 <= iy0:
@@ -59,11 +60,12 @@ def reference_marks(brush, sec, ink_rows, ppm: float, paper_shape) -> list[Mark]
             [(ix0 + gx.ravel() + 0.5) / ppm, (iy0 + gy.ravel() + 0.5) / ppm, np.zeros(h * w)],
             axis=1,
         )
-        inside, wet, col, lateral = _pixel_ink(P, i, rows_c, rows_U, rows_V, rows_T, Zmin, ink_rows)
-        pr, pc = gy.ravel()[inside], gx.ravel()[inside]
-        marks.append(
-            Mark(**where, rows=pr, cols=pc, wet=wet, col=col, lateral=lateral, shape=(h, w))
+        inside, wet, col, lateral, depth = _pixel_ink(
+            P, i, rows_c, rows_U, rows_V, rows_T, Zmin, ink_rows
         )
+        pr, pc = gy.ravel()[inside], gx.ravel()[inside]
+        px = dict(rows=pr, cols=pc, wet=wet, col=col, lateral=lateral, depth=depth)
+        marks.append(Mark(**where, **px, shape=(h, w)))
     return marks
 
 
@@ -133,4 +135,4 @@ def _pixel_ink(P, i, rows_c, rows_U, rows_V, rows_T, Zmin, ink):
     col_v = col_a * (1.0 + dist_v * cr + np.sum(ov * cv, axis=1))[:, None]
     wet = (1.0 - f) * wet_a + f * wet_v  # Eq. 23
     col = (1.0 - f)[:, None] * col_a + f[:, None] * col_v
-    return inside, np.clip(wet, 0.0, None), np.clip(col, 0.0, 1.0), lateral
+    return inside, np.clip(wet, 0.0, None), np.clip(col, 0.0, 1.0), lateral, f

@@ -6,7 +6,7 @@ deposit to a Paper: ``types.MethodType(reference_deposit, paper)``."""
 
 import numpy as np
 
-from sim.paper import GRAIN_DEPTH, paper_grain
+from sim.paper import GRAIN_DEPTH, HAIR_FRINGE, paper_fibre, paper_grain
 
 _NEIGHBOURS = [(-1, -1), (-1, 0), (-1, 1), (0, -1), (0, 1), (1, -1), (1, 0), (1, 1)]
 
@@ -49,6 +49,12 @@ def reference_deposit(self, marks, gamma, hair_u, q, dt: float, step: int, satur
         hb = hair_u.shape[1]
         b = np.clip(((mk.lateral + 1.0) * 0.5 * hb).astype(np.int64), 0, hb - 1)
         skip = hair_u[mk.primitive, b] < p0
+        # model addition: thin ink refused by the sheet's fibre (sim.paper.Paper.fibre_refuses)
+        if self.fibre > 0:
+            offer = np.minimum(mk.wet.astype(np.float32), 1.0) * np.clip(
+                (1.0 - mk.depth) / HAIR_FRINGE, 0.0, 1.0
+            )
+            skip |= offer < self.fibre * paper_fibre(r + y0, c + x0, self.ppm, self.grain_seed)
         # model addition: the sheet's grain scales Cr (sim.paper.paper_grain)
         grain = 1.0 - GRAIN_DEPTH * paper_grain((r + y0) * self.W + (c + x0), self.grain_seed)
         cr = np.minimum(new, 1.0).astype(np.float32) * grain.astype(np.float32)
