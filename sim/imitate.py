@@ -21,7 +21,7 @@ import numpy as np
 
 from .engine import Simulation
 from .hanzi import check_char
-from .outline import EM, TOP, median_bands, median_radii, rasterise
+from .outline import EM, TOP, median_pieces, median_radii, rasterise
 from .params import HOVER_MM, MAX_PAPER_SIDE_PX, ParameterError, number_within, short_repr
 from .recording import PAPER_MM_RANGE, PX_PER_MM_RANGE, Dip, Recording, quantise
 
@@ -305,39 +305,6 @@ def _timed(dense, width, step_mm: float, slow_corners: float):
     return pts, np.interp(si, s, width)
 
 
-SHARP_TURN = 1.4  # rad over +-TURN_WINDOW_MM: a turn this sharp (a hook, a 折) is two movements
-TURN_WINDOW_MM = 3.5  # the median is smoothed over +-1.5 mm, which spreads a corner: over
-# +-1.5 mm no hook of the bundled characters reached SHARP_TURN (measured, issue 16); over
-# +-3.5 mm the hooks of 永 水 月 风 心 之 and the 折 of 山 风 do
-
-
-def _pieces(pts, step_mm: float) -> list[tuple[int, int]]:
-    """The stroke's movements: split where the path turns back on itself (more than
-    ``SHARP_TURN`` within +-``TURN_WINDOW_MM``, as at the foot of a hook), where a calligrapher
-    stops, turns the tip in the air and flicks out, instead of dragging the pressed hair round
-    (which sweeps a round blot). Each piece keeps at least 3 samples."""
-    if len(pts) < 8:
-        return [(0, len(pts))]
-    d = np.gradient(pts, axis=0)
-    heading = np.unwrap(np.arctan2(d[:, 1], d[:, 0]))
-    win = max(int(round(TURN_WINDOW_MM / step_mm)), 1)
-    pad = np.pad(heading, win, mode="edge")
-    turn = np.abs(pad[2 * win :] - pad[: -2 * win])
-    cuts, i = [], 3
-    while i < len(pts) - 3:
-        if turn[i] > SHARP_TURN:
-            j = i
-            while j + 1 < len(pts) - 3 and turn[j + 1] > SHARP_TURN:
-                j += 1
-            c = i + int(np.argmax(turn[i : j + 1]))
-            if not cuts or c - cuts[-1] >= 3:
-                cuts.append(c)
-            i = j + 1
-        i += 1
-    edges = [0, *cuts, len(pts)]
-    return [(edges[k], edges[k + 1]) for k in range(len(edges) - 1)]
-
-
 def _air(tg, wd, tn, ph, a, b, tang, step_mm) -> None:
     """Travel in the air from ``a`` to ``b`` (mm)."""
     k = max(int(np.linalg.norm(b - a) / (2 * step_mm)), 4)
@@ -357,36 +324,39 @@ def plan(
     slow_corners: float = 0.7,
 ) -> Plan:
     """The path of the writing: each median resampled every step_mm with the outline's width,
-    entries and lifts on the spot, travel in the air between strokes."""
+    one movement per piece of the median between its sharp corners (``median_pieces``: a
+    hook's foot, a 折), each with an entry and a lift, travel in the air between movements.
+    Each movement is smoothed on its own, so that a corner stays a corner."""
     scale = size_mm / EM
     dip_every = 0.0 if dip_every_mm is None else dip_every_mm
     tg, wd, tn, ph, dips, strokes = [], [], [], [], [], []
     since_dip, prev = np.inf, None
     fine = max(step_mm / scale / 4.0, 0.25)
-    for pts_d, width_d in median_bands(char, step=fine):
-        dense = np.stack(
-            [origin[0] + pts_d[:, 0] * scale, origin[1] + (pts_d[:, 1] - (TOP - EM)) * scale],
-            axis=1,
-        )
-        k = max(int(round(3.0 / fine / scale)), 1)  # +-1.5 mm: the cut's jitter smoothed
-        dense = np.stack([_smooth(dense[:, 0], k), _smooth(dense[:, 1], k)], axis=1)
-        pts, width = _timed(dense, _smooth(width_d * scale, k), step_mm, slow_corners)
-        width = _smooth(width, 3)
-        tang = np.gradient(pts, axis=0) if len(pts) > 1 else np.array([[1.0, 0.0]])
-        tang = np.stack([_smooth(tang[:, 0], 5), _smooth(tang[:, 1], 5)], axis=1)
-        tang /= np.maximum(np.linalg.norm(tang, axis=1, keepdims=True), 1e-9)
+    k = max(int(round(3.0 / fine / scale)), 1)  # +-1.5 mm: the cut's jitter smoothed
+    for pieces in median_pieces(char, step=fine):
+        moves = []
+        for pts_d, width_d in pieces:
+            dense = np.stack(
+                [origin[0] + pts_d[:, 0] * scale, origin[1] + (pts_d[:, 1] - (TOP - EM)) * scale],
+                axis=1,
+            )
+            dense = np.stack([_smooth(dense[:, 0], k), _smooth(dense[:, 1], k)], axis=1)
+            pts, width = _timed(dense, _smooth(width_d * scale, k), step_mm, slow_corners)
+            tang = np.gradient(pts, axis=0) if len(pts) > 1 else np.array([[1.0, 0.0]])
+            tang = np.stack([_smooth(tang[:, 0], 5), _smooth(tang[:, 1], 5)], axis=1)
+            tang /= np.maximum(np.linalg.norm(tang, axis=1, keepdims=True), 1e-9)
+            moves.append((pts, _smooth(width, 3), tang))
         if prev is not None:  # travel in the air to the next stroke
-            _air(tg, wd, tn, ph, prev, pts[0], tang[0], step_mm)
+            _air(tg, wd, tn, ph, prev, moves[0][0][0], moves[0][2][0], step_mm)
         n = sum(len(a) for a in tg)
-        stroke_len = step_mm * (len(pts) - 1)
+        stroke_len = step_mm * sum(len(m[0]) - 1 for m in moves)
         if since_dip + stroke_len > dip_every:
             dips.append(n)
             since_dip = 0.0
         since_dip += stroke_len
-        for j, (i0, i1) in enumerate(_pieces(pts, step_mm)):
-            if j:  # a sharp turn: lift, turn the tip in the air, come down into the hook
-                _air(tg, wd, tn, ph, pts[i0 - 1], pts[i0], tang[i0], step_mm)
-            p, w, t = pts[i0:i1], width[i0:i1], tang[i0:i1]
+        for j, (p, w, t) in enumerate(moves):
+            if j:  # a sharp turn: lift, turn the tip in the air, come down on the corner
+                _air(tg, wd, tn, ph, moves[j - 1][0][-1], p[0], t[0], step_mm)
             tg += [np.tile(p[0], (ENTRY_SAMPLES, 1)), p, np.tile(p[-1], (EXIT_SAMPLES, 1))]
             wd += [np.full(ENTRY_SAMPLES, w[0]), w, np.full(EXIT_SAMPLES, w[-1])]
             tn += [np.tile(t[0], (ENTRY_SAMPLES, 1)), t, np.tile(t[-1], (EXIT_SAMPLES, 1))]
@@ -396,7 +366,7 @@ def plan(
                 np.full(EXIT_SAMPLES, LIFTING),
             ]
         strokes.append((n, sum(len(a) for a in tg)))
-        prev = pts[-1]
+        prev = moves[-1][0][-1]
     return Plan(
         np.concatenate(tg),
         np.concatenate(wd),
@@ -497,7 +467,7 @@ def _enter_and_leave(samples, pl, body, hover, hair, step_mm, at_turn=(False, Fa
     """The brush comes down moving along the movement's first direction, the tip touching where
     the body begins, and lifts off moving on along the last direction (a flick, so that hooks
     and left-falling strokes end in a point, not a blot from a lift on the spot). ``at_turn``:
-    the movement begins after / ends at a sharp turn's cut (``_pieces``), where the brush lifts
+    the movement begins after / ends at a sharp corner (``median_pieces``), where the brush lifts
     and lands on the corner itself (a flick there overshoots the corner)."""
     a = body[0] - 1
     while a >= 0 and pl.phase[a] == ENTERING:

@@ -223,27 +223,99 @@ def _to_the_tips(med, polys) -> np.ndarray:
     return np.concatenate([ends[0][None], m, ends[1][None]])
 
 
+CUT_OVER_DISC = 1.3  # a cut across the median longer than this many times the inscribed disc
+# at its middle (diameter) runs along the stroke, as at a corner or the foot of a hook: there
+# the disc's diameter is the width and the median point the centre (the "true discs" yardstick
+# reads its radii so and reaches IoU 0.95)
+CORNER_TURN = 1.3  # rad of turn over +-CORNER_WINDOW: a hook's foot or a 折 is two movements
+CORNER_WINDOW = 60.0  # data units either side (a median's corner spreads over 2-3 vertices)
+FOOT_REACH = 0.5  # share of the way to the outline a movement goes on past a corner (the foot)
+
+
+def _bands(pts, polys) -> tuple[np.ndarray, np.ndarray]:
+    """Centres and full widths along points of a median (see ``median_bands``)."""
+    r = np.maximum(distance_to_outline(pts, polys), 0.0)
+    if len(pts) > 1:
+        tan = np.gradient(pts, axis=0)
+        tan /= np.maximum(np.linalg.norm(tan, axis=1, keepdims=True), 1e-9)
+    else:
+        tan = np.array([[1.0, 0.0]])
+    nrm = np.stack([-tan[:, 1], tan[:, 0]], axis=1)
+    left = np.minimum(_ray_hits(pts, nrm, polys), 3.0 * r)
+    right = np.minimum(_ray_hits(pts, -nrm, polys), 3.0 * r)
+    inside = r > 0
+    left, right = np.where(inside, left, 0.0), np.where(inside, right, 0.0)
+    cut = left + right
+    centre = pts + (0.5 * (left - right))[:, None] * nrm
+    disc = 2.0 * np.maximum(distance_to_outline(centre, polys), r)
+    along = cut > CUT_OVER_DISC * disc  # the cut runs along the stroke: trust the disc
+    centre = np.where(along[:, None], pts, centre)
+    return centre, np.where(along, np.minimum(cut, CUT_OVER_DISC * disc), cut)
+
+
 def median_bands(char: dict, step: float = 4.0) -> list[tuple[np.ndarray, np.ndarray]]:
     """For every stroke, points along the middle of its outline and the stroke's full width
     there (data units, every ``step`` along the median): the outline is cut across the median's
-    direction, the median point moved to the middle of the cut. A cut that runs far along the
-    stroke (at a corner or an end) is held to three times the distance to the nearest edge."""
+    direction, the median point moved to the middle of the cut. A cut that runs along the
+    stroke (at a corner or an end: longer than ``CUT_OVER_DISC`` times the diameter of the
+    largest disc inside the outline at the cut's middle or the median point) gives way to that
+    disc, on the median point."""
     out = []
     for med, polys in zip(char["medians"], stroke_polygons(char), strict=True):
         pts, _ = resample(_to_the_tips(med, polys), step)
-        r = np.maximum(distance_to_outline(pts, polys), 0.0)
-        if len(pts) > 1:
-            tan = np.gradient(pts, axis=0)
-            tan /= np.maximum(np.linalg.norm(tan, axis=1, keepdims=True), 1e-9)
-        else:
-            tan = np.array([[1.0, 0.0]])
-        nrm = np.stack([-tan[:, 1], tan[:, 0]], axis=1)
-        left = np.minimum(_ray_hits(pts, nrm, polys), 3.0 * r)
-        right = np.minimum(_ray_hits(pts, -nrm, polys), 3.0 * r)
-        inside = r > 0
-        left, right = np.where(inside, left, 0.0), np.where(inside, right, 0.0)
-        centre = pts + (0.5 * (left - right))[:, None] * nrm
-        out.append((centre, left + right))
+        out.append(_bands(pts, polys))
+    return out
+
+
+def corners(pts, step: float) -> list[int]:
+    """Indices of the sharp corners of a median resampled every ``step``: where its heading,
+    read off chords ``CORNER_WINDOW`` long before and after the point, turns more than
+    ``CORNER_TURN`` (the sharpest point of each such run; none within a window of the ends)."""
+    win = max(int(round(CORNER_WINDOW / step)), 1)
+    if len(pts) < 2 * win + 1:
+        return []
+    a, b = pts[win:-win] - pts[: -2 * win], pts[2 * win :] - pts[win:-win]
+    turn = np.abs(np.arctan2(a[:, 0] * b[:, 1] - a[:, 1] * b[:, 0], np.sum(a * b, axis=1)))
+    sharp = np.concatenate([[False], turn > CORNER_TURN, [False]])
+    step_of = np.diff(sharp.astype(int))
+    starts, ends = np.flatnonzero(step_of == 1), np.flatnonzero(step_of == -1)
+    return [win + i + int(np.argmax(turn[i:j])) for i, j in zip(starts, ends, strict=True)]
+
+
+def _foot(pts, k: int, polys, step: float) -> np.ndarray:
+    """The points a movement ending at corner ``k`` goes on past it, along its last direction
+    (a chord of ``CORNER_WINDOW``), ``FOOT_REACH`` of the way to the outline: the foot of a
+    hook or the shoulder of a 折, where the calligrapher presses before turning."""
+    win = max(int(round(CORNER_WINDOW / step)), 1)
+    d = pts[k] - pts[max(k - win, 0)]
+    d = d / max(float(np.linalg.norm(d)), 1e-9)
+    hit = float(_ray_hits(pts[k][None], d[None], polys)[0])
+    reach = FOOT_REACH * hit if np.isfinite(hit) else 0.0
+    n = int(reach // step)
+    return pts[k] + (np.arange(1, n + 1) * step)[:, None] * d
+
+
+def median_pieces(char: dict, step: float = 4.0) -> list[list[tuple[np.ndarray, np.ndarray]]]:
+    """``median_bands`` split into movements at the median's sharp corners (``corners``): each
+    movement that ends at a corner goes on into the foot (``_foot``), the next starts on the
+    corner. A calligrapher writes a hook or a 折 so: presses into the corner, turns the tip and
+    sets off anew; dragging the pressed hair round the corner sweeps a round blot."""
+    out = []
+    for med, polys in zip(char["medians"], stroke_polygons(char), strict=True):
+        pts, _ = resample(_to_the_tips(med, polys), step)
+        edges = [0, *corners(pts, step), len(pts) - 1]
+        pieces = []
+        for k, (i0, i1) in enumerate(zip(edges[:-1], edges[1:], strict=True)):
+            p = pts[i0 : i1 + 1]
+            if k < len(edges) - 2:
+                p = np.concatenate([p, _foot(pts, i1, polys, step)])
+            centre, width = _bands(p, polys)
+            if k:  # the corner is inked by the foot: the movement's own width from where it
+                # leaves the corner's disc on
+                off = min(int(np.ceil(0.5 * width[0] / step)), len(width) - 1)
+                width[:off] = np.minimum(width[:off], width[off])
+            pieces.append((centre, width))
+        out.append(pieces)
     return out
 
 
