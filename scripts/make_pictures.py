@@ -82,9 +82,7 @@ def imitation(chars="永心法风", n=256, passes=7):
     from sim.outline import iou
 
     q = load_quality(ROOT / "presets" / "qualities" / "kaishu_fit.json")
-    tmpl = Recording(
-        np.zeros((1, 6)), brush={"preset": "wolf_stiff"}, paper_preset="smooth", quality=q
-    )
+    tmpl = Recording(np.zeros((1, 6)), quality=q)  # the default brush and paper
     cols, response = [], None
     for ch in chars:
         c = find_char(ch)
@@ -110,9 +108,7 @@ def overlay(chars, n=512, passes=None, quality=None, out=None):
     from sim.outline import iou
 
     q = load_quality(quality) if quality else {}
-    tmpl = Recording(
-        np.zeros((1, 6)), brush={"preset": "wolf_stiff"}, paper_preset="smooth", quality=q
-    )
+    tmpl = Recording(np.zeros((1, 6)), quality=q)  # the default brush and paper
     out = Path(out or ROOT / "out" / "overlay")
     out.mkdir(parents=True, exist_ok=True)
     tiles, response = [], None

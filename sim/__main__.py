@@ -9,7 +9,14 @@ import sys
 import time
 
 from .params import MAX_PAPER_SIDE_PX, ParameterError, number_within, short_repr
-from .recording import MAX_SEED, PAPER_MM_RANGE, PX_PER_MM_RANGE, RecordingError
+from .recording import (
+    DEFAULT_BRUSH,
+    DEFAULT_PAPER,
+    MAX_SEED,
+    PAPER_MM_RANGE,
+    PX_PER_MM_RANGE,
+    RecordingError,
+)
 
 
 def _progress(frac: float) -> None:
@@ -414,8 +421,8 @@ def _parser() -> argparse.ArgumentParser:
 
     def common(p):
         p.add_argument("--data", default=None, help="folder of <char>.json or graphics.txt")
-        p.add_argument("--brush", default="wolf_stiff", help="brush preset")
-        p.add_argument("--paper", default="smooth", help="paper preset")
+        p.add_argument("--brush", default=DEFAULT_BRUSH, help="brush preset")
+        p.add_argument("--paper", default=DEFAULT_PAPER, help="paper preset")
         p.add_argument("--ink", default="sumi_black", help="ink preset")
         p.add_argument("--quality", default=None, help="quality JSON (e.g. from sim fit)")
         p.add_argument("--seed", type=seed, default=0)

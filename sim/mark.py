@@ -436,7 +436,9 @@ def _no_ink(k) -> WindowsInk:
     """``_marks_ink``'s answer for k windows without a pixel inside."""
     none_i, none_f = np.zeros(0, dtype=np.int64), np.zeros(0)
     wet, col = np.zeros(0, dtype=np.float32), np.zeros((0, 3), dtype=np.float32)
-    return WindowsInk([PixelInk(none_i, none_i, wet, col, none_f, none_f)] * k, np.zeros(k, dtype=bool))
+    return WindowsInk(
+        [PixelInk(none_i, none_i, wet, col, none_f, none_f)] * k, np.zeros(k, dtype=bool)
+    )
 
 
 class Scanlines(NamedTuple):

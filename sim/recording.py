@@ -36,8 +36,8 @@ from .params import (
 
 FORMAT = "hairy-brush-recording"
 VERSION = 1
-DEFAULT_BRUSH = "mixed"
-DEFAULT_PAPER = "raw_xuan"
+DEFAULT_BRUSH = "wolf_kaishu"  # the brush that writes best (issue 16: the defaults write best)
+DEFAULT_PAPER = "sized_xuan"
 DEFAULT_INK = "sumi_black"
 MAX_SAMPLES = 2_000_000
 PAPER_MM_RANGE = (1.0, 5000.0)  # a side of the paper

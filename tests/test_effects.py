@@ -20,6 +20,7 @@ def simulate(
     seed=0,
     quality=None,
     size=(110, 40),
+    paper_overrides=None,
 ):
     rec = Recording(
         np.asarray(samples),
@@ -29,6 +30,7 @@ def simulate(
         seed=seed,
         brush={"preset": brush},
         paper_preset=paper,
+        paper_overrides=paper_overrides or {},
         quality=quality or {},
         dips=[Dip(0, dip[0], dip[1], dip[2])],
     )
@@ -94,8 +96,10 @@ def test_flying_white_when_the_brush_runs_dry():
 def test_saturation_bleeds_on_raw_xuan_not_on_smooth_paper():
     s = line(press_mm=9, speed_mm_s=25)
     cover = {}
-    for paper in ("raw_xuan", "smooth"):
-        sim = simulate(s, paper=paper, dip=(1.0, (0, 0, 0), 1.0), ppm=6.0)
+    for paper in ("raw_xuan", "smooth"):  # saturation alone: the fibres left out
+        sim = simulate(
+            s, paper=paper, dip=(1.0, (0, 0, 0), 1.0), ppm=6.0, paper_overrides={"fibre": 0}
+        )
         ink = sim.paper.ink[..., 0]
         cover[paper] = ((ink > 0.02).sum(), ((ink > 0.02) & (ink < 0.5)).sum())
     assert cover["raw_xuan"][0] > 1.08 * cover["smooth"][0]
@@ -170,6 +174,7 @@ def test_sample_rate_does_not_change_the_stroke_much(rate):
         height_mm=40,
         px_per_mm=4,
         sample_rate_hz=rate,
+        brush={"preset": "mixed"},
         paper_preset="smooth",
         dips=[Dip(0, 0.8, (0, 0, 0), 0.9)],
     )

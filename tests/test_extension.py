@@ -18,9 +18,11 @@ bpy = pytest.importorskip("bpy")
 from sim.display import linear_to_srgb  # noqa: E402
 from sim.engine import Simulation  # noqa: E402
 from sim.nurbs import CIRCLE_KNOTS, evaluate_nurbs_surface  # noqa: E402
+from sim.params import load_preset  # noqa: E402
+from sim.recording import DEFAULT_BRUSH  # noqa: E402
 from sim.recording import load as load_recording  # noqa: E402
 
-HAIR = 30.0  # the 'mixed' brush preset's hair length (mm)
+HAIR = load_preset("brush", DEFAULT_BRUSH).data["geometry"]["hair_length_mm"]  # the default's
 
 
 def ext():
@@ -600,7 +602,10 @@ def test_an_animation_render_shows_each_frames_artwork(hb, tmp_path):
     sc.render.engine = "CYCLES"
     sc.cycles.samples, sc.cycles.device = 4, "CPU"
     sc.view_settings.view_transform = "Standard"
-    sc.render.resolution_x = sc.render.resolution_y = 64
+    # 1.6 mm a render pixel (0.2 m / 128), half the stroke's width: a pixel the stroke crosses
+    # is dark wherever the stroke lies (at 3.1 mm a pixel a stroke about 3 mm wide on a row
+    # boundary, as the default brush's is, half-darkens two rows and counts in neither)
+    sc.render.resolution_x = sc.render.resolution_y = 128
     sc.render.filepath = str(tmp_path / "f_")
     sc.frame_start, sc.frame_end, sc.frame_step = 12, 45, 33
     bpy.ops.render.render(animation=True)  # Blender changes frames itself: the handler follows

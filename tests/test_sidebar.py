@@ -147,11 +147,11 @@ def test_bakes_that_draw_nothing_sensible_say_so_with_the_numbers(hb, capfd):
         bpy.ops.hairy_brush.bake_samples()
     assert st.recording is None
     # never touching: baked, with a warning naming the lowest point and the touching height
-    keyframe_stroke(bpy, st, press=-2.0, frames=(1, 3, 8, 10))  # lowest at 32 mm
+    keyframe_stroke(bpy, st, press=-2.0, frames=(1, 3, 8, 10))  # lowest 2 mm above the hair
     capfd.readouterr()
     assert bpy.ops.hairy_brush.bake_samples() == {"FINISHED"}
     out = capfd.readouterr().out
-    assert "never touches the paper: its lowest point is z = 32.0 mm" in out
+    assert f"never touches the paper: its lowest point is z = {HAIR + 2:.1f} mm" in out
     assert f"touches at z = {HAIR:g} mm" in out
     # buried 10 mm through the paper
     keyframe_stroke(bpy, st, press=HAIR + 10.0, frames=(1, 3, 8, 10))
@@ -262,7 +262,14 @@ def test_preset_menus_name_the_active_preset_and_say_what_they_overwrite(hb, cap
     st = setup_scene(bpy)
     log = drawn(bpy.types.HAIRY_BRUSH_PT_brush)
     menu = [e for e in log if e[0] == "menu"]
-    assert menu == [("menu", "HAIRY_BRUSH_MT_brush_presets", "Mixed hair (jian hao)")]
+    sim = ext().sim
+    default = sim.params.load_preset("brush", sim.recording.DEFAULT_BRUSH).label
+    assert menu == [("menu", "HAIRY_BRUSH_MT_brush_presets", default)]
+    # the rest was written for the 'mixed' brush (hair 30 mm, 2 mm longer than wolf_stiff's,
+    # so choosing wolf_stiff moves the empty): choose it first, as an artist would
+    assert bpy.ops.hairy_brush.apply_preset(kind="brush", name="mixed") == {"FINISHED"}
+    log = drawn(bpy.types.HAIRY_BRUSH_PT_brush)
+    assert ("menu", "HAIRY_BRUSH_MT_brush_presets", "Mixed hair (jian hao)") in log
     cls = ext().operators.apply_preset.HAIRY_BRUSH_OT_apply_preset
     tip = cls.description(bpy.context, SimpleNamespace(kind="brush", name="wolf_stiff"))
     assert "hair length 28 mm" in tip and "Springiness" in tip
@@ -287,9 +294,12 @@ def test_preset_menus_name_the_active_preset_and_say_what_they_overwrite(hb, cap
 
 def test_paper_colour_and_capacity_follow_the_preset_and_reach_the_engine(hb):
     st = setup_scene(bpy)
-    raw = ext().sim.params.paper_from_preset(ext().sim.params.load_preset("paper", "raw_xuan"))
-    assert tuple(st.paper_color) == pytest.approx(raw.color)
-    assert st.paper_capacity == pytest.approx(raw.capacity)
+    sim = ext().sim
+    paper = sim.recording.DEFAULT_PAPER  # the scene starts on the default paper
+    assert paper != "smooth"  # so that choosing smooth below changes the values
+    preset = sim.params.paper_from_preset(sim.params.load_preset("paper", paper))
+    assert tuple(st.paper_color) == pytest.approx(preset.color)
+    assert st.paper_capacity == pytest.approx(preset.capacity)
     st.paper_preset = "smooth"
     assert st.paper_capacity == pytest.approx(1000.0)
     st.paper_capacity = 0.3

@@ -10,9 +10,11 @@ import pytest
 from sim import surface as sf
 from sim.engine import Simulation
 from sim.frames import rotation_matrix
-from sim.recording import Recording, from_dict
+from sim.params import load_preset
+from sim.recording import DEFAULT_BRUSH, Recording, from_dict
 
-L = 30.0  # the default brush's hair length (mm), as the engine reads it below
+# the default brush's hair length (mm), as the engine reads it below
+L = load_preset("brush", DEFAULT_BRUSH).data["geometry"]["hair_length_mm"]
 PPM = 3.0
 
 
@@ -71,11 +73,14 @@ def stroke_press(n: int, press=3.0, lead=12) -> np.ndarray:
     return p
 
 
-def simulate_on(surface, bases, rots, ppm=PPM, origin=None):
+def simulate_on(surface, bases, rots, ppm=PPM, origin=None, paper_overrides=None):
     side = sf.texture_side_mm(surface)
     origin = (side / 2, side / 2) if origin is None else origin
     samples, frames = sf.develop(surface, bases, rots, origin)
-    d = Recording(samples, width_mm=side, height_mm=side, px_per_mm=ppm).to_dict()
+    rec = Recording(
+        samples, width_mm=side, height_mm=side, px_per_mm=ppm, paper_overrides=paper_overrides or {}
+    )
+    d = rec.to_dict()
     d["surface"] = {"frames": frames.tolist()}
     rec = from_dict(d)
     frames = sf.frames_from_dict(rec.extra["surface"], len(rec.samples))
@@ -189,12 +194,22 @@ def test_a_flat_grid_with_turned_scaled_uvs_takes_the_planes_ink_through_its_uvs
     y = 50.0 + 12.0 * np.sin(np.linspace(0, np.pi, n))
     z = L - stroke_press(n, 2.5)
     plane_samples = np.stack([x, y, z, np.zeros(n), np.full(n, -8.0), np.zeros(n)], axis=1)
+    # no fibre on either sheet: the fibre field is fixed per pixel of the sheet (a hash of its
+    # row and column, like the grain), and the texture's texels are not the plane's pixels
+    # (turned, scaled), so it would refuse thin ink at other places of the two marks' fringes
+    no_fibre = {"fibre": 0.0}
     plane = Simulation(
-        Recording(plane_samples, width_mm=100.0, height_mm=100.0, px_per_mm=PPM)
+        Recording(
+            plane_samples,
+            width_mm=100.0,
+            height_mm=100.0,
+            px_per_mm=PPM,
+            paper_overrides=no_fibre,
+        )
     ).run()
     bases = plane_samples[:, :3] - [50.0, 50.0, 0.0]
     rots = np.array([rotation_matrix(*p[3:]) for p in plane_samples])
-    sim, sp = simulate_on(s, bases, rots, origin=(50.0, 50.0))
+    sim, sp = simulate_on(s, bases, rots, origin=(50.0, 50.0), paper_overrides=no_fibre)
     np.testing.assert_allclose(sim.rec.samples, plane_samples, atol=1e-4)  # the chart is the plane
     tp = sp.texels
     inside = np.abs(tp.xyz[:, :2]).max(axis=1) < 50.0

@@ -14,8 +14,10 @@ from conftest import ADDON
 bpy = pytest.importorskip("bpy")
 
 from sim.display import linear_to_srgb  # noqa: E402
+from sim.params import load_preset  # noqa: E402
+from sim.recording import DEFAULT_BRUSH  # noqa: E402
 
-HAIR = 30.0  # the 'mixed' brush preset's hair length (mm)
+HAIR = load_preset("brush", DEFAULT_BRUSH).data["geometry"]["hair_length_mm"]  # the default's
 R_MM = 40.0  # the cylinder's radius
 
 
@@ -188,11 +190,26 @@ def test_meshes_that_cannot_be_paper_and_a_brush_that_never_touches_get_clear_me
     capfd.readouterr()
     assert bpy.ops.hairy_brush.bake_samples() == {"FINISHED"}
     out = capfd.readouterr().out
-    assert "never touches the surface of 'Cylinder': its lowest point is z = 34.0 mm" in out
+    lowest = f"its lowest point is z = {HAIR + 4:.1f} mm"
+    assert f"never touches the surface of 'Cylinder': {lowest}" in out
 
 
 # ----------------------------------------------------------------------------- the ink
-def test_a_flat_grid_with_turned_scaled_uvs_writes_the_planes_ink_through_them(hb):
+def test_a_flat_grid_with_turned_scaled_uvs_writes_the_planes_ink_through_them(hb, monkeypatch):
+    # no fibre on either sheet: the fibre field is fixed per pixel of the sheet (a hash of its
+    # row and column, like the grain), and the texture's texels are not the plane's pixels
+    # (turned, halved), so it would refuse thin ink at other places of the two marks' fringes.
+    # The scene has no fibre setting: the recording's paper section gets it where the scene's
+    # settings are put into every recording it renders
+    bridge = ext().bridge
+    scene_overrides = bridge.scene_overrides
+
+    def without_fibre(st):
+        over = scene_overrides(st)
+        over["paper"]["fibre"] = 0.0
+        return over
+
+    monkeypatch.setattr(bridge, "scene_overrides", without_fibre)
     sc = bpy.context.scene
     st = sc.hairy_brush
     st.px_per_mm = 2.0
@@ -225,6 +242,7 @@ def test_a_flat_grid_with_turned_scaled_uvs_writes_the_planes_ink_through_them(h
     stroke(st.brush_object)
     assert bpy.ops.hairy_brush.bake_samples() == {"FINISHED"}
     assert bpy.ops.hairy_brush.simulate() == {"FINISHED"}
+    assert bridge.recording_from_scene(sc).resolve()[2].fibre == 0.0
     assert tuple(st.paper_image.size) == (800, 800)  # 400 mm of texture: the UVs are halved
     tp = texels(sc)
     inside = np.abs(tp.xyz[:, :2]).max(axis=1) < 100.0
