@@ -175,6 +175,7 @@ def scene_overrides(st) -> dict:
     }
     paper["color"] = [float(c) for c in st.paper_color]
     paper["capacity"] = float(st.paper_capacity)
+    paper["fibre"] = float(st.paper_fibre)
     return {
         "paper": paper,
         "brush": {"preset": st.brush_preset},
@@ -264,6 +265,7 @@ def copy_settings_from_recording(st, rec: Recording):
     }
     q, _geom, _paper, _ink = rec.resolve()
     _check_fits(st, "paper_capacity", _paper.capacity)
+    _check_fits(st, "paper_fibre", _paper.fibre)
     quality = {name: getattr(q, name) for name in QualityParams.names()}
     for name, value in values.items():
         _check_fits(st, name, value)
@@ -274,6 +276,7 @@ def copy_settings_from_recording(st, rec: Recording):
     for name, value in quality.items():
         setattr(st.quality, name, value)
     st.paper_color, st.paper_capacity = _paper.color, _paper.capacity
+    st.paper_fibre = _paper.fibre
     st.seed_of_recording = str(rec.seed) if rec.seed > MAX_INT_PROPERTY else ""
 
 

@@ -93,7 +93,7 @@ def _overwrites(kind: str, p) -> str:
         hair = geometry_from_preset(p).hair_length_mm
         return f"hair length {hair:g} mm (the touching height) and " + ", ".join(names)
     if kind == "paper":
-        return "paper colour, Ink Capacity and " + ", ".join(names)
+        return "paper colour, Ink Capacity, Fibre and " + ", ".join(names)
     if kind == "ink":
         return "Ink Colour, Ink Wetness and Dip Depth"
     return ", ".join(names)
@@ -133,10 +133,11 @@ def apply_quality_presets(st, brush: bool = True, paper: bool = True):
 
 
 def apply_paper_preset(st):
-    """The paper preset's colour and capacity into the settings."""
+    """The paper preset's colour, capacity and fibre into the settings."""
     spec = paper_from_preset(load_preset("paper", st.paper_preset))
     st.paper_color = spec.color
     st.paper_capacity = spec.capacity
+    st.paper_fibre = spec.fibre
 
 
 def apply_ink_preset(st):
@@ -269,7 +270,7 @@ class HAIRY_BRUSH_PG_settings(bpy.types.PropertyGroup):
         items=_ITEMS["paper"],
         default=DEFAULT_PAPER,
         update=_paper_changed,
-        description="The kind of paper: its colour, ink capacity and paper quality values",
+        description="The kind of paper: its colour, ink capacity, fibre and paper quality values",
     )
     ink_preset: EnumProperty(
         name="Ink Preset",
@@ -295,6 +296,16 @@ class HAIRY_BRUSH_PG_settings(bpy.types.PropertyGroup):
         soft_max=10.0,
         description="How much ink a pixel of paper holds before the rest spreads to its "
         "neighbours: lower bleeds more (raw xuan 0.55, sized xuan 1, smooth paper 1000)",
+    )
+    paper_fibre: FloatProperty(
+        name="Fibre",
+        default=_DEFAULT_PAPER_SPEC.fibre,
+        min=0.0,
+        max=1.0,
+        subtype="FACTOR",
+        description="How much the paper's fibres refuse thin ink: higher gives fibrous edges "
+        "and more dry-brush white where the brush runs dry; 0 = every pixel under the hair "
+        "takes ink (raw xuan 0.7, sized xuan 0.55, smooth paper 0.3)",
     )
     touch_height_mm: FloatProperty(
         name="Touching Height (mm)",

@@ -25,7 +25,7 @@ from test_extension import (
 bpy = pytest.importorskip("bpy")
 
 from sim.engine import Simulation  # noqa: E402
-from sim.recording import Recording  # noqa: E402
+from sim.recording import Recording, load  # noqa: E402
 
 
 def paper_size_m(st):
@@ -307,6 +307,66 @@ def test_paper_colour_and_capacity_follow_the_preset_and_reach_the_engine(hb):
     spec = ext().bridge.settings_recording(bpy.context.scene).resolve()[2]
     assert spec.capacity == pytest.approx(0.3)
     assert spec.color == pytest.approx((0.9, 0.8, 0.7), abs=1e-6)
+
+
+def test_paper_fibre_follows_the_preset_and_sits_by_ink_capacity(hb):
+    st = setup_scene(bpy)
+    sim = ext().sim
+    fibre = {
+        name: sim.params.paper_from_preset(sim.params.load_preset("paper", name)).fibre
+        for name in ("raw_xuan", "sized_xuan", "smooth")
+    }
+    assert len(set(fibre.values())) == 3  # each choice below changes the value
+    assert st.paper_fibre == pytest.approx(fibre[sim.recording.DEFAULT_PAPER])
+    for name in ("smooth", "raw_xuan"):
+        st.paper_preset = name
+        assert st.paper_fibre == pytest.approx(fibre[name]), name
+    # Apply Preset restores the preset's fibre also when the preset is already chosen
+    st.paper_fibre = 0.05
+    assert bpy.ops.hairy_brush.apply_preset(kind="paper", name="raw_xuan") == {"FINISHED"}
+    assert st.paper_fibre == pytest.approx(fibre["raw_xuan"])
+    prop = bpy.types.Scene.bl_rna.properties["hairy_brush"].fixed_type.properties["paper_fibre"]
+    assert (prop.name, prop.subtype, prop.hard_min, prop.hard_max) == ("Fibre", "FACTOR", 0, 1)
+    assert "0 = every pixel under the hair takes ink" in prop.description
+    props = names(drawn(bpy.types.HAIRY_BRUSH_PT_paper), "prop")
+    assert props.index("paper_fibre") == props.index("paper_capacity") + 1
+    st.paper_fibre = 0.35
+    assert ext().bridge.settings_recording(bpy.context.scene).resolve()[2].fibre == pytest.approx(
+        0.35
+    )
+
+
+def test_a_recordings_paper_fibre_is_imported_rendered_with_and_exported(hb, tmp_path):
+    st = setup_scene(bpy)
+    samples = [[60.0, 100.0, HAIR + 5, 0, 0, 0], [60.0, 100.0, HAIR - 4, 0, 0, 0]]
+    samples += [[60.0 + i, 100.0, HAIR - 4, 0, 0, 0] for i in range(80)]
+    samples += [[140.0, 100.0, HAIR + 5, 0, 0, 0]]
+    rec = Recording(np.array(samples), px_per_mm=2.0, paper_preset="raw_xuan")
+    rec.paper_overrides = {"fibre": 0.2}  # not raw xuan's own 0.7
+    src = tmp_path / "fibre.json"
+    rec.save(src)
+    assert json.loads(src.read_text())["paper"]["fibre"] == pytest.approx(0.2)
+    assert bpy.ops.hairy_brush.import_recording(filepath=str(src)) == {"FINISHED"}
+    assert st.paper_preset == "raw_xuan" and st.paper_fibre == pytest.approx(0.2)
+    # Blender renders it as `python -m sim render` does
+    assert bpy.ops.hairy_brush.simulate() == {"FINISHED"}
+    want = Simulation(load(src)).run().paper.rgb()
+    assert np.abs(pixels(st.paper_image)[..., :3] - want).max() <= 0.5 / 4095 + 1e-6
+    out = tmp_path / "out.json"
+    assert bpy.ops.hairy_brush.export_recording(filepath=str(out)) == {"FINISHED"}
+    assert json.loads(out.read_text())["paper"]["fibre"] == pytest.approx(0.2)
+    assert load(out).resolve()[2].fibre == pytest.approx(0.2)
+    # the setting decides the image: no fibre inks every pixel under the hair, strong fibre
+    # refuses thin ink at the mark's fringe
+    images = {}
+    for fibre in (0.0, 0.9):
+        st.paper_fibre = fibre
+        assert bpy.ops.hairy_brush.simulate() == {"FINISHED"}
+        blank = np.array(st.paper_color)
+        images[fibre] = (blank - pixels(st.paper_image)[..., :3]).mean(axis=2)
+    assert images[0.0].max() > 0.5  # the stroke inked
+    inked = {f: int((img > 0.05).sum()) for f, img in images.items()}
+    assert inked[0.9] < inked[0.0], inked
 
 
 def test_the_recording_panel_reads_no_json(hb):

@@ -195,24 +195,14 @@ def test_meshes_that_cannot_be_paper_and_a_brush_that_never_touches_get_clear_me
 
 
 # ----------------------------------------------------------------------------- the ink
-def test_a_flat_grid_with_turned_scaled_uvs_writes_the_planes_ink_through_them(hb, monkeypatch):
+def test_a_flat_grid_with_turned_scaled_uvs_writes_the_planes_ink_through_them(hb):
     # no fibre on either sheet: the fibre field is fixed per pixel of the sheet (a hash of its
     # row and column, like the grain), and the texture's texels are not the plane's pixels
-    # (turned, halved), so it would refuse thin ink at other places of the two marks' fringes.
-    # The scene has no fibre setting: the recording's paper section gets it where the scene's
-    # settings are put into every recording it renders
+    # (turned, halved), so it would refuse thin ink at other places of the two marks' fringes
     bridge = ext().bridge
-    scene_overrides = bridge.scene_overrides
-
-    def without_fibre(st):
-        over = scene_overrides(st)
-        over["paper"]["fibre"] = 0.0
-        return over
-
-    monkeypatch.setattr(bridge, "scene_overrides", without_fibre)
     sc = bpy.context.scene
     st = sc.hairy_brush
-    st.px_per_mm = 2.0
+    st.px_per_mm, st.paper_fibre = 2.0, 0.0
     assert bpy.ops.hairy_brush.setup() == {"FINISHED"}  # the flat plane, 200 x 200 mm
 
     def stroke(brush):
@@ -230,7 +220,7 @@ def test_a_flat_grid_with_turned_scaled_uvs_writes_the_planes_ink_through_them(h
     bpy.ops.wm.read_homefile(use_empty=True)
     sc = bpy.context.scene
     st = sc.hairy_brush
-    st.px_per_mm = 2.0
+    st.px_per_mm, st.paper_fibre = 2.0, 0.0
     bpy.ops.mesh.primitive_grid_add(x_subdivisions=8, y_subdivisions=8, size=0.2)
     grid = bpy.context.active_object
     a = math.radians(30.0)
