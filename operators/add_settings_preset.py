@@ -29,6 +29,7 @@ class HAIRY_BRUSH_OT_add_settings_preset(AddPresetBase, bpy.types.Operator):
         "st.ink_preset",
         "st.paper_color",
         "st.paper_capacity",
+        "st.paper_fibre",
         "st.ink_color",
         "st.dip_wetness",
         "st.dip_depth",

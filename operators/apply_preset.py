@@ -73,7 +73,9 @@ class HAIRY_BRUSH_OT_apply_preset(bpy.types.Operator):
         apply_quality_presets(st, brush=self.kind == "brush", paper=self.kind == "paper")
         if self.kind == "paper":
             apply_paper_preset(st)
-            self.report({"INFO"}, f"Paper {label}: set colour, Ink Capacity, {_names(preset)}")
+            self.report(
+                {"INFO"}, f"Paper {label}: set colour, Ink Capacity, Fibre, {_names(preset)}"
+            )
             return {"FINISHED"}
         self.report(
             {"INFO"}, f"Brush {label}: {_hair_change(st, hair_before)}; set {_names(preset)}"

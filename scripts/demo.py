@@ -43,18 +43,14 @@ def write_character():
     bpy.ops.wm.read_homefile(use_empty=True)
     scene = bpy.context.scene
     st = scene.hairy_brush
-    st.brush_preset = "wolf_stiff"
-    st.paper_preset = "sized_xuan"
-    st.ink_preset = "sumi_black"
+    # the default brush, paper and ink (the fitted wolf brush on sized xuan, black ink)
     st.px_per_mm = 10.0
     st.sync_frames = False  # the demo simulates once, at the end
     bpy.ops.hairy_brush.setup()
-    # quality values fitted to kaishu outlines by `python -m sim fit` (Sec. 7.2)
-    bpy.ops.hairy_brush.apply_preset(kind="quality", name="kaishu_fit")
     # the brush presses as wide as the font's strokes (its response calibrated by simulation);
-    # size 0: the character is sized to the brush
+    # size 0: the character is sized to the brush; the default practice passes
     bpy.ops.hairy_brush.write_character(
-        filepath=str(ROOT / "data" / "hanzi" / f"{CHAR}.json"), size_mm=0.0, passes=4
+        filepath=str(ROOT / "data" / "hanzi" / f"{CHAR}.json"), size_mm=0.0
     )
     bpy.ops.hairy_brush.bake_samples()  # what an artist does after editing the keyframes
     t0 = time.perf_counter()
