@@ -294,6 +294,7 @@ def cmd_fit(args) -> int:
         workers=args.workers,
         max_grid=args.max_grid,
         stages=args.stages,
+        bounds=dict(args.bound),
         seed=args.seed,
         scheduler=args.scheduler,
     )
@@ -369,6 +370,15 @@ def _stages(text: str) -> tuple:
     return stages
 
 
+def _bound(text: str) -> tuple:
+    name, _, rest = text.partition("=")
+    try:
+        lo, hi = (float(v) for v in rest.split(","))
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"must be NAME=LO,HI, got {short_repr(text)}") from None
+    return name.strip(), (lo, hi)
+
+
 def _add_fit(sub, size, common):
     """The ``fit`` command's options."""
     from .fit import SETTING_RANGES
@@ -390,6 +400,14 @@ def _add_fit(sub, size, common):
         opt = "--" + name.replace("_", "-")
         f.add_argument(opt, type=_whole(*SETTING_RANGES[name]), default=default, help=help_)
     f.add_argument("--stages", type=_stages, default=("qp1", "qp2"))
+    f.add_argument(
+        "--bound",
+        type=_bound,
+        action="append",
+        default=[],
+        metavar="NAME=LO,HI",
+        help="a quality parameter's search interval, e.g. e=0,0.97 (repeatable)",
+    )
     f.add_argument(
         "--scheduler",
         default=None,

@@ -76,6 +76,10 @@ class FitSettings:
     seed: int = 0  # draws the grid subset
     stages: tuple = ("qp1", "qp2")
     only: tuple = ()  # fit just these parameters (the others keep the seed's values)
+    # {name: (lo, hi)}: a parameter's search interval inside [0, 1] (all of it when not named);
+    # e.g. e <= 0.97 keeps some rigidity (1 - e) in the hair, so Eq. 10's stress and with it
+    # the pressure of Eq. 12 and the texture that follows from it (Eq. 15, 16, 27) stay on
+    bounds: dict = field(default_factory=dict)
     # evaluate on a Dask cluster: "local" (a LocalCluster here) or a scheduler's address; the
     # result is the same as without, for the same workers (or starts)
     scheduler: str | None = None
@@ -99,6 +103,19 @@ class FitSettings:
         if any(n not in QP1 + QP2 for n in only):
             raise ParameterError(f"fit setting 'only' names unknown parameters: {list(only)!r}")
         self.stages, self.only = stages, only
+        for n, b in self.bounds.items():
+            ok = n in QP1 + QP2 and len(b) == 2 and all(number_within(v, 0.0, 1.0) for v in b)
+            if not ok or b[0] > b[1]:
+                raise ParameterError(
+                    f"fit setting 'bounds' must map quality names to [lo, hi] within [0, 1], "
+                    f"got {short_repr({n: b})}"
+                )
+
+    def box(self, names) -> tuple[np.ndarray, np.ndarray]:
+        """The search box of these parameters: [0, 1] each, or its bound."""
+        lo = np.array([float(self.bounds.get(n, (0.0, 1.0))[0]) for n in names])
+        hi = np.array([float(self.bounds.get(n, (0.0, 1.0))[1]) for n in names])
+        return lo, hi
 
 
 # the fit's settings: [lowest, highest] (a grid of (divisions + 1)^6 points is drawn from)
@@ -371,9 +388,10 @@ def fit(
             fixed = {k: v for k, v in current.items() if k not in names}
             if stage == "qp1":
                 fixed.update({k: 0.0 for k in QP2})
-            lo, hi = np.zeros(len(names)), np.ones(len(names))
+            lo, hi = settings.box(names)
+            outer = (lo.copy(), hi.copy())
             d = max(int(settings.divisions), 1)
-            best_x = np.array([current[n] for n in names])
+            best_x = np.clip([current[n] for n in names], lo, hi)
             best_f = target_function(_values(names, best_x, fixed), samples, stage)
             evaluations += 1
             for rnd in range(settings.rounds):
@@ -398,8 +416,8 @@ def fit(
                 # the cube shrinks around the grid point nearest the best solution
                 cell = (hi - lo) / d
                 nearest = lo + np.round((best_x - lo) / cell) * cell
-                lo = np.clip(nearest - cell, 0.0, 1.0)
-                hi = np.clip(nearest + cell, 0.0, 1.0)
+                lo = np.clip(nearest - cell, *outer)
+                hi = np.clip(nearest + cell, *outer)
             current.update(_values(names, best_x, {}))
         final = target_function(current, samples)
         evaluations += 1

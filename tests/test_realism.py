@@ -128,3 +128,26 @@ def test_fibre_refuses_a_dry_brush_inside_the_stroke():
     wet = texture_stats(_fibre_stroke(0.7, 0.9).image())
     dry = texture_stats(_fibre_stroke(0.7, 0.3).image())
     assert dry.flying_white > 3 * max(wet.flying_white, 1e-3)
+
+
+def test_fit_keeps_a_parameter_inside_its_bound():
+    # the truth (e = 0.3) and the seed (0.7) lie below the bound e in [0.75, 0.8]: the bounded
+    # fit stays inside it, the unbounded one does not go there; a bad bound is one message
+    import pytest
+
+    from sim.fit import FitSettings, TrainingSample, fit, render
+    from sim.params import QP2, ParameterError
+
+    known = {"e": 0.3, **{k: 0.0 for k in QP2}}
+    s = stroke([[8, 12], [36, 16]], press_mm=9.0, speed_mm_s=70, hover_mm=4.0)
+    rec = Recording(s, width_mm=44, height_mm=30, px_per_mm=1.2, brush={"preset": "wolf_stiff"})
+    samples = [TrainingSample(rec, render(rec, known), kind="shape")]
+    seed = {"e": 0.7, **{k: 0.0 for k in QP2}}
+    kw = dict(divisions=2, rounds=2, iterations=3, workers=1, stages=("qp1",), only=("e",))
+    bounded = fit(samples, seed, FitSettings(**kw, bounds={"e": (0.75, 0.8)})).quality["e"]
+    free = fit(samples, seed, FitSettings(**kw)).quality["e"]
+    assert 0.75 <= bounded <= 0.8 and free < 0.75
+    with pytest.raises(ParameterError, match="bounds"):
+        FitSettings(bounds={"e": (0.9, 0.2)})
+    with pytest.raises(ParameterError, match="bounds"):
+        FitSettings(bounds={"xyz": (0.0, 1.0)})
