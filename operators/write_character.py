@@ -18,7 +18,7 @@ from bpy_extras.io_utils import ImportHelper
 
 from .. import bridge, playback
 from ..sim.hanzi import find_char
-from ..sim.imitate import auto_size_mm, calibrate, write_character
+from ..sim.imitate import DEFAULT_PASSES, auto_size_mm, calibrate, write_character
 from . import polls
 from .jobs import JobOperator, WorkerJob
 
@@ -134,7 +134,7 @@ class HAIRY_BRUSH_OT_write_character(JobOperator, bpy.types.Operator, ImportHelp
     )
     passes: bpy.props.IntProperty(
         name="Practice Passes",
-        default=3,
+        default=DEFAULT_PASSES,
         min=1,
         max=8,
         description="How often each stroke is written, measured against the outline and "

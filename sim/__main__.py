@@ -420,7 +420,7 @@ def _add_fit(sub, size, common):
 
 
 def _parser() -> argparse.ArgumentParser:
-    from .imitate import MAX_PASSES, MIN_SHEET_PX
+    from .imitate import DEFAULT_PASSES, MAX_PASSES, MIN_SHEET_PX
     from .picture import MAX_DETAIL, PASSES
 
     seed = _whole(0, MAX_SEED)
@@ -448,7 +448,10 @@ def _parser() -> argparse.ArgumentParser:
             "--size-mm", type=_real(*PAPER_MM_RANGE), default=None, help="character size (auto)"
         )
         p.add_argument(
-            "--passes", type=_whole(1, MAX_PASSES), default=3, help="practice passes per stroke"
+            "--passes",
+            type=_whole(1, MAX_PASSES),
+            default=DEFAULT_PASSES,
+            help="practice passes per stroke",
         )
 
     w = sub.add_parser("write", help="write a character from stroke data with the brush")

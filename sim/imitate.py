@@ -30,6 +30,7 @@ CAL_LENGTH_MM = 45.0
 ENTRY_SAMPLES = 8
 EXIT_SAMPLES = 8
 MAX_PASSES = 50
+DEFAULT_PASSES = 4  # practice passes a stroke gets by default (issue 16: < 10 s at 512 px)
 MIN_SHEET_PX = 8
 # what the brush does at a sample of a plan (Plan.phase)
 IN_THE_AIR, ENTERING, WRITING, LIFTING = 0, 1, 2, 3
@@ -377,12 +378,13 @@ def plan(
     )
 
 
-def measure_band(sim: Simulation, points, tangents, reach_mm: float, before=None):
+def measure_band(sim: Simulation, points, tangents, reach_mm: float, before=None, laid=None):
     """Across the way of travel at each of ``points`` (mm): the width (mm) of the ink band
     (coverage above half) nearest the point, the offset (mm, along the left normal) of its
     centre from the point, and whether the reading is the brush's own there: ink that was on
     the paper before the brush came to the point - ``before(index, rows, cols)`` says where,
-    per point - makes up less than a third of the band."""
+    per point - makes up less than a third of the band. The band is read on ``laid(index, rows,
+    cols)`` when given (the ink once the point's movement had lifted off), else on the paper."""
     ppm = sim.paper.ppm
     normal = np.stack([-tangents[:, 1], tangents[:, 0]], axis=1)
     k = max(int(reach_mm * ppm), 1)
@@ -390,8 +392,9 @@ def measure_band(sim: Simulation, points, tangents, reach_mm: float, before=None
     pts = points[:, None, :] + off[None, :, None] * normal[:, None, :]
     cols = np.clip((pts[..., 0] * ppm).astype(int), 0, sim.paper.W - 1)
     rows = np.clip((pts[..., 1] * ppm).astype(int), 0, sim.paper.H - 1)
-    cov = _coverage(sim, rows, cols)
-    old = before(np.arange(len(points)), rows, cols) if before is not None else np.zeros_like(cov)
+    idx = np.arange(len(points))
+    cov = laid(idx, rows, cols) if laid is not None else _coverage(sim, rows, cols)
+    old = before(idx, rows, cols) if before is not None else np.zeros_like(cov)
     width = np.zeros(len(points))
     centre = np.zeros(len(points))
     valid = np.zeros(len(points), dtype=bool)
@@ -412,7 +415,7 @@ def measure_band(sim: Simulation, points, tangents, reach_mm: float, before=None
     return width, centre, valid
 
 
-def _lead_along(path, lag):
+def _lead_along(path, lag, stop: bool = False):
     """Where the brush's base must be so that the ink lands on ``path``: the hair trails the
     base along the way it came, so the base runs ahead of the mark by the lag *along the path*
     (round a curve, not off its tangent). The lead builds up over the first stretch of the
@@ -422,6 +425,8 @@ def _lead_along(path, lag):
     s = np.concatenate([[0.0], np.cumsum(seg)])
     lead = np.asarray(lag, dtype=float) * np.clip(s / np.maximum(lag, 1e-6), 0.0, 1.0)
     q = s + lead
+    if stop:  # into a corner: the base stops on the corner, the hair catches up beneath it
+        q = np.minimum(q, s[-1])
     out = np.stack([np.interp(q, s, path[:, 0]), np.interp(q, s, path[:, 1])], axis=1)
     if len(path) > 1 and s[-1] > 0:
         end_dir = path[-1] - path[-2]
@@ -507,7 +512,7 @@ def _fill(samples, pl: Plan, response: Response, span, press, side, brush) -> np
     for r, run in enumerate(runs):
         j1 = j0 + len(run)
         p = press[j0:j1] * _entry_ramp(pl.target[run], pl.width[run])
-        samples[run, :2] = _lead_along(pl.target[run], response.lag_for(p))
+        samples[run, :2] = _lead_along(pl.target[run], response.lag_for(p), r < len(runs) - 1)
         samples[run, :2] += side[j0:j1, None] * normal[run]
         samples[run, 2] = hair - p
         _enter_and_leave(samples, pl, run, hover, hair, step_mm, (r > 0, r < len(runs) - 1))
@@ -547,11 +552,25 @@ PRACTICE_GAIN = 0.45  # share of a pass's width error corrected for the next (me
 PRACTICE_SIDE_GAIN = 0.8  # share of the band's sideways offset corrected (issue 16: measured)
 
 
+def _movement_ends(phase, body) -> np.ndarray:
+    """For each body sample, the first sample after its movement has lifted off."""
+    runs = np.split(body, np.flatnonzero(np.diff(body) > 1) + 1)
+    ends = []
+    for run in runs:
+        e = run[-1] + 1
+        while e < len(phase) and phase[e] == LIFTING:
+            e += 1
+        ends.append(np.full(len(run), e))
+    return np.concatenate(ends)
+
+
 def _practise(sim, a, b, body, want, step_mm, pl, reach):
     """Write samples a..b, keeping a record of the ink coverage around the stroke every few
-    samples; returns ``before(index, rows, cols)``: the coverage each body point had just
-    before the brush's mark reached it (so that a stroke crossing its own ink, as at a hook,
-    reads only the band it is laying down)."""
+    samples and as each movement lifts off; returns ``before(index, rows, cols)``, the coverage
+    each body point had just before the brush's mark reached it, and ``laid(index, rows,
+    cols)``, the coverage once the point's movement had lifted off. So a stroke crossing its
+    own ink, as at a hook, reads only the band it is laying down, and the band at a 折's
+    shoulder or a hook's foot is read before the next movement lays its ink across the cut."""
     ppm = sim.paper.ppm
     lo = pl.target[a:b].min(axis=0) - reach - 2.0
     hi = pl.target[a:b].max(axis=0) + reach + 2.0
@@ -559,23 +578,29 @@ def _practise(sim, a, b, body, want, step_mm, pl, reach):
     c1, r1 = min(int(hi[0] * ppm) + 1, sim.paper.W), min(int(hi[1] * ppm) + 1, sim.paper.H)
     rr, cc = np.mgrid[r0:r1, c0:c1]
     times, records = [], []
-    for i in range(a, b):
-        if (i - a) % RECORD_EVERY == 0:
+    for i in range(a, b + 1):
+        lifted = i > a and pl.phase[i - 1] == LIFTING and (i == b or pl.phase[i] != LIFTING)
+        if (i - a) % RECORD_EVERY == 0 or lifted or i == b:
             times.append(i)
             records.append(_coverage(sim, rr, cc))
-        sim.step()
+        if i < b:
+            sim.step()
     times, records = np.array(times), np.stack(records)
     # the brush's mark reaches a point about half its width (plus a millimetre) ahead of time
     ahead = np.ceil((want / 2.0 + 1.0) / step_mm).astype(int) + 1
     which = np.clip(np.searchsorted(times, body - ahead, side="right") - 1, 0, len(times) - 1)
+    done = np.searchsorted(times, np.minimum(_movement_ends(pl.phase, body), b))
 
-    def before(idx, rows, cols):
-        inside = (rows >= r0) & (rows < r1) & (cols >= c0) & (cols < c1)
-        rr_ = np.clip(rows - r0, 0, r1 - r0 - 1)
-        cc_ = np.clip(cols - c0, 0, c1 - c0 - 1)
-        return inside & records[which[idx][:, None], rr_, cc_]
+    def at(record_of):
+        def cover(idx, rows, cols):
+            inside = (rows >= r0) & (rows < r1) & (cols >= c0) & (cols < c1)
+            rr_ = np.clip(rows - r0, 0, r1 - r0 - 1)
+            cc_ = np.clip(cols - c0, 0, c1 - c0 - 1)
+            return inside & records[record_of[idx][:, None], rr_, cc_]
 
-    return before
+        return cover
+
+    return at(which), at(done)
 
 
 def _check_writing(n_px, size_mm, passes, dip_every_mm, px_per_mm) -> None:
@@ -625,7 +650,7 @@ def _check_sheet(size_mm: float, ppm: float) -> None:
         )
 
 
-def _correct(response, press, side, want, got, centre, valid):
+def _correct(response, press, side, want, got, centre, valid, ceiling):
     """The next pass's press and sideways placement: where the reading is this stroke's own,
     a share of the width error through the response's slope, and of the band's offset; smoothed
     along the stroke."""
@@ -636,9 +661,33 @@ def _correct(response, press, side, want, got, centre, valid):
     slope = np.maximum(np.interp(press, response.press_mm, slope_tab), mean_slope)
     dp = np.where(valid, PRACTICE_GAIN * (want - got) / slope, 0.0)
     dp = np.where(valid & (got == 0) & (want > 0), 0.5, dp)
-    press = np.clip(press + _smooth(dp, 5), 0.0, p_max)
+    press = np.clip(press + _smooth(dp, 5), 0.0, ceiling)
     side = side - _smooth(np.where(valid & (got > 0), PRACTICE_SIDE_GAIN * centre, 0.0), 5)
     return press, side
+
+
+CORNER_WIDTH = 0.9  # share of the widest band the brush is pressed for into a corner (measured:
+# 0.8 is cleaner still but costs texture, 0.748 -> 0.73 on the bundled characters)
+
+
+def _ceiling(pl: Plan, body, response: Response) -> np.ndarray:
+    """The deepest press per body sample: the deepest measured, but into a sharp corner (the
+    last stretch, as long as the movement is wide, of a movement ending at a 折's shoulder or a
+    hook's foot) easing to the press that leaves ``CORNER_WIDTH`` of the widest band. The brush
+    slows there and lifts on the spot, and a belly pressed to the calibration's limit splays
+    and sweeps a grey, fibrous puff round the corner; a calligrapher presses into the turn
+    firmly, not to the heel of the hair."""
+    p_max = float(response.press_mm[-1])
+    at_corner = float(response.press_for(CORNER_WIDTH * response.max_width_mm))
+    top = np.full(len(body), p_max)
+    runs = np.split(np.arange(len(body)), np.flatnonzero(np.diff(body) > 1) + 1)
+    for run in runs[:-1]:  # every movement but the stroke's last ends at a corner
+        path = pl.target[body[run]]
+        seg = np.linalg.norm(np.diff(path, axis=0), axis=1)
+        to_end = np.concatenate([np.cumsum(seg[::-1])[::-1], [0.0]])
+        t = np.clip(1.0 - to_end / max(float(pl.width[body[run]].max()), 1e-6), 0.0, 1.0)
+        top[run] = p_max - (p_max - at_corner) * t * t * (3.0 - 2.0 * t)
+    return top
 
 
 def _practise_stroke(sim, a, b, passes, fill, own, ctx) -> None:
@@ -648,7 +697,8 @@ def _practise_stroke(sim, a, b, passes, fill, own, ctx) -> None:
     pl, response, step_mm, reach = ctx
     body = np.flatnonzero(pl.phase[a:b] == WRITING) + a
     want = pl.width[body]
-    press = response.press_for(want)
+    ceiling = _ceiling(pl, body, response)
+    press = np.minimum(response.press_for(want), ceiling)
     side = np.zeros(len(body))
     if passes == 1:
         fill(a, b, press, side)
@@ -661,8 +711,8 @@ def _practise_stroke(sim, a, b, passes, fill, own, ctx) -> None:
         if k:
             sim.restore(snap)
         fill(a, b, press, side)
-        before = _practise(sim, a, b, body, want, step_mm, pl, reach)
-        got, centre, valid = measure_band(sim, pl.target[body], pl.tangent[body], reach, before)
+        seen = _practise(sim, a, b, body, want, step_mm, pl, reach)
+        got, centre, valid = measure_band(sim, pl.target[body], pl.tangent[body], reach, *seen)
         # the pass that best fills the stroke's own outline stays (new ink against it)
         new = _coverage(sim, own.rows, own.cols) & ~inked_before
         inter = np.count_nonzero(new & own.inside)
@@ -671,7 +721,7 @@ def _practise_stroke(sim, a, b, passes, fill, own, ctx) -> None:
             best = Pass(err, press.copy(), side.copy(), k)
         if k == passes - 1:
             break
-        press, side = _correct(response, press, side, want, got, centre, valid)
+        press, side = _correct(response, press, side, want, got, centre, valid, ceiling)
     if best.number != k:  # the last pass was not the best: write the best again
         sim.restore(snap)
         fill(a, b, best.press, best.side)
@@ -685,7 +735,7 @@ def write_character(
     size_mm: float | None = None,
     response: Response | None = None,
     dip_every_mm: float | None = None,
-    passes: int = 3,
+    passes: int = DEFAULT_PASSES,
     progress=None,
     px_per_mm: float | None = None,
 ) -> tuple[Recording, Response, Simulation]:

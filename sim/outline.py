@@ -250,7 +250,11 @@ def _bands(pts, polys) -> tuple[np.ndarray, np.ndarray]:
     disc = 2.0 * np.maximum(distance_to_outline(centre, polys), r)
     along = cut > CUT_OVER_DISC * disc  # the cut runs along the stroke: trust the disc
     centre = np.where(along[:, None], pts, centre)
-    return centre, np.where(along, np.minimum(cut, CUT_OVER_DISC * disc), cut)
+    width = np.where(along, np.minimum(cut, CUT_OVER_DISC * disc), cut)
+    # nor more than CUT_OVER_DISC times the disc where the band is centred (a foot's cut
+    # slanting into a 折's outer corner)
+    held = CUT_OVER_DISC * 2.0 * np.maximum(distance_to_outline(centre, polys), 0.0)
+    return centre, np.minimum(width, held)
 
 
 def median_bands(char: dict, step: float = 4.0) -> list[tuple[np.ndarray, np.ndarray]]:
@@ -282,17 +286,29 @@ def corners(pts, step: float) -> list[int]:
     return [win + i + int(np.argmax(turn[i:j])) for i, j in zip(starts, ends, strict=True)]
 
 
+FOOT_FAN = 1.0  # rad the foot may turn from the way in, away from the turn, towards the
+# outline's farthest point (a 竖钩's median bends into the hook before its corner; the foot
+# hangs on the outer side of the turn)
+
+
 def _foot(pts, k: int, polys, step: float) -> np.ndarray:
-    """The points a movement ending at corner ``k`` goes on past it, along its last direction
-    (a chord of ``CORNER_WINDOW``), ``FOOT_REACH`` of the way to the outline: the foot of a
-    hook or the shoulder of a 折, where the calligrapher presses before turning."""
+    """The points a movement ending at corner ``k`` goes on past it, ``FOOT_REACH`` of the way to
+    the outline: the foot of a hook or the shoulder of a 折, where the calligrapher presses
+    before turning. Its way is its last direction (a chord of ``CORNER_WINDOW``) turned up to
+    ``FOOT_FAN`` away from the corner's turn, towards the farthest outline: the font's foot
+    hangs on the corner's outer side, not where the median already bends to the next
+    movement."""
     win = max(int(round(CORNER_WINDOW / step)), 1)
     d = pts[k] - pts[max(k - win, 0)]
-    d = d / max(float(np.linalg.norm(d)), 1e-9)
-    hit = float(_ray_hits(pts[k][None], d[None], polys)[0])
-    reach = FOOT_REACH * hit if np.isfinite(hit) else 0.0
-    n = int(reach // step)
-    return pts[k] + (np.arange(1, n + 1) * step)[:, None] * d
+    e = pts[min(k + win, len(pts) - 1)] - pts[k]
+    away = -1.0 if d[0] * e[1] - d[1] * e[0] > 0 else 1.0  # against the turn
+    ang = np.arctan2(d[1], d[0]) + away * np.linspace(0.0, FOOT_FAN, 11)
+    dirs = np.stack([np.cos(ang), np.sin(ang)], axis=1)
+    hits = _ray_hits(np.repeat(pts[k][None], len(dirs), axis=0), dirs, polys)
+    hits = np.where(np.isfinite(hits), hits, 0.0)
+    j = int(np.argmax(hits))
+    n = int(FOOT_REACH * hits[j] // step)
+    return pts[k] + (np.arange(1, n + 1) * step)[:, None] * dirs[j]
 
 
 def median_pieces(char: dict, step: float = 4.0) -> list[list[tuple[np.ndarray, np.ndarray]]]:

@@ -69,8 +69,9 @@ def test_a_sharp_corner_is_two_movements_and_the_first_goes_into_the_foot():
     assert len(pieces) == 2
     (down, _), (across, _) = pieces
     # the corner of the median is (300, 230): the first movement goes on past it, down into
-    # the foot (towards the outline at y = 200), the second sets off from the corner
-    assert down[-1, 1] < 225.0 and abs(down[-1, 0] - 300.0) < 5.0
+    # the foot on the corner's outer side (towards the outline's corner at (270, 200)), not
+    # along the next movement; the second sets off from the corner
+    assert down[-1, 1] < 225.0 and 270.0 < down[-1, 0] < 301.0
     assert np.linalg.norm(across[0] - [300.0, 230.0]) < 10.0
     # a gentle curve is one movement
     pts, _ = resample([[0, 0], [100, 20], [200, 60], [300, 120]], 4.0)
@@ -138,3 +139,35 @@ def test_a_written_hook_ends_in_a_point_and_its_foot_stays_in_the_outline(respon
     missed = np.count_nonzero(own[win] & ~ink[win]) / np.count_nonzero(own[win])
     spill = np.count_nonzero(ink[win] & ~own[win]) / np.count_nonzero(ink[win])
     assert missed < 0.05 and spill < 0.3
+
+
+def test_the_foot_hangs_towards_the_outlines_farthest_point():
+    # 永's 竖钩: the median bends towards the hook before its corner; the foot goes on towards
+    # the bottom of the outline's foot (x 485 at y -39), not along the bend (x 468 before)
+    yong = find_char("永")
+    allp = np.concatenate(stroke_polygons(yong)[1])
+    lowest = allp[np.argmin(allp[:, 1])]
+    (foot, _), _ = median_pieces(yong, step=4.0)[1]
+    assert abs(foot[-1, 0] - lowest[0]) < 8.0 and foot[-1, 1] < 10.0
+
+
+def test_a_corner_is_pressed_firmly_not_to_the_heel(response):
+    # the movement into a corner eases to the press that leaves CORNER_WIDTH of the widest
+    # band over its last stretch; elsewhere, and on the stroke's last movement, the deepest
+    from sim.imitate import CORNER_WIDTH, _ceiling, _movement_ends
+
+    pl = plan(L_CHAR, 100.0, 0.5)
+    a, b = pl.strokes[0]
+    body = np.flatnonzero(pl.phase[a:b] == WRITING) + a
+    top = _ceiling(pl, body, response)
+    p_max = float(response.press_mm[-1])
+    at_corner = float(response.press_for(CORNER_WIDTH * response.max_width_mm))
+    first = np.flatnonzero(np.diff(body) > 1)[0] + 1  # the first sample of the second movement
+    assert at_corner < p_max - 0.5
+    assert top[0] == p_max and np.isclose(top[first - 1], at_corner)
+    assert np.all(top[first:] == p_max)
+    # the band of the movement into the corner is read once it has lifted, before the next
+    # movement touches down (it would cut across that movement's ink)
+    ends = _movement_ends(pl.phase, body)
+    assert np.all(ends[:first] <= body[first] - 1) and np.all(ends[:first] > body[first - 1])
+    assert np.all(pl.phase[ends[:first] - 1] != WRITING)
