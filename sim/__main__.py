@@ -419,9 +419,34 @@ def _add_fit(sub, size, common):
     f.set_defaults(func=cmd_fit)
 
 
+def _add_imitate(sub, size, common):
+    """The ``imitate`` command's options."""
+    from .picture import MAX_DETAIL, PASSES
+
+    im = sub.add_parser("imitate", help="read a picture of writing and write it with the brush")
+    im.add_argument("image", help="dark writing on a light ground: PNG (JPEG etc. with Pillow)")
+    im.add_argument("-o", "--output", required=True)
+    im.add_argument(
+        "--size",
+        type=size,
+        default=512,
+        help=f"image size N (the em box) written; the picture is read at N, at most {MAX_DETAIL}",
+    )
+    im.add_argument("--recording", default=None, help="also save the recording it made")
+    im.add_argument("--char-data", default=None, help="also save the strokes read (JSON)")
+    im.add_argument(
+        "--piece",
+        action="store_true",
+        help="a piece of several characters: columns right to left, each top to bottom, each "
+        "character written in its own square of the sheet",
+    )
+    im.add_argument("-q", "--quiet", action="store_true")
+    common(im)
+    im.set_defaults(func=cmd_imitate, passes=PASSES)
+
+
 def _parser() -> argparse.ArgumentParser:
     from .imitate import DEFAULT_PASSES, MAX_PASSES, MIN_SHEET_PX
-    from .picture import MAX_DETAIL, PASSES
 
     seed = _whole(0, MAX_SEED)
     size = _whole(MIN_SHEET_PX, MAX_PAPER_SIDE_PX)
@@ -462,26 +487,7 @@ def _parser() -> argparse.ArgumentParser:
     w.add_argument("-q", "--quiet", action="store_true")
     common(w)
     w.set_defaults(func=cmd_write)
-    im = sub.add_parser("imitate", help="read a picture of writing and write it with the brush")
-    im.add_argument("image", help="dark writing on a light ground: PNG (JPEG etc. with Pillow)")
-    im.add_argument("-o", "--output", required=True)
-    im.add_argument(
-        "--size",
-        type=size,
-        default=512,
-        help=f"image size N (the em box) written; the picture is read at N, at most {MAX_DETAIL}",
-    )
-    im.add_argument("--recording", default=None, help="also save the recording it made")
-    im.add_argument("--char-data", default=None, help="also save the strokes read (JSON)")
-    im.add_argument(
-        "--piece",
-        action="store_true",
-        help="a piece of several characters: columns right to left, each top to bottom, each "
-        "character written in its own square of the sheet",
-    )
-    im.add_argument("-q", "--quiet", action="store_true")
-    common(im)
-    im.set_defaults(func=cmd_imitate, passes=PASSES)
+    _add_imitate(sub, size, common)
     ws = sub.add_parser("write-set", help="write many characters to a folder (PNG + recording)")
     ws.add_argument("chars", nargs="+", help="hanzi-writer JSON files, or characters")
     ws.add_argument("--out-dir", required=True, help="folder for NNN.png and NNN.json")
