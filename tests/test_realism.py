@@ -20,8 +20,8 @@ def test_paper_grain_is_fixed_and_spread():
     assert abs(np.corrcoef(g[:-1], g[1:])[0, 1]) < 0.02  # neighbours independent
 
 
-def _stroke(monkeypatch, depth: float):
-    monkeypatch.setattr(sim.paper, "GRAIN_DEPTH", depth)
+def _fibre_stroke(fibre: float, wetness: float = 0.9):
+    """A straight pressed stroke of the stiff wolf brush on smooth paper with this fibre."""
     s = stroke([[10.0, 20.0], [70.0, 20.0]], press_mm=10.0, hair_length_mm=28.0)
     rec = Recording(
         s,
@@ -30,10 +30,15 @@ def _stroke(monkeypatch, depth: float):
         px_per_mm=6.0,
         brush={"preset": "wolf_stiff"},
         paper_preset="smooth",
-        paper_overrides={"fibre": 0.0},  # the grain alone
-        dips=[Dip(0, 1.0, (0.0, 0.0, 0.0), 0.9)],
+        paper_overrides={"fibre": fibre},
+        dips=[Dip(0, 1.0, (0.0, 0.0, 0.0), wetness)],
     )
     return Simulation(rec).run()
+
+
+def _stroke(monkeypatch, depth: float):
+    monkeypatch.setattr(sim.paper, "GRAIN_DEPTH", depth)
+    return _fibre_stroke(0.0)  # the grain alone
 
 
 def test_paper_grain_makes_the_edge_ragged_and_keeps_the_body(monkeypatch):
@@ -74,21 +79,6 @@ def test_the_papers_grain_is_the_recordings_seeds_sheet():
     np.testing.assert_array_equal(a, paper_grain(idx, 0))  # the same sheet every time
     assert np.mean(a != b) > 0.99  # another seed, another sheet
     assert 0.45 < a.mean() < 0.55 and a.min() >= 0.0 and a.max() < 1.0
-
-
-def _fibre_stroke(fibre: float, wetness: float = 0.9, paper="smooth"):
-    s = stroke([[10.0, 20.0], [70.0, 20.0]], press_mm=10.0, hair_length_mm=28.0)
-    rec = Recording(
-        s,
-        width_mm=80.0,
-        height_mm=40.0,
-        px_per_mm=6.0,
-        brush={"preset": "wolf_stiff"},
-        paper_preset=paper,
-        paper_overrides={"fibre": fibre},
-        dips=[Dip(0, 1.0, (0.0, 0.0, 0.0), wetness)],
-    )
-    return Simulation(rec).run()
 
 
 def test_paper_fibre_is_fixed_smooth_in_millimetres_and_spread():
