@@ -305,7 +305,7 @@ class HAIRY_BRUSH_PG_settings(bpy.types.PropertyGroup):
         subtype="FACTOR",
         description="How much the paper's fibres refuse thin ink: higher gives fibrous edges "
         "and more dry-brush white where the brush runs dry; 0 = every pixel under the hair "
-        "takes ink (raw xuan 0.7, sized xuan 0.62, smooth paper 0.3)",
+        "takes ink (raw xuan 0.4, sized xuan 0.62, smooth paper 0.3)",
     )
     touch_height_mm: FloatProperty(
         name="Touching Height (mm)",

@@ -103,12 +103,14 @@ class FitSettings:
         if any(n not in QP1 + QP2 for n in only):
             raise ParameterError(f"fit setting 'only' names unknown parameters: {list(only)!r}")
         self.stages, self.only = stages, only
-        for n, b in self.bounds.items():
-            ok = n in QP1 + QP2 and len(b) == 2 and all(number_within(v, 0.0, 1.0) for v in b)
-            if not ok or b[0] > b[1]:
+        bounds = self.bounds if isinstance(self.bounds, dict) else {None: self.bounds}
+        for n, b in bounds.items():
+            pair = isinstance(b, (tuple, list)) and len(b) == 2
+            ok = pair and n in QP1 + QP2 and all(number_within(v, 0.0, 1.0) for v in b)
+            if not ok or b[0] >= b[1]:
                 raise ParameterError(
-                    f"fit setting 'bounds' must map quality names to [lo, hi] within [0, 1], "
-                    f"got {short_repr({n: b})}"
+                    "fit setting 'bounds' must map quality names to [lo, hi] with 0 <= lo < hi "
+                    f"<= 1, got {short_repr({n: b})}"
                 )
 
     def box(self, names) -> tuple[np.ndarray, np.ndarray]:

@@ -225,8 +225,8 @@ def _to_the_tips(med, polys) -> np.ndarray:
 
 CUT_OVER_DISC = 1.3  # a cut across the median longer than this many times the inscribed disc
 # at its middle (diameter) runs along the stroke, as at a corner or the foot of a hook: there
-# the disc's diameter is the width and the median point the centre (the "true discs" yardstick
-# reads its radii so and reaches IoU 0.95)
+# the width is held to this many times the disc's diameter and the median point is the centre
+# (the "true discs" yardstick reads its radii off the same discs and reaches IoU 0.95)
 CORNER_TURN = 1.3  # rad of turn over +-CORNER_WINDOW: a hook's foot or a 折 is two movements
 CORNER_WINDOW = 60.0  # data units either side (a median's corner spreads over 2-3 vertices)
 FOOT_REACH = 0.5  # share of the way to the outline a movement goes on past a corner (the foot)

@@ -188,19 +188,21 @@ class Paper:
         last[...] = step
 
     def fibre_refuses(self, marks, wet_tau, full) -> np.ndarray:
-        """Model addition (not in the paper): where a mark's pixel takes no ink this visit
-        because the ink offered there is thinner than the sheet's fibre resists. The offer is
-        the brush's wetness at the pixel (Eq. 23) times the hair's density there, which thins
-        over the outer HAIR_FRINGE of a section (Eq. 23's f, ``Mark.depth``): inside a loaded
-        stroke every pixel takes ink; at its edge only the pixels whose fibres resist little
-        do - the same pixels visit after visit, since the fibres are the sheet's - so the edge
-        is fibrous; and where the brush runs dry the fibres refuse ink inside the stroke too
-        (flying white late in a load)."""
+        """Model addition (not in the paper): where a pixel at a mark's fringe takes no ink this
+        visit because the ink offered there is thinner than the sheet's fibre resists. The
+        offer is the brush's wetness at the pixel (Eq. 23) times the hair's density there,
+        which thins over the outer HAIR_FRINGE of a section (Eq. 23's f, ``Mark.depth``): at
+        the fringe only the pixels whose fibres resist little take ink - the same pixels visit
+        after visit, since the fibres are the sheet's - so the edge is fibrous, the more so the
+        drier the brush. Under the section's full hair every pixel takes ink: a dry brush's
+        white inside the stroke is Eq. 27's, in streaks along the hair."""
         depth = np.concatenate([mk.depth for mk in marks])
         hair = np.clip((1.0 - depth) / HAIR_FRINGE, 0.0, 1.0)
         offer = np.minimum(wet_tau, 1.0) * hair
         rows, cols = np.divmod(full, self.W)
-        return offer < self.fibre * paper_fibre(rows, cols, self.ppm, self.grain_seed)
+        return (hair < 1.0) & (
+            offer < self.fibre * paper_fibre(rows, cols, self.ppm, self.grain_seed)
+        )
 
     def _window(self, marks) -> tuple[int, int, int, int]:
         """(y0, y1, x0, x1): the marks' pixels and the reach of saturation around them."""

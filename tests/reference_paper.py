@@ -51,10 +51,10 @@ def reference_deposit(self, marks, gamma, hair_u, q, dt: float, step: int, satur
         skip = hair_u[mk.primitive, b] < p0
         # model addition: thin ink refused by the sheet's fibre (sim.paper.Paper.fibre_refuses)
         if self.fibre > 0:
-            offer = np.minimum(mk.wet.astype(np.float32), 1.0) * np.clip(
-                (1.0 - mk.depth) / HAIR_FRINGE, 0.0, 1.0
-            )
-            skip |= offer < self.fibre * paper_fibre(r + y0, c + x0, self.ppm, self.grain_seed)
+            hair = np.clip((1.0 - mk.depth) / HAIR_FRINGE, 0.0, 1.0)
+            offer = np.minimum(mk.wet.astype(np.float32), 1.0) * hair
+            thin = offer < self.fibre * paper_fibre(r + y0, c + x0, self.ppm, self.grain_seed)
+            skip |= (hair < 1.0) & thin  # at the fringe only
         # model addition: the sheet's grain scales Cr (sim.paper.paper_grain)
         grain = 1.0 - GRAIN_DEPTH * paper_grain((r + y0) * self.W + (c + x0), self.grain_seed)
         cr = np.minimum(new, 1.0).astype(np.float32) * grain.astype(np.float32)

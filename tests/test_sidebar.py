@@ -342,7 +342,7 @@ def test_a_recordings_paper_fibre_is_imported_rendered_with_and_exported(hb, tmp
     samples += [[60.0 + i, 100.0, HAIR - 4, 0, 0, 0] for i in range(80)]
     samples += [[140.0, 100.0, HAIR + 5, 0, 0, 0]]
     rec = Recording(np.array(samples), px_per_mm=2.0, paper_preset="raw_xuan")
-    rec.paper_overrides = {"fibre": 0.2}  # not raw xuan's own 0.7
+    rec.paper_overrides = {"fibre": 0.2}  # not raw xuan's own 0.4
     src = tmp_path / "fibre.json"
     rec.save(src)
     assert json.loads(src.read_text())["paper"]["fibre"] == pytest.approx(0.2)
