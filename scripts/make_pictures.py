@@ -72,21 +72,19 @@ def effects():
     return rows
 
 
-def imitation(chars="永心法风", n=256, passes=7):
+def imitation(chars="永心法风", n=256):
     """docs/img/imitate.png: for each character, the font (left) and the brush's writing with
-    the fitted kaishu quality (right), and below them the two laid over each other (red: ink
-    outside the outline, cyan: outline the ink missed)."""
-    from sim.fit import load_quality
+    the defaults (right), and below them the two laid over each other (red: ink outside the
+    outline, cyan: outline the ink missed)."""
     from sim.hanzi import find_char
     from sim.imitate import coverage_mask, font_mask, write_character
     from sim.outline import iou
 
-    q = load_quality(ROOT / "presets" / "qualities" / "kaishu_fit.json")
-    tmpl = Recording(np.zeros((1, 6)), quality=q)  # the default brush and paper
+    tmpl = Recording(np.zeros((1, 6)))  # the default brush, paper and quality
     cols, response = [], None
     for ch in chars:
         c = find_char(ch)
-        _, response, sim = write_character(c, n, tmpl, response=response, passes=passes)
+        _, response, sim = write_character(c, n, tmpl, response=response)
         font, ink = font_mask(c, n), coverage_mask(sim)
         top = np.concatenate([np.repeat(1.0 - font[..., None] * 0.9, 3, axis=2), sim.image()], 1)
         over = np.ones((n, n, 3))
