@@ -199,10 +199,14 @@ class Paper:
         depth = np.concatenate([mk.depth for mk in marks])
         hair = np.clip((1.0 - depth) / HAIR_FRINGE, 0.0, 1.0)
         offer = np.minimum(wet_tau, 1.0) * hair
-        rows, cols = np.divmod(full, self.W)
-        return (hair < 1.0) & (
-            offer < self.fibre * paper_fibre(rows, cols, self.ppm, self.grain_seed)
-        )
+        # the field lies in [0, 1): only a fringe pixel offered less than ``fibre`` can be
+        # refused, so the field is read there alone
+        out = np.zeros(offer.shape, dtype=bool)
+        maybe = np.flatnonzero((hair < 1.0) & (offer < self.fibre))
+        rows, cols = np.divmod(full[maybe], self.W)
+        field = paper_fibre(rows, cols, self.ppm, self.grain_seed)
+        out[maybe] = offer[maybe] < self.fibre * field
+        return out
 
     def _window(self, marks) -> tuple[int, int, int, int]:
         """(y0, y1, x0, x1): the marks' pixels and the reach of saturation around them."""
