@@ -498,6 +498,13 @@ def _enter_and_leave(samples, pl, body, hover, hair, step_mm, at_turn=(False, Fa
     samples[lift, 2] = samples[body[-1], 2] + (hover - samples[body[-1], 2]) * np.sqrt(f)
 
 
+def _movements(items, body=None) -> list[np.ndarray]:
+    """``items`` cut where the body samples (``body``, or the items themselves) jump: one piece
+    per movement of the stroke (the brush lifts between them)."""
+    body = items if body is None else body
+    return np.split(items, np.flatnonzero(np.diff(body) > 1) + 1)
+
+
 def _fill(samples, pl: Plan, response: Response, span, press, side, brush) -> np.ndarray:
     """Samples a..b (``span``) of one stroke of plan ``pl``: for each of its movements, come
     down, write with the given press and sideways placement per body sample (the press eased at
@@ -508,7 +515,7 @@ def _fill(samples, pl: Plan, response: Response, span, press, side, brush) -> np
     body = np.flatnonzero(pl.phase[a:b] == WRITING) + a
     normal = np.stack([-pl.tangent[:, 1], pl.tangent[:, 0]], axis=1)
     j0 = 0
-    runs = np.split(body, np.flatnonzero(np.diff(body) > 1) + 1)
+    runs = _movements(body)
     for r, run in enumerate(runs):
         j1 = j0 + len(run)
         p = press[j0:j1] * _entry_ramp(pl.target[run], pl.width[run])
@@ -554,7 +561,7 @@ PRACTICE_SIDE_GAIN = 0.8  # share of the band's sideways offset corrected (issue
 
 def _movement_ends(phase, body) -> np.ndarray:
     """For each body sample, the first sample after its movement has lifted off."""
-    runs = np.split(body, np.flatnonzero(np.diff(body) > 1) + 1)
+    runs = _movements(body)
     ends = []
     for run in runs:
         e = run[-1] + 1
@@ -680,7 +687,7 @@ def _ceiling(pl: Plan, body, response: Response) -> np.ndarray:
     p_max = float(response.press_mm[-1])
     at_corner = float(response.press_for(CORNER_WIDTH * response.max_width_mm))
     top = np.full(len(body), p_max)
-    runs = np.split(np.arange(len(body)), np.flatnonzero(np.diff(body) > 1) + 1)
+    runs = _movements(np.arange(len(body)), body)
     for run in runs[:-1]:  # every movement but the stroke's last ends at a corner
         path = pl.target[body[run]]
         seg = np.linalg.norm(np.diff(path, axis=0), axis=1)
