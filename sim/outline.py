@@ -233,7 +233,11 @@ FOOT_REACH = 0.5  # share of the way to the outline a movement goes on past a co
 
 
 def _bands(pts, polys) -> tuple[np.ndarray, np.ndarray]:
-    """Centres and full widths along points of a median (see ``median_bands``)."""
+    """Centres and full widths along points of a median (data units): the outline is cut
+    across the median's direction, the median point moved to the middle of the cut. A cut that
+    runs along the stroke (at a corner or an end: longer than ``CUT_OVER_DISC`` times the
+    diameter of the largest disc inside the outline at the cut's middle or the median point)
+    gives way to that disc, on the median point."""
     r = np.maximum(distance_to_outline(pts, polys), 0.0)
     if len(pts) > 1:
         tan = np.gradient(pts, axis=0)
@@ -255,20 +259,6 @@ def _bands(pts, polys) -> tuple[np.ndarray, np.ndarray]:
     # slanting into a 折's outer corner)
     held = CUT_OVER_DISC * 2.0 * np.maximum(distance_to_outline(centre, polys), 0.0)
     return centre, np.minimum(width, held)
-
-
-def median_bands(char: dict, step: float = 4.0) -> list[tuple[np.ndarray, np.ndarray]]:
-    """For every stroke, points along the middle of its outline and the stroke's full width
-    there (data units, every ``step`` along the median): the outline is cut across the median's
-    direction, the median point moved to the middle of the cut. A cut that runs along the
-    stroke (at a corner or an end: longer than ``CUT_OVER_DISC`` times the diameter of the
-    largest disc inside the outline at the cut's middle or the median point) gives way to that
-    disc, on the median point."""
-    out = []
-    for med, polys in zip(char["medians"], stroke_polygons(char), strict=True):
-        pts, _ = resample(_to_the_tips(med, polys), step)
-        out.append(_bands(pts, polys))
-    return out
 
 
 def corners(pts, step: float) -> list[int]:
@@ -312,10 +302,12 @@ def _foot(pts, k: int, polys, step: float) -> np.ndarray:
 
 
 def median_pieces(char: dict, step: float = 4.0) -> list[list[tuple[np.ndarray, np.ndarray]]]:
-    """``median_bands`` split into movements at the median's sharp corners (``corners``): each
-    movement that ends at a corner goes on into the foot (``_foot``), the next starts on the
-    corner. A calligrapher writes a hook or a 折 so: presses into the corner, turns the tip and
-    sets off anew; dragging the pressed hair round the corner sweeps a round blot."""
+    """For every stroke, points along the middle of its outline and the stroke's full width
+    there (``_bands``, every ``step`` along the median), split into movements at the median's
+    sharp corners (``corners``): each movement that ends at a corner goes on into the foot
+    (``_foot``), the next starts on the corner. A calligrapher writes a hook or a 折 so: presses
+    into the corner, turns the tip and sets off anew; dragging the pressed hair round the
+    corner sweeps a round blot."""
     out = []
     for med, polys in zip(char["medians"], stroke_polygons(char), strict=True):
         pts, _ = resample(_to_the_tips(med, polys), step)

@@ -13,7 +13,6 @@ from sim.outline import (
     TOP,
     corners,
     distance_to_outline,
-    median_bands,
     median_pieces,
     resample,
     stroke_polygons,
@@ -45,7 +44,7 @@ def test_width_at_a_corner_is_bounded_by_the_inscribed_disc():
             disc = 2.0 * distance_to_outline(centre, polys)
             assert np.all(width <= CUT_OVER_DISC * np.maximum(disc, 0.0) + 1e-6)
     # on the straight the cut is the stroke's width (60), not the disc of a point off-centre
-    centre, width = median_bands(L_CHAR, step=4.0)[0]
+    centre, width = median_pieces(L_CHAR, step=4.0)[0][0]  # the down stroke
     mid = np.abs(centre[:, 1] - 500.0) < 100.0
     assert np.allclose(width[mid], 60.0, atol=1.0)
     # 永's hook foot: no width planned near the corner exceeds CUT_OVER_DISC x the largest disc
