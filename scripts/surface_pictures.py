@@ -221,9 +221,7 @@ def vase():
     material(obj, (0.86, 0.88, 0.82), 0.25)
     st = write_on(obj, 6.0, radius, 0.115, ring_below_mm=62.0)
     st.brush_object.hide_viewport = True
-    floor = bpy.data.objects.new("Floor", _plane(2.0))
-    bpy.context.scene.collection.objects.link(floor)
-    material(floor, (0.35, 0.33, 0.3), 0.8)
+    _floor(2.0, (0.35, 0.33, 0.3), 0.8)
     stage(
         (0.12, -0.62, 0.26),
         (0.0, 0.0, 0.115),
@@ -267,9 +265,7 @@ def tablet():
     solid = obj.modifiers.new("Thickness", "SOLIDIFY")
     solid.thickness = 0.03
     obj.data.materials[0].node_tree.nodes["HairyBrush Ink"].mute = True  # bare stone: carved only
-    floor = bpy.data.objects.new("Floor", _plane(3.0))
-    bpy.context.scene.collection.objects.link(floor)
-    material(floor, (0.25, 0.24, 0.22), 0.9)
+    _floor(3.0, (0.25, 0.24, 0.22), 0.9)
     stage(
         (0.2, -0.8, 0.17),
         (0.0, -0.4, 0.075),
@@ -399,9 +395,7 @@ def cup():
     b.hide_render = True
     for child in b.children:
         child.hide_render = True
-    floor = bpy.data.objects.new("Floor", _plane(2.0))
-    sc.collection.objects.link(floor)
-    material(floor, (0.35, 0.33, 0.3), 0.8)
+    _floor(2.0, (0.35, 0.33, 0.3), 0.8)
     stage(
         (0.06, -0.36, 0.12),
         (0.0, 0.0, 0.058),
@@ -411,6 +405,14 @@ def cup():
         (480, 480),
         OUT / "surface_cup.png",
     )
+
+
+def _floor(size: float, colour, roughness: float):
+    """A square floor under the object, in the scene."""
+    floor = bpy.data.objects.new("Floor", _plane(size))
+    bpy.context.scene.collection.objects.link(floor)
+    material(floor, colour, roughness)
+    return floor
 
 
 def _plane(size):
