@@ -16,10 +16,11 @@ import os
 import bpy
 import numpy as np
 
-from .sim import display, placement
+from .sim import display
 from .sim import surface as surf
-from .sim.jsonio import MAX_JSON_BYTES, parse_json
-from .sim.params import (
+from .sim.core import placement
+from .sim.core.jsonio import MAX_JSON_BYTES, parse_json
+from .sim.core.params import (
     MAX_PAPER_PIXELS,
     MAX_PAPER_SIDE_PX,
     ParameterError,
@@ -27,7 +28,7 @@ from .sim.params import (
     geometry_from_preset,
     load_preset,
 )
-from .sim.recording import Dip, Recording, RecordingError, from_dict
+from .sim.core.recording import Dip, Recording, RecordingError, from_dict
 from .sim.timeline import DEFAULT_BUDGET_BYTES as SNAPSHOT_BUDGET_BYTES
 
 RECORDING_TEXT = "HairyBrush Recording"
@@ -469,8 +470,8 @@ class SurfaceWriting:
         flat size_mm square: the samples moved so the square's centre is the chart's point
         under the brush, their frames followed over the surface from there (sim.surface.lay_on),
         the scene's settings (the texture keeps its size), simulated on the surface."""
+        from .sim.core.recording import quantise
         from .sim.engine import Simulation
-        from .sim.recording import quantise
 
         samples = np.array(flat.samples, dtype=float)
         samples[:, :2] += self.centre - size_mm / 2

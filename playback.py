@@ -14,7 +14,7 @@ import bpy
 import numpy as np
 
 from . import bridge
-from .sim import placement
+from .sim.core import placement
 from .sim.engine import Simulation
 from .sim.timeline import Timeline, cache_key_of, load_checkpoints
 

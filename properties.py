@@ -16,7 +16,7 @@ from bpy.props import (
     StringProperty,
 )
 
-from .sim.params import (
+from .sim.core.params import (
     PAPER_CAPACITY_RANGE,
     QUALITY_DOC,
     QualityParams,
@@ -27,7 +27,7 @@ from .sim.params import (
     preset_names,
     quality_from_presets,
 )
-from .sim.recording import (
+from .sim.core.recording import (
     DEFAULT_BRUSH,
     DEFAULT_INK,
     DEFAULT_PAPER,

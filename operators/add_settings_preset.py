@@ -6,7 +6,7 @@ from __future__ import annotations
 import bpy
 from bl_operators.presets import AddPresetBase
 
-from ..sim.params import QualityParams
+from ..sim.core.params import QualityParams
 from . import polls
 
 PRESET_SUBDIR = "hairy_brush/settings"

@@ -15,7 +15,7 @@ from ..properties import (
     apply_quality_presets,
     preset_label,
 )
-from ..sim.params import ParameterError, QualityParams, load_preset
+from ..sim.core.params import ParameterError, QualityParams, load_preset
 from . import polls
 
 PROPERTY = {"brush": "brush_preset", "paper": "paper_preset", "ink": "ink_preset"}

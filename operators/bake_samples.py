@@ -10,7 +10,7 @@ import numpy as np
 
 from .. import bridge, handlers
 from ..sim import surface as surf
-from ..sim.recording import from_dict
+from ..sim.core.recording import from_dict
 from . import polls
 
 

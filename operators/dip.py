@@ -6,7 +6,7 @@ from __future__ import annotations
 import bpy
 
 from .. import bridge
-from ..sim.recording import RecordingError, from_dict
+from ..sim.core.recording import RecordingError, from_dict
 from . import polls
 
 

@@ -7,7 +7,7 @@ import bpy
 from bpy_extras.io_utils import ImportHelper
 
 from .. import bridge
-from ..sim.recording import load
+from ..sim.core.recording import load
 from . import polls
 
 

@@ -18,11 +18,11 @@ from bpy_extras import view3d_utils
 from mathutils import Matrix
 
 from .. import bridge, playback
-from ..sim import placement
 from ..sim import surface as surf
+from ..sim.core import placement
+from ..sim.core.params import HOVER_MM
 from ..sim.engine import Simulation
 from ..sim.live import LiveBrush, LiveEvent
-from ..sim.params import HOVER_MM
 from . import polls
 
 TIMER_S = 1.0 / 120.0  # how often the modal operator gets the UI loop's attention

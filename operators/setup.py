@@ -15,8 +15,8 @@ from mathutils import Matrix, Vector
 
 from .. import bridge
 from ..sim import surface as surf
-from ..sim.params import HOVER_MM
-from ..sim.recording import PAPER_MM_RANGE
+from ..sim.core.params import HOVER_MM
+from ..sim.core.recording import PAPER_MM_RANGE
 from .apply_to_mesh import add_ink
 
 PAPER_MATERIAL = "HairyBrush Paper"

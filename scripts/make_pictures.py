@@ -11,9 +11,9 @@ import numpy as np
 ROOT = Path(__file__).resolve().parent.parent
 sys.path.insert(0, str(ROOT))
 
+from sim.core.recording import Dip, Recording  # noqa: E402
 from sim.engine import Simulation  # noqa: E402
 from sim.png import write_png  # noqa: E402
-from sim.recording import Dip, Recording  # noqa: E402
 from sim.strokes import stroke  # noqa: E402
 
 OUT = ROOT / "docs" / "img"

@@ -22,11 +22,11 @@ import numpy as np
 ROOT = Path(__file__).resolve().parent.parent
 sys.path.insert(0, str(ROOT))
 
+from sim.core.recording import Recording  # noqa: E402
 from sim.hanzi import find_char  # noqa: E402
 from sim.imitate import coverage_mask, write_character  # noqa: E402
 from sim.outline import iou, rasterise  # noqa: E402
 from sim.picture import imitate, order_agreement, read_picture  # noqa: E402
-from sim.recording import Recording  # noqa: E402
 from sim.texture import score, texture_stats  # noqa: E402
 
 

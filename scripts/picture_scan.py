@@ -45,7 +45,7 @@ def piece_picture(columns: list[list[dict]], h: int = 200, gap: int = 40) -> np.
 
 
 def _template(seed: int = 0, paper: str = "raw_xuan"):
-    from sim.recording import Recording
+    from sim.core.recording import Recording
 
     return Recording(
         np.zeros((1, 6)),

@@ -27,9 +27,9 @@ ROOT = Path(__file__).resolve().parent.parent
 sys.path.insert(0, str(ROOT))
 
 from sim import surface as sf  # noqa: E402
+from sim.core.frames import rotation_matrix  # noqa: E402
+from sim.core.recording import Recording, from_dict  # noqa: E402
 from sim.engine import Simulation  # noqa: E402
-from sim.frames import rotation_matrix  # noqa: E402
-from sim.recording import Recording, from_dict  # noqa: E402
 
 L = 30.0  # the default brush's hair length, mm
 N = 240  # 2 s at 120 Hz

@@ -301,7 +301,7 @@ def sphere():
     assert bpy.ops.hairy_brush.bake_samples() == {"FINISHED"}
     ext = sys.modules[bench_live.ADDON]
     rec = ext.bridge.recording_from_scene(sc)  # a full dip before each stroke
-    rec.dips = [ext.sim.recording.Dip(0), ext.sim.recording.Dip(len(first))]
+    rec.dips = [ext.sim.core.recording.Dip(0), ext.sim.core.recording.Dip(len(first))]
     ext.bridge.store_recording(st, rec)
     assert bpy.ops.hairy_brush.simulate() == {"FINISHED"}
     sc.frame_set(sc.frame_end)

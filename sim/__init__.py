@@ -3,10 +3,10 @@
 Based Virtual Hairy Brush" (Eurographics 2002). numpy and geomdl only; never bpy."""
 
 from .brush import HairyBrush, rotation_matrix
+from .core.params import BrushGeometry, InkSpec, PaperSpec, ParameterError, QualityParams
+from .core.recording import Dip, Recording, RecordingError
 from .engine import Simulation, render
 from .inertia import InertiaPredictor
-from .params import BrushGeometry, InkSpec, PaperSpec, ParameterError, QualityParams
-from .recording import Dip, Recording, RecordingError
 
 __all__ = [
     "BrushGeometry",

@@ -8,8 +8,8 @@ import os
 import sys
 import time
 
-from .params import MAX_PAPER_SIDE_PX, ParameterError, number_within, short_repr
-from .recording import (
+from .core.params import MAX_PAPER_SIDE_PX, ParameterError, number_within, short_repr
+from .core.recording import (
     DEFAULT_BRUSH,
     DEFAULT_PAPER,
     MAX_SEED,
@@ -35,14 +35,14 @@ def _writable(path) -> None:
 
 
 def cmd_render(args) -> int:
+    from .core.recording import load
     from .engine import Simulation
     from .png import write_png
-    from .recording import load
 
     _writable(args.output)
     rec = load(args.recording)
     if args.px_per_mm is not None:
-        from .recording import from_dict
+        from .core.recording import from_dict
 
         d = rec.to_dict()
         d["paper"]["px_per_mm"] = args.px_per_mm
@@ -65,7 +65,7 @@ def _template(args):
     """A recording carrying the chosen brush, paper, ink, quality and seed (no samples yet)."""
     import numpy as np
 
-    from .recording import Recording
+    from .core.recording import Recording
 
     quality = {}
     if getattr(args, "quality", None):
@@ -268,9 +268,9 @@ def _tex_line(tex) -> str:
 
 
 def cmd_fit(args) -> int:
+    from .core.params import load_preset, quality_from_presets
+    from .core.recording import load
     from .fit import FitSettings, character_samples, fit, image_sample, load_quality, save_preset
-    from .params import load_preset, quality_from_presets
-    from .recording import load
 
     _writable(args.output)
     if len(args.image or []) != len(args.image_recording or []):

@@ -15,8 +15,8 @@ from pathlib import Path
 
 import numpy as np
 
+from .core.recording import Dip, Recording
 from .engine import Simulation
-from .recording import Dip, Recording
 from .strokes import stroke
 
 ROOT = Path(__file__).resolve().parent.parent
@@ -86,7 +86,7 @@ def _stage_row(label, stages):
 
 def nurbs_speedup(repeats=3):
     """Engine's surface evaluation against geomdl's, same surfaces and parameters."""
-    from .nurbs import CIRCLE_KNOTS, surface_control_net, to_geomdl
+    from .core.nurbs import CIRCLE_KNOTS, surface_control_net, to_geomdl
 
     sim = workload(long_stroke(), 1024, 5.0, primitives=8)
     b = sim.brush
@@ -126,8 +126,8 @@ def nurbs_speedup(repeats=3):
 
 
 def replay_seconds(recording_path, size_px, out_png, repeats=2):
+    from .core.recording import from_dict, load
     from .png import write_png
-    from .recording import from_dict, load
 
     rec = load(recording_path)
     d = rec.to_dict()

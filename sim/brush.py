@@ -42,8 +42,8 @@ import numpy as np
 
 from . import brush_ink, brush_state, dynamics
 from .brush_state import HAIR_BINS
-from .frames import angles_from_matrix, cross, rotation_matrix, unit
-from .nurbs import (
+from .core.frames import angles_from_matrix, cross, rotation_matrix, unit
+from .core.nurbs import (
     SweepLayout,
     bezier_form,
     bspline_bases,
@@ -52,7 +52,7 @@ from .nurbs import (
     rotation_minimising_frames,
     surface_control_net,
 )
-from .params import BrushGeometry, InkSpec, QualityParams
+from .core.params import BrushGeometry, InkSpec, QualityParams
 
 __all__ = ["HairyBrush", "Sections", "angles_from_matrix", "rotation_matrix"]
 MAX_PRIMITIVES = 32  # the split stops adding primitives here (Sec. 5.5)

@@ -13,7 +13,7 @@ from __future__ import annotations
 import numpy as np
 
 from .brush_state import INK_FIELDS, ink_keys
-from .params import InkSpec
+from .core.params import InkSpec
 
 # the texture function's fields (Eq. 5), named as InkSpec names them
 TEXTURE_NAMES = ("wr", "cr", "wv", "cv")

@@ -10,7 +10,7 @@ address of a running scheduler (``tcp://host:8786``)."""
 
 from __future__ import annotations
 
-from .params import ParameterError
+from .core.params import ParameterError
 
 CONNECT_TIMEOUT_S = 10
 

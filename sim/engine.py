@@ -11,11 +11,11 @@ from typing import NamedTuple
 import numpy as np
 
 from .brush import HairyBrush
+from .core.params import HOVER_MM
+from .core.recording import Recording
 from .inertia import InertiaPredictor
 from .mark import cut_marks, fill_marks
 from .paper import DRY_RATE, Paper
-from .params import HOVER_MM
-from .recording import Recording
 from .surface import CHART_SHAPE
 
 # samples whose marks are filled in together by ``run`` (the brush never reads the paper, so its

@@ -28,10 +28,10 @@ from pathlib import Path
 
 import numpy as np
 
+from .core.jsonio import read_json
+from .core.params import QP1, QP2, ParameterError, QualityParams, number_within, short_repr
+from .core.recording import MAX_SEED, Recording, from_dict
 from .engine import Simulation
-from .jsonio import read_json
-from .params import QP1, QP2, ParameterError, QualityParams, number_within, short_repr
-from .recording import MAX_SEED, Recording, from_dict
 
 
 @dataclass

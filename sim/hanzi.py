@@ -10,9 +10,9 @@ from pathlib import Path
 
 import numpy as np
 
-from .jsonio import decode_text, parse_json, read_json
+from .core.jsonio import decode_text, parse_json, read_json
+from .core.params import HOVER_MM, number_within
 from .outline import EM, TOP, parse_path
-from .params import HOVER_MM, number_within
 from .strokes import stroke, travel
 
 MAX_CHAR_BYTES = 4 * 2**20  # a character file, or a line of graphics.txt
@@ -195,7 +195,7 @@ def simple_samples(
 
 def character_recording(path, size_mm: float = 160.0, px_per_mm: float = 6.0):
     """The demo's recording: one character written by the soft goat-hair brush on raw xuan."""
-    from .recording import Dip, Recording
+    from .core.recording import Dip, Recording
 
     samples = simple_samples(load_char(path), size_mm, hair_length_mm=34.0, press_mm=14.0)
     return Recording(

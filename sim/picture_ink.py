@@ -11,7 +11,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from . import picture_morph as M
-from .params import ParameterError
+from .core.params import ParameterError
 from .texture import _gaussian, otsu
 
 MAX_PICTURE_SIDE = 8192

@@ -6,9 +6,9 @@ from __future__ import annotations
 from pathlib import Path
 
 from sim.bench import long_stroke, workload
+from sim.core.recording import Recording, from_dict
 from sim.engine import Simulation
 from sim.hanzi import character_recording
-from sim.recording import Recording, from_dict
 
 ROOT = Path(__file__).resolve().parent.parent
 

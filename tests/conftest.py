@@ -16,7 +16,7 @@ sys.path.insert(0, str(ROOT))
 os.environ.setdefault("BLENDER_USER_RESOURCES", tempfile.mkdtemp(prefix="hairy-brush-user-"))
 
 from sim.brush import HairyBrush  # noqa: E402
-from sim.params import BrushGeometry, QualityParams  # noqa: E402
+from sim.core.params import BrushGeometry, QualityParams  # noqa: E402
 
 ADDON = "bl_ext.user_default.hairy_brush"
 

@@ -15,8 +15,8 @@ import pytest
 from conftest import ROOT
 
 from sim.__main__ import main
+from sim.core.recording import MAX_DIPS, RecordingError, from_dict, loads
 from sim.png import PNGError, read_png
-from sim.recording import MAX_DIPS, RecordingError, from_dict, loads
 
 REC = {
     "format": "hairy-brush-recording",
@@ -359,9 +359,9 @@ def test_graphics_txt_lines_are_read_bounded(tmp_path):
 
 
 def test_writer_checks_its_arguments_before_calibrating():
+    from sim.core.params import ParameterError
+    from sim.core.recording import Recording
     from sim.imitate import write_character
-    from sim.params import ParameterError
-    from sim.recording import Recording
 
     template = Recording(REC["samples"])
     for kw, says in (
@@ -383,7 +383,7 @@ def test_writer_checks_its_arguments_before_calibrating():
 
 
 def test_bad_presets_name_the_field(tmp_path):
-    from sim.params import ParameterError, ink_from_preset, load_preset, paper_from_preset
+    from sim.core.params import ParameterError, ink_from_preset, load_preset, paper_from_preset
 
     (tmp_path / "inks").mkdir()
     (tmp_path / "papers").mkdir()
@@ -419,10 +419,10 @@ def test_fit_takes_grey_and_alpha_images(tmp_path, channels):
 
 
 def test_samples_and_file_sizes_are_bounded(tmp_path, monkeypatch):
-    import sim.recording
-    from sim.jsonio import read_json
+    import sim.core.recording
+    from sim.core.jsonio import read_json
 
-    monkeypatch.setattr(sim.recording, "MAX_SAMPLES", 2)
+    monkeypatch.setattr(sim.core.recording, "MAX_SAMPLES", 2)
     with pytest.raises(RecordingError, match="'samples' has 3 entries; at most 2"):
         from_dict(REC)
     p = write_json(tmp_path / "r.json", REC)

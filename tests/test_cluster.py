@@ -8,8 +8,8 @@ pytest.importorskip("distributed")
 
 from test_imitate import _line_samples  # noqa: E402
 
+from sim.core.params import QP2, ParameterError  # noqa: E402
 from sim.fit import FitSettings, fit  # noqa: E402
-from sim.params import QP2, ParameterError  # noqa: E402
 
 
 def test_a_fit_on_a_local_dask_cluster_equals_the_local_fit():

@@ -4,8 +4,8 @@
 import numpy as np
 import pytest
 
+from sim.core.recording import Dip, Recording
 from sim.engine import Simulation
-from sim.recording import Dip, Recording
 from sim.strokes import stroke
 
 L = 30.0

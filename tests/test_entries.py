@@ -5,6 +5,7 @@ movements a hook or a 折 is written in, and the point a hook ends in. No Blende
 import numpy as np
 import pytest
 
+from sim.core.recording import Recording
 from sim.hanzi import find_char
 from sim.imitate import WRITING, calibrate, coverage_mask, plan, write_character
 from sim.outline import (
@@ -17,7 +18,6 @@ from sim.outline import (
     resample,
     stroke_polygons,
 )
-from sim.recording import Recording
 
 # an L: a vertical bar 60 wide from y = 800 down to y = 200, and a foot 60 high running right
 # to x = 700; its median comes down the bar and turns right along the foot

@@ -7,11 +7,11 @@ import numpy as np
 import pytest
 
 from sim.brush import HairyBrush
+from sim.core.params import BrushGeometry, InkSpec, QualityParams
 from sim.dynamics import REF_RATE, V_REF
 from sim.inertia import InertiaPredictor
 from sim.mark import Mark, compute_marks
 from sim.paper import GRAIN_DEPTH, Paper, paper_grain
-from sim.params import BrushGeometry, InkSpec, QualityParams
 
 DT = 1.0 / REF_RATE  # per-step equations apply unscaled at the reference rate
 

@@ -15,12 +15,12 @@ from conftest import ADDON
 
 bpy = pytest.importorskip("bpy")
 
+from sim.core.nurbs import CIRCLE_KNOTS, evaluate_nurbs_surface  # noqa: E402
+from sim.core.params import load_preset  # noqa: E402
+from sim.core.recording import DEFAULT_BRUSH  # noqa: E402
+from sim.core.recording import load as load_recording  # noqa: E402
 from sim.display import linear_to_srgb  # noqa: E402
 from sim.engine import Simulation  # noqa: E402
-from sim.nurbs import CIRCLE_KNOTS, evaluate_nurbs_surface  # noqa: E402
-from sim.params import load_preset  # noqa: E402
-from sim.recording import DEFAULT_BRUSH  # noqa: E402
-from sim.recording import load as load_recording  # noqa: E402
 
 HAIR = load_preset("brush", DEFAULT_BRUSH).data["geometry"]["hair_length_mm"]  # the default's
 
@@ -121,7 +121,9 @@ def test_setup_builds_paper_and_brush_in_metres(hb):
     assert tuple(img.size) == (450, 300) and img.is_float
     color = (
         ext()
-        .sim.params.paper_from_preset(ext().sim.params.load_preset("paper", st.paper_preset))
+        .sim.core.params.paper_from_preset(
+            ext().sim.core.params.load_preset("paper", st.paper_preset)
+        )
         .color
     )
     np.testing.assert_allclose(
@@ -335,7 +337,9 @@ def test_dip_records_the_ink_and_colours_the_stroke(hb):
 def test_presets_shipped_and_the_users_own(hb):
     st = bpy.context.scene.hairy_brush
     assert bpy.ops.hairy_brush.apply_preset(kind="brush", name="wolf_stiff") == {"FINISHED"}
-    wolf = json.loads((ext().sim.params.PRESET_DIR / "brushes" / "wolf_stiff.json").read_text())
+    wolf = json.loads(
+        (ext().sim.core.params.PRESET_DIR / "brushes" / "wolf_stiff.json").read_text()
+    )
     for k, v in wolf["quality"].items():
         assert math.isclose(getattr(st.quality, k), v, abs_tol=1e-6)
     with pytest.raises(RuntimeError, match="unknown brush preset"):
@@ -343,7 +347,7 @@ def test_presets_shipped_and_the_users_own(hb):
     # a fitted quality preset sets the quality values and leaves the chosen brush
     assert bpy.ops.hairy_brush.apply_preset(kind="quality", name="kaishu_fit") == {"FINISHED"}
     fitted = json.loads(
-        (ext().sim.params.PRESET_DIR / "qualities" / "kaishu_fit.json").read_text("utf-8")
+        (ext().sim.core.params.PRESET_DIR / "qualities" / "kaishu_fit.json").read_text("utf-8")
     )
     for k, v in fitted["quality"].items():
         assert math.isclose(getattr(st.quality, k), v, abs_tol=1e-6)
@@ -685,7 +689,7 @@ def test_a_large_recording_is_stored_a_sample_a_line(hb, tmp_path):
     n = 100_000
     x = 20.0 + 160.0 * np.arange(n) / n
     samples = np.c_[x, np.full(n, 100.0), np.full(n, HAIR + 5), np.zeros((n, 3))]
-    rec = ext().sim.recording.Recording(samples, width_mm=200, height_mm=200, px_per_mm=1.0)
+    rec = ext().sim.core.recording.Recording(samples, width_mm=200, height_mm=200, px_per_mm=1.0)
     path = tmp_path / "big.json"
     rec.save(path)
     assert bpy.ops.hairy_brush.import_recording(filepath=str(path)) == {"FINISHED"}
@@ -736,7 +740,7 @@ def test_a_refused_import_changes_nothing_and_overrides_survive(hb, tmp_path):
     st = setup_scene(bpy, ppm=2.0)
     samples = [[60.0, 100.0, HAIR + 5, 0, 0, 0], [60.0, 100.0, HAIR - 4, 0, 0, 0]]
     samples += [[60.0 + i, 100.0, HAIR - 4, 0, 0, 0] for i in range(60)]
-    rec = ext().sim.recording.Recording(np.array(samples), width_mm=150.0, px_per_mm=2.0)
+    rec = ext().sim.core.recording.Recording(np.array(samples), width_mm=150.0, px_per_mm=2.0)
     d = rec.to_dict()
     d["seed"] = 3_000_000_000
     bad = tmp_path / "bad.json"

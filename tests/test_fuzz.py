@@ -22,19 +22,19 @@ from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
 from sim.__main__ import _parser
-from sim.fit import SETTING_RANGES, load_quality
-from sim.hanzi import CharacterError, check_char
-from sim.imitate import Response, auto_size_mm, plan
-from sim.outline import baseline_masks, rasterise
-from sim.params import (
+from sim.core.params import (
     ParameterError,
     geometry_from_preset,
     ink_from_preset,
     load_preset,
     paper_from_preset,
 )
+from sim.core.recording import MAX_SEED, RecordingError, from_dict, loads, quantise
+from sim.fit import SETTING_RANGES, load_quality
+from sim.hanzi import CharacterError, check_char
+from sim.imitate import Response, auto_size_mm, plan
+from sim.outline import baseline_masks, rasterise
 from sim.png import PNGError, read_png
-from sim.recording import MAX_SEED, RecordingError, from_dict, loads, quantise
 
 # FUZZ_EXAMPLES=5000 runs a longer campaign with the same tests
 EXAMPLES = int(os.environ.get("FUZZ_EXAMPLES", "150"))

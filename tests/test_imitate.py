@@ -10,6 +10,8 @@ from pathlib import Path
 import numpy as np
 import pytest
 
+from sim.core.params import QP2, ParameterError
+from sim.core.recording import Recording, load
 from sim.engine import Simulation
 from sim.fit import FitSettings, TrainingSample, fit, load_quality, render, target_function
 from sim.hanzi import DATA_DIR, find_char
@@ -22,8 +24,6 @@ from sim.imitate import (
     write_character,
 )
 from sim.outline import baseline_masks, distance_to_outline, fill, iou, parse_path, rasterise
-from sim.params import QP2, ParameterError
-from sim.recording import Recording, load
 from sim.strokes import stroke
 
 ROOT = Path(__file__).resolve().parent.parent

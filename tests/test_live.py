@@ -4,10 +4,10 @@
 import numpy as np
 import pytest
 
+from sim.core.params import HOVER_MM
+from sim.core.recording import Recording
 from sim.engine import Simulation
 from sim.live import LiveBrush, LiveEvent
-from sim.params import HOVER_MM
-from sim.recording import Recording
 
 
 def fresh(xy=(50.0, 50.0)):

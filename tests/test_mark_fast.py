@@ -192,8 +192,8 @@ def test_run_fills_marks_for_several_samples_at_once_and_equals_step_by_step():
     """``run`` lets the brush run ahead of the paper and fills several samples' marks in one
     pass; the paper is the same, bit for bit, as one sample at a time (a written character with
     dips and splits), also when run stops and goes on, or snapshots in between."""
+    from sim.core.recording import Dip
     from sim.engine import BATCH_STEPS
-    from sim.recording import Dip
 
     rec = character(4.0)
     rec.dips.append(Dip(411, 0.7, (0.6, 0.1, 0.1), 0.9))  # a second dip, mid-batch

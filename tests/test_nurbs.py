@@ -2,7 +2,7 @@
 import numpy as np
 from geomdl import BSpline
 
-from sim.nurbs import (
+from sim.core.nurbs import (
     CIRCLE_KNOTS,
     bspline_basis,
     circle_points,
@@ -90,7 +90,7 @@ def test_rotation_minimising_frames_do_not_twist_on_planar_axis(brush):
 
 
 def test_bezier_form_keeps_the_surface_and_matches_blenders_knot_layout(brush):
-    from sim.nurbs import CIRCLE_KNOTS, evaluate_nurbs_surface
+    from sim.core.nurbs import CIRCLE_KNOTS, evaluate_nurbs_surface
 
     brush.place([50.0, 50.0, 20.0, 15.0, -10.0, 40.0])
     sec = brush.sections()
@@ -118,7 +118,7 @@ def test_angles_from_matrix_inverts_rotation_matrix():
 
 
 def test_collocation_solve_equals_lapack():
-    from sim.nurbs import averaged_knots, bspline_basis, chord_params, solve_collocation
+    from sim.core.nurbs import averaged_knots, bspline_basis, chord_params, solve_collocation
 
     rng = np.random.default_rng(1)
     pts = np.cumsum(rng.random((5, 9, 3)) - 0.3, axis=1)

@@ -14,6 +14,7 @@ import numpy as np
 import pytest
 
 from sim import picture_morph as M
+from sim.core.recording import Recording
 from sim.hanzi import find_char
 from sim.imitate import coverage_mask, write_character
 from sim.outline import fill, iou, rasterise, stroke_polygons, to_image
@@ -30,7 +31,6 @@ from sim.picture import (
 from sim.picture_ink import Ink, PictureError, find_ink
 from sim.picture_strokes import Stroke
 from sim.png import PNGError, write_png
-from sim.recording import Recording
 from sim.texture import _gaussian, score, texture_stats
 
 ROOT = Path(__file__).resolve().parent.parent

@@ -6,8 +6,8 @@ import math
 import numpy as np
 import pytest
 
-from sim.frames import rotation_matrix
-from sim.placement import (
+from sim.core.frames import rotation_matrix
+from sim.core.placement import (
     PlacementError,
     engine_to_paper_local,
     first_sample_from_frame,

@@ -6,9 +6,9 @@ from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
 from sim.brush import HairyBrush
+from sim.core.params import BrushGeometry, QualityParams
+from sim.core.recording import Dip, Recording
 from sim.engine import Simulation
-from sim.params import BrushGeometry, QualityParams
-from sim.recording import Dip, Recording
 from sim.strokes import stroke
 
 unit = st.floats(0.0, 1.0)

@@ -5,9 +5,9 @@ outcomes (not on timings)."""
 import numpy as np
 
 import sim.paper
+from sim.core.recording import Dip, Recording
 from sim.engine import Simulation
 from sim.paper import GRAIN_DEPTH, paper_grain
-from sim.recording import Dip, Recording
 from sim.strokes import stroke
 from sim.texture import perimeter, texture_stats
 
@@ -131,8 +131,8 @@ def test_fit_keeps_a_parameter_inside_its_bound():
     # fit stays inside it, the unbounded one does not go there; a bad bound is one message
     import pytest
 
+    from sim.core.params import QP2, ParameterError
     from sim.fit import FitSettings, TrainingSample, fit, render
-    from sim.params import QP2, ParameterError
 
     known = {"e": 0.3, **{k: 0.0 for k in QP2}}
     s = stroke([[8, 12], [36, 16]], press_mm=9.0, speed_mm_s=70, hover_mm=4.0)
@@ -155,8 +155,8 @@ def test_fit_keeps_a_parameter_inside_its_bound():
 def test_the_fitted_quality_preset_is_what_the_default_brush_and_paper_carry():
     # one fit, two homes for its numbers (a quality preset, and the default presets' own
     # values): they must not drift apart
-    from sim.params import QualityParams, load_preset, quality_from_presets
-    from sim.recording import DEFAULT_BRUSH, DEFAULT_PAPER
+    from sim.core.params import QualityParams, load_preset, quality_from_presets
+    from sim.core.recording import DEFAULT_BRUSH, DEFAULT_PAPER
 
     fitted = load_preset("quality", "kaishu_fit").data["quality"]
     carried = QualityParams().with_values(

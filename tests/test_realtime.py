@@ -7,11 +7,11 @@ straight to the sample."""
 import numpy as np
 import pytest
 
+from sim.core.recording import Recording
 from sim.display import PaperView, encode, linear_to_srgb
 from sim.engine import Simulation
 from sim.live import LiveBrush, LiveEvent
 from sim.paper import TILE
-from sim.recording import Recording
 from sim.strokes import stroke
 from sim.timeline import Timeline
 

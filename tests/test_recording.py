@@ -8,8 +8,8 @@ import numpy as np
 import pytest
 from conftest import ROOT
 
-from sim.params import PRESET_DIR, ParameterError, QualityParams, load_preset, preset_names
-from sim.recording import RecordingError, from_dict, load, loads
+from sim.core.params import PRESET_DIR, ParameterError, QualityParams, load_preset, preset_names
+from sim.core.recording import RecordingError, from_dict, load, loads
 
 GOOD = {
     "format": "hairy-brush-recording",
@@ -155,8 +155,8 @@ def test_cli_render_and_clear_error(tmp_path):
 def test_the_papers_colour_and_capacity_travel_with_the_recording():
     import numpy as np
 
+    from sim.core.recording import Recording, RecordingError, from_dict
     from sim.engine import Simulation
-    from sim.recording import Recording, RecordingError, from_dict
 
     samples = np.array([[20.0, 20.0, 40.0, 0, 0, 0], [20.0, 20.0, 24.0, 0, 0, 0]])
     rec = Recording(samples, width_mm=40, height_mm=40, px_per_mm=2.0)

@@ -24,8 +24,8 @@ from test_extension import (
 
 bpy = pytest.importorskip("bpy")
 
+from sim.core.recording import Recording, load  # noqa: E402
 from sim.engine import Simulation  # noqa: E402
-from sim.recording import Recording, load  # noqa: E402
 
 
 def paper_size_m(st):
@@ -263,7 +263,7 @@ def test_preset_menus_name_the_active_preset_and_say_what_they_overwrite(hb, cap
     log = drawn(bpy.types.HAIRY_BRUSH_PT_brush)
     menu = [e for e in log if e[0] == "menu"]
     sim = ext().sim
-    default = sim.params.load_preset("brush", sim.recording.DEFAULT_BRUSH).label
+    default = sim.core.params.load_preset("brush", sim.core.recording.DEFAULT_BRUSH).label
     assert menu == [("menu", "HAIRY_BRUSH_MT_brush_presets", default)]
     # the rest was written for the 'mixed' brush (hair 30 mm, 2 mm longer than wolf_stiff's,
     # so choosing wolf_stiff moves the empty): choose it first, as an artist would
@@ -295,9 +295,9 @@ def test_preset_menus_name_the_active_preset_and_say_what_they_overwrite(hb, cap
 def test_paper_colour_and_capacity_follow_the_preset_and_reach_the_engine(hb):
     st = setup_scene(bpy)
     sim = ext().sim
-    paper = sim.recording.DEFAULT_PAPER  # the scene starts on the default paper
+    paper = sim.core.recording.DEFAULT_PAPER  # the scene starts on the default paper
     assert paper != "smooth"  # so that choosing smooth below changes the values
-    preset = sim.params.paper_from_preset(sim.params.load_preset("paper", paper))
+    preset = sim.core.params.paper_from_preset(sim.core.params.load_preset("paper", paper))
     assert tuple(st.paper_color) == pytest.approx(preset.color)
     assert st.paper_capacity == pytest.approx(preset.capacity)
     st.paper_preset = "smooth"
@@ -313,11 +313,11 @@ def test_paper_fibre_follows_the_preset_and_sits_by_ink_capacity(hb):
     st = setup_scene(bpy)
     sim = ext().sim
     fibre = {
-        name: sim.params.paper_from_preset(sim.params.load_preset("paper", name)).fibre
+        name: sim.core.params.paper_from_preset(sim.core.params.load_preset("paper", name)).fibre
         for name in ("raw_xuan", "sized_xuan", "smooth")
     }
     assert len(set(fibre.values())) == 3  # each choice below changes the value
-    assert st.paper_fibre == pytest.approx(fibre[sim.recording.DEFAULT_PAPER])
+    assert st.paper_fibre == pytest.approx(fibre[sim.core.recording.DEFAULT_PAPER])
     for name in ("smooth", "raw_xuan"):
         st.paper_preset = name
         assert st.paper_fibre == pytest.approx(fibre[name]), name

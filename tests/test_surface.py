@@ -8,10 +8,10 @@ import numpy as np
 import pytest
 
 from sim import surface as sf
+from sim.core.frames import rotation_matrix
+from sim.core.params import load_preset
+from sim.core.recording import DEFAULT_BRUSH, Recording, from_dict
 from sim.engine import Simulation
-from sim.frames import rotation_matrix
-from sim.params import load_preset
-from sim.recording import DEFAULT_BRUSH, Recording, from_dict
 
 # the default brush's hair length (mm), as the engine reads it below
 L = load_preset("brush", DEFAULT_BRUSH).data["geometry"]["hair_length_mm"]

@@ -13,9 +13,9 @@ from conftest import ADDON
 
 bpy = pytest.importorskip("bpy")
 
+from sim.core.params import load_preset  # noqa: E402
+from sim.core.recording import DEFAULT_BRUSH  # noqa: E402
 from sim.display import linear_to_srgb  # noqa: E402
-from sim.params import load_preset  # noqa: E402
-from sim.recording import DEFAULT_BRUSH  # noqa: E402
 
 HAIR = load_preset("brush", DEFAULT_BRUSH).data["geometry"]["hair_length_mm"]  # the default's
 R_MM = 40.0  # the cylinder's radius
@@ -588,7 +588,7 @@ def test_imitate_picture_on_a_cylinder_is_laid_on_it_too(hb):
 def test_the_kept_surface_paper_is_the_one_a_fresh_session_would_build(hb):
     """The kept paper's chart offset depends on the recording's width in mm, not only on its
     texture's size: a recording 0.1 mm wider (same pixels) must not reuse the other's."""
-    from sim.recording import Recording
+    from sim.core.recording import Recording
 
     b = ext().bridge
     s = b.surf.surface_from_arrays(

@@ -16,7 +16,7 @@ from pathlib import Path
 
 from .jsonio import read_json
 
-PRESET_DIR = Path(__file__).resolve().parent.parent / "presets"
+PRESET_DIR = Path(__file__).resolve().parents[2] / "presets"
 PRESET_KINDS = {"brush": "brushes", "paper": "papers", "ink": "inks", "quality": "qualities"}
 
 # Fig. 8(a): name, concise meaning, category, where used.
