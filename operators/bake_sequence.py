@@ -9,7 +9,7 @@ import os
 import bpy
 
 from .. import bridge, handlers, playback
-from ..sim.png import write_png
+from ..sim.image.png import write_png
 from . import polls
 from .jobs import Job, JobOperator, deadline
 

@@ -25,7 +25,7 @@ import bpy  # noqa: E402
 import numpy as np  # noqa: E402
 from build_extension import build  # noqa: E402
 
-from sim.png import write_png  # noqa: E402
+from sim.image.png import write_png  # noqa: E402
 
 CHAR = "永"
 

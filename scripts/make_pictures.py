@@ -13,7 +13,7 @@ sys.path.insert(0, str(ROOT))
 
 from sim.core.recording import Dip, Recording  # noqa: E402
 from sim.engine import Simulation  # noqa: E402
-from sim.png import write_png  # noqa: E402
+from sim.image.png import write_png  # noqa: E402
 from sim.strokes import stroke  # noqa: E402
 
 OUT = ROOT / "docs" / "img"
@@ -133,7 +133,7 @@ def overlay(chars, n=512, passes=None, quality=None, out=None):
 def before_after(before_dir, after_dir, out_png, chars="一中之书人十大天山心日月水永法风"):
     """Two contact sheets of --overlay's per-character PNGs side by side (before | after), each
     character at half size, a grey rule between."""
-    from sim.png import read_png
+    from sim.image.png import read_png
 
     def sheet(folder):
         tiles = [read_png(Path(folder) / f"{ord(ch):x}.png")[::2, ::2] for ch in chars]

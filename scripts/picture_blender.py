@@ -29,8 +29,8 @@ from picture_scan import scan_picture, written_size_mm  # noqa: E402
 
 from sim.display import linear_to_srgb  # noqa: E402
 from sim.hanzi import find_char  # noqa: E402
-from sim.picture_morph import resize  # noqa: E402
-from sim.png import write_png  # noqa: E402
+from sim.image.morph import resize  # noqa: E402
+from sim.image.png import write_png  # noqa: E402
 
 
 def install():

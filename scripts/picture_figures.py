@@ -35,9 +35,9 @@ from scripts.picture_scan import (  # noqa: E402
 )
 from sim.engine import Simulation  # noqa: E402
 from sim.hanzi import find_char  # noqa: E402
+from sim.image.morph import resize  # noqa: E402
+from sim.image.png import write_png  # noqa: E402
 from sim.picture import imitate  # noqa: E402
-from sim.picture_morph import resize  # noqa: E402
-from sim.png import write_png  # noqa: E402
 
 OUT = ROOT / "docs" / "img"
 COLOURS = np.array(

@@ -124,7 +124,7 @@ def scan_picture(char: dict, n: int = 512, seed: int = 0):
 
 def main(argv=None) -> int:
     from sim.hanzi import find_char
-    from sim.png import write_png
+    from sim.image.png import write_png
 
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("char", help="hanzi-writer JSON file or a character of data/hanzi")

@@ -245,8 +245,8 @@ def vase():
 def side_by_side(left, right, out):
     """Two renders of one size as one picture."""
     ext = sys.modules[bench_live.ADDON]
-    a, b = (ext.sim.png.read_png(p)[..., :3] for p in (left, right))
-    ext.sim.png.write_png(out, np.concatenate([a, b], axis=1))
+    a, b = (ext.sim.image.png.read_png(p)[..., :3] for p in (left, right))
+    ext.sim.image.png.write_png(out, np.concatenate([a, b], axis=1))
     Path(right).unlink()
 
 

@@ -37,7 +37,7 @@ def _writable(path) -> None:
 def cmd_render(args) -> int:
     from .core.recording import load
     from .engine import Simulation
-    from .png import write_png
+    from .image.png import write_png
 
     _writable(args.output)
     rec = load(args.recording)
@@ -91,8 +91,8 @@ def _chars(specs, data):
 
 
 def cmd_write(args) -> int:
+    from .image.png import write_png
     from .imitate import write_character
-    from .png import write_png
 
     _writable(args.output)
     if args.recording:
@@ -130,10 +130,10 @@ def cmd_imitate(args) -> int:
     """Read a picture of writing, write it with the brush, report how close the ink is."""
     import json
 
+    from .image.png import write_png
     from .imitate import coverage_mask
     from .outline import iou
     from .picture import imitate, ink_on
-    from .png import write_png
     from .texture import score, texture_stats
 
     for path in (args.output, args.recording, args.char_data):
@@ -172,7 +172,7 @@ def cmd_write_set(args) -> int:
     import json
 
     from .cluster import map_tasks, write_task
-    from .png import write_png
+    from .image.png import write_png
 
     if not os.path.isdir(args.out_dir):
         raise ParameterError(f"--out-dir {args.out_dir}: no such folder")

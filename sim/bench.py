@@ -127,7 +127,7 @@ def nurbs_speedup(repeats=3):
 
 def replay_seconds(recording_path, size_px, out_png, repeats=2):
     from .core.recording import from_dict, load
-    from .png import write_png
+    from .image.png import write_png
 
     rec = load(recording_path)
     d = rec.to_dict()

@@ -455,7 +455,7 @@ def character_samples(chars: list[dict], n_px: int, template: Recording, names=N
 def image_sample(recording: Recording, png_path, name: str = "") -> TrainingSample:
     """A training sample from the user's own image and the recording that goes with it; the
     image's size is checked against the recording's paper before it is decoded."""
-    from .png import png_header, read_png
+    from .image.png import png_header, read_png
 
     w, h, _ = png_header(png_path)
     if (w, h) != (recording.width_px, recording.height_px):

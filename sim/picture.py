@@ -28,8 +28,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from . import picture_morph as M
 from .hanzi import MAX_STROKES
+from .image import morph as M
 from .outline import EM, TOP, discs
 from .picture_ink import Ink, PictureError, find_ink, grey_of, load_picture
 from .picture_strokes import Stroke, find_strokes

@@ -13,7 +13,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from . import picture_morph as M
+from .image import morph as M
 from .texture import _gaussian, skeleton
 
 CONTINUE_COS = -0.77  # two ways out of a junction continue each other within ~40 degrees

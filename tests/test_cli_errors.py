@@ -16,7 +16,7 @@ from conftest import ROOT
 
 from sim.__main__ import main
 from sim.core.recording import MAX_DIPS, RecordingError, from_dict, loads
-from sim.png import PNGError, read_png
+from sim.image.png import PNGError, read_png
 
 REC = {
     "format": "hairy-brush-recording",
@@ -407,7 +407,7 @@ def test_fit_takes_grey_and_alpha_images(tmp_path, channels):
     import numpy as np
 
     from sim.fit import image_sample
-    from sim.png import write_png
+    from sim.image.png import write_png
 
     rec = from_dict(REC)  # a 240 x 160 px paper
     img = np.random.default_rng(0).integers(0, 256, (160, 240, channels), dtype=np.uint8)

@@ -250,7 +250,7 @@ def test_bake_sequence_writes_one_image_per_frame(hb, tmp_path):
     assert bpy.ops.hairy_brush.bake_sequence() == {"FINISHED"}
     files = sorted((tmp_path / "seq").glob("paper_*.png"))
     assert [f.name for f in files] == [f"paper_{i:04d}.png" for i in range(1, 11)]
-    from sim.png import read_png
+    from sim.image.png import read_png
 
     last = read_png(files[-1])
     sim = Simulation(ext().bridge.recording_from_scene(bpy.context.scene)).run()

@@ -32,9 +32,9 @@ from sim.core.params import (
 from sim.core.recording import MAX_SEED, RecordingError, from_dict, loads, quantise
 from sim.fit import SETTING_RANGES, load_quality
 from sim.hanzi import CharacterError, check_char
+from sim.image.png import PNGError, read_png
 from sim.imitate import Response, auto_size_mm, plan
 from sim.outline import baseline_masks, rasterise
-from sim.png import PNGError, read_png
 
 # FUZZ_EXAMPLES=5000 runs a longer campaign with the same tests
 EXAMPLES = int(os.environ.get("FUZZ_EXAMPLES", "150"))

@@ -157,7 +157,7 @@ def test_batched_deposit_equals_one_mark_after_another():
 
 
 def test_banded_uint8_image_and_png_equal_the_float_image(tmp_path):
-    from sim.png import read_png, to_uint8, write_png
+    from sim.image.png import read_png, to_uint8, write_png
 
     sim = simulation(long_stroke(), 700, 3.5, 1)
     sim.paper.ink[...] = np.random.default_rng(3).random(sim.paper.ink.shape, dtype=np.float32)

@@ -13,9 +13,10 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from sim import picture_morph as M
 from sim.core.recording import Recording
 from sim.hanzi import find_char
+from sim.image import morph as M
+from sim.image.png import PNGError, write_png
 from sim.imitate import coverage_mask, write_character
 from sim.outline import fill, iou, rasterise, stroke_polygons, to_image
 from sim.picture import (
@@ -30,7 +31,6 @@ from sim.picture import (
 )
 from sim.picture_ink import Ink, PictureError, find_ink
 from sim.picture_strokes import Stroke
-from sim.png import PNGError, write_png
 from sim.texture import _gaussian, score, texture_stats
 
 ROOT = Path(__file__).resolve().parent.parent
@@ -386,7 +386,7 @@ def test_the_picture_is_read_at_most_max_detail_and_written_at_the_size_asked(
 ):
     import sim.picture
     from sim.__main__ import main
-    from sim.png import read_png
+    from sim.image.png import read_png
 
     with pytest.raises(PictureError, match=f"1 to {sim.picture.MAX_DETAIL} px a side"):
         read_picture(picture("王", 128), sim.picture.MAX_DETAIL + 1)

@@ -15,8 +15,8 @@ from conftest import ADDON, ROOT
 
 bpy = pytest.importorskip("bpy")
 
+from sim.image.png import write_png  # noqa: E402
 from sim.outline import rasterise  # noqa: E402
-from sim.png import write_png  # noqa: E402
 
 
 def ext():

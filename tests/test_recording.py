@@ -137,7 +137,7 @@ def test_cli_render_and_clear_error(tmp_path):
         text=True,
     )
     assert r.returncode == 0, r.stderr
-    from sim.png import read_png
+    from sim.image.png import read_png
 
     img = read_png(out)
     assert img.shape == (160, 240, 3)

@@ -14,7 +14,7 @@ import zlib
 
 import numpy as np
 
-from .core.params import MAX_PAPER_PIXELS, MAX_PAPER_SIDE_PX
+from ..core.params import MAX_PAPER_PIXELS, MAX_PAPER_SIDE_PX
 
 SIGNATURE = b"\x89PNG\r\n\x1a\n"
 CHANNELS = {0: 1, 2: 3, 3: 1, 4: 2, 6: 4}  # colour type -> samples a pixel
