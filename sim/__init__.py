@@ -2,11 +2,11 @@
 """Virtual Hairy Brush engine: the solid-model brush, ink and paper of Xu et al., "A Solid Model
 Based Virtual Hairy Brush" (Eurographics 2002). numpy and geomdl only; never bpy."""
 
-from .brush import HairyBrush, rotation_matrix
+from .brush.inertia import InertiaPredictor
+from .brush.primitive import HairyBrush, rotation_matrix
 from .core.params import BrushGeometry, InkSpec, PaperSpec, ParameterError, QualityParams
 from .core.recording import Dip, Recording, RecordingError
 from .engine import Simulation, render
-from .inertia import InertiaPredictor
 
 __all__ = [
     "BrushGeometry",

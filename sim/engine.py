@@ -10,11 +10,11 @@ from typing import NamedTuple
 
 import numpy as np
 
-from .brush import HairyBrush
+from .brush.inertia import InertiaPredictor
+from .brush.mark import cut_marks, fill_marks
+from .brush.primitive import HairyBrush
 from .core.params import HOVER_MM
 from .core.recording import Recording
-from .inertia import InertiaPredictor
-from .mark import cut_marks, fill_marks
 from .paper import DRY_RATE, Paper
 from .surface import CHART_SHAPE
 
@@ -26,7 +26,7 @@ BATCH_STEPS = 8
 class PendingDeposit(NamedTuple):
     """A sample the brush has made and the paper has not taken yet (see ``run``)."""
 
-    cut: object  # the solid's cut by the paper (sim.mark.Cut), None when it does not touch
+    cut: object  # the solid's cut by the paper (sim.brush.mark.Cut), None when it does not touch
     gamma: np.ndarray  # each primitive's dryness then (Eq. 27)
     hair_u: np.ndarray  # each primitive's hair bundles' dry-brush draws then (Eq. 27)
     step: int  # the sample's number, from 1, as the paper counts steps

@@ -15,7 +15,7 @@ sys.path.insert(0, str(ROOT))
 # extension is installed into a temporary Blender user folder, as a user would install it.
 os.environ.setdefault("BLENDER_USER_RESOURCES", tempfile.mkdtemp(prefix="hairy-brush-user-"))
 
-from sim.brush import HairyBrush  # noqa: E402
+from sim.brush.primitive import HairyBrush  # noqa: E402
 from sim.core.params import BrushGeometry, QualityParams  # noqa: E402
 
 ADDON = "bl_ext.user_default.hairy_brush"

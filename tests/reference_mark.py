@@ -4,8 +4,8 @@ row of the surface): the reference the fast ``sim.mark`` must agree with."""
 
 import numpy as np
 
-from sim.brush_state import ink_field
-from sim.mark import Mark, slice_grid
+from sim.brush.mark import Mark, slice_grid
+from sim.brush.state import ink_field
 
 
 def reference_marks(brush, sec, ink_rows, ppm: float, paper_shape) -> list[Mark]:

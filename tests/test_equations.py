@@ -6,11 +6,11 @@ import math
 import numpy as np
 import pytest
 
-from sim.brush import HairyBrush
+from sim.brush.dynamics import REF_RATE, V_REF
+from sim.brush.inertia import InertiaPredictor
+from sim.brush.mark import Mark, compute_marks
+from sim.brush.primitive import HairyBrush
 from sim.core.params import BrushGeometry, InkSpec, QualityParams
-from sim.dynamics import REF_RATE, V_REF
-from sim.inertia import InertiaPredictor
-from sim.mark import Mark, compute_marks
 from sim.paper import GRAIN_DEPTH, Paper, paper_grain
 
 DT = 1.0 / REF_RATE  # per-step equations apply unscaled at the reference rate
@@ -282,7 +282,7 @@ def test_every_primitive_field_is_declared_once_and_kept_by_snapshots(brush):
     """The fields of key points and primitives are those of ``brush_state.FIELDS``: every array
     of the brush with a row per primitive is one of them, and a snapshot taken before a split
     brings all of them back."""
-    from sim.brush_state import FIELDS, KEY
+    from sim.brush.state import FIELDS, KEY
 
     b = brush
     assert b.split_under(4.5 * b.q.tre) == 3 and b.m == 4  # 4 rows: no pose vector has 4

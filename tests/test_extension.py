@@ -144,7 +144,7 @@ def test_brush_pose_is_read_as_the_papers_six_dof(hb):
     s = ext().bridge.sample_from_matrices(st, b.matrix_world, st.paper_object.matrix_world)
     np.testing.assert_allclose(s, [110.0, 80.0, 4.0, 20.0, -12.0, 35.0], atol=1e-4)
     # the engine's rotation is Blender's ZYX Euler matrix
-    R = ext().sim.brush.rotation_matrix(20.0, -12.0, 35.0)
+    R = ext().sim.core.frames.rotation_matrix(20.0, -12.0, 35.0)
     np.testing.assert_allclose(R, np.array(b.matrix_world.to_3x3()), atol=1e-6)
     # and back
     mw = ext().bridge.matrix_from_sample(st, st.paper_object.matrix_world, s)

@@ -8,8 +8,8 @@ import time
 import numpy as np
 import pytest
 
+from sim.brush.mark import compute_marks
 from sim.engine import Simulation
-from sim.mark import compute_marks
 from tests.builders import character, long_stroke, simulation, stepped
 from tests.reference_mark import reference_marks
 
@@ -83,7 +83,7 @@ def test_fast_marks_equal_reference_with_a_texture_function_that_varies():
 def test_marks_evaluated_in_bands_are_the_same_marks(monkeypatch):
     """Many large marks are evaluated in bands of scanlines (bounded memory); a band may cut a
     mark in two. The marks are the same, bit for bit."""
-    import sim.mark as mark
+    import sim.brush.mark as mark
 
     compared = 0
     for sim in _states(16, 6.0, 53):
@@ -110,7 +110,7 @@ def test_a_span_that_cuts_the_solid_short_is_scanned_again(monkeypatch):
     """With no margin past cur_u, the solid often reaches the end of a span (where the surface
     grazes the paper); those marks are scanned again over the whole cut, so they still equal
     the reference."""
-    import sim.mark as mark
+    import sim.brush.mark as mark
 
     calls = {"windows": 0, "again": 0}
     plain = mark._marks_ink

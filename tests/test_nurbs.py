@@ -106,7 +106,7 @@ def test_bezier_form_keeps_the_surface_and_matches_blenders_knot_layout(brush):
 
 
 def test_angles_from_matrix_inverts_rotation_matrix():
-    from sim.brush import angles_from_matrix, rotation_matrix
+    from sim.brush.primitive import angles_from_matrix, rotation_matrix
 
     rng = np.random.default_rng(0)
     for _ in range(50):

@@ -5,7 +5,7 @@ import numpy as np
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
-from sim.brush import HairyBrush
+from sim.brush.primitive import HairyBrush
 from sim.core.params import BrushGeometry, QualityParams
 from sim.core.recording import Dip, Recording
 from sim.engine import Simulation

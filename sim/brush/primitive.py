@@ -40,10 +40,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from . import brush_ink, brush_state, dynamics
-from .brush_state import HAIR_BINS
-from .core.frames import angles_from_matrix, cross, rotation_matrix, unit
-from .core.nurbs import (
+from ..core.frames import angles_from_matrix, cross, rotation_matrix, unit
+from ..core.nurbs import (
     SweepLayout,
     bezier_form,
     bspline_bases,
@@ -52,7 +50,11 @@ from .core.nurbs import (
     rotation_minimising_frames,
     surface_control_net,
 )
-from .core.params import BrushGeometry, InkSpec, QualityParams
+from ..core.params import BrushGeometry, InkSpec, QualityParams
+from . import dynamics
+from . import ink as brush_ink
+from . import state as brush_state
+from .state import HAIR_BINS
 
 __all__ = ["HairyBrush", "Sections", "angles_from_matrix", "rotation_matrix"]
 MAX_PRIMITIVES = 32  # the split stops adding primitives here (Sec. 5.5)

@@ -12,8 +12,8 @@ from __future__ import annotations
 
 import numpy as np
 
-from .brush_state import INK_FIELDS, ink_keys
-from .core.params import InkSpec
+from ..core.params import InkSpec
+from .state import INK_FIELDS, ink_keys
 
 # the texture function's fields (Eq. 5), named as InkSpec names them
 TEXTURE_NAMES = ("wr", "cr", "wv", "cv")

@@ -30,9 +30,9 @@ from typing import NamedTuple
 
 import numpy as np
 
-from .brush_ink import LOAD, TEXTURE, TEXTURE_NAMES
-from .brush_state import INK_FIELDS
-from .core.frames import dot, norm
+from ..core.frames import dot, norm
+from .ink import LOAD, TEXTURE, TEXTURE_NAMES
+from .state import INK_FIELDS
 
 # marching-squares edges: 0 = (i,j)-(i,j+1), 1 = (i,j+1)-(i+1,j+1), 2 = (i+1,j)-(i+1,j+1),
 # 3 = (i,j)-(i+1,j); case bits: 1 = (i,j), 2 = (i,j+1), 4 = (i+1,j+1), 8 = (i+1,j) inside.

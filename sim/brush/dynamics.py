@@ -14,8 +14,8 @@ from __future__ import annotations
 
 import numpy as np
 
-from .brush_state import HAIR_BINS, key_point_fields, take_primitives
-from .core.frames import cross, norm, rotation_matrix, unit
+from ..core.frames import cross, norm, rotation_matrix, unit
+from .state import HAIR_BINS, key_point_fields, take_primitives
 
 # Calibration scales: the paper's formulas are dimensionless in spirit; these map millimetres and
 # seconds onto them so that every quality parameter in [0, 1] spans a useful range.
