@@ -16,7 +16,6 @@ import os
 import bpy
 import numpy as np
 
-from .sim import display
 from .sim import surface as surf
 from .sim.core import placement
 from .sim.core.jsonio import MAX_JSON_BYTES, parse_json
@@ -29,6 +28,7 @@ from .sim.core.params import (
     load_preset,
 )
 from .sim.core.recording import Dip, Recording, RecordingError, from_dict
+from .sim.paper import display
 from .sim.timeline import DEFAULT_BUDGET_BYTES as SNAPSHOT_BUDGET_BYTES
 
 RECORDING_TEXT = "HairyBrush Recording"

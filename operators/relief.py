@@ -16,7 +16,7 @@ from __future__ import annotations
 import bpy
 
 from .. import bridge, playback
-from ..sim import display
+from ..sim.paper import display
 from . import polls
 
 RELIEF = "HairyBrush Relief"

@@ -15,7 +15,7 @@ from .brush.mark import cut_marks, fill_marks
 from .brush.primitive import HairyBrush
 from .core.params import HOVER_MM
 from .core.recording import Recording
-from .paper import DRY_RATE, Paper
+from .paper.paper import DRY_RATE, Paper
 from .surface import CHART_SHAPE
 
 # samples whose marks are filled in together by ``run`` (the brush never reads the paper, so its

@@ -6,7 +6,7 @@ deposit to a Paper: ``types.MethodType(reference_deposit, paper)``."""
 
 import numpy as np
 
-from sim.paper import GRAIN_DEPTH, HAIR_FRINGE, paper_fibre, paper_grain
+from sim.paper.paper import GRAIN_DEPTH, HAIR_FRINGE, paper_fibre, paper_grain
 
 _NEIGHBOURS = [(-1, -1), (-1, 0), (-1, 1), (0, -1), (0, 1), (1, -1), (1, 0), (1, 1)]
 

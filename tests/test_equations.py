@@ -11,7 +11,7 @@ from sim.brush.inertia import InertiaPredictor
 from sim.brush.mark import Mark, compute_marks
 from sim.brush.primitive import HairyBrush
 from sim.core.params import BrushGeometry, InkSpec, QualityParams
-from sim.paper import GRAIN_DEPTH, Paper, paper_grain
+from sim.paper.paper import GRAIN_DEPTH, Paper, paper_grain
 
 DT = 1.0 / REF_RATE  # per-step equations apply unscaled at the reference rate
 

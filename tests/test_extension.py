@@ -19,8 +19,8 @@ from sim.core.nurbs import CIRCLE_KNOTS, evaluate_nurbs_surface  # noqa: E402
 from sim.core.params import load_preset  # noqa: E402
 from sim.core.recording import DEFAULT_BRUSH  # noqa: E402
 from sim.core.recording import load as load_recording  # noqa: E402
-from sim.display import linear_to_srgb  # noqa: E402
 from sim.engine import Simulation  # noqa: E402
+from sim.paper.display import linear_to_srgb  # noqa: E402
 
 HAIR = load_preset("brush", DEFAULT_BRUSH).data["geometry"]["hair_length_mm"]  # the default's
 

@@ -25,8 +25,8 @@ from test_extension import (  # noqa: E402
     setup_scene,
 )
 
-from sim.display import linear_to_srgb  # noqa: E402
 from sim.engine import Simulation  # noqa: E402
+from sim.paper.display import linear_to_srgb  # noqa: E402
 
 
 def farm_scene(tmp_path):

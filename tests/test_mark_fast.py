@@ -130,7 +130,7 @@ def test_a_span_that_cuts_the_solid_short_is_scanned_again(monkeypatch):
 def test_batched_deposit_equals_one_mark_after_another():
     """Overlapping primitives visit a pixel several times in one step; the batched deposit
     takes the visits in the marks' order and gives the plain loop's paper bit for bit."""
-    from sim.paper import Paper
+    from sim.paper.paper import Paper
     from tests.reference_paper import reference_deposit
 
     s = long_stroke()[:260]
@@ -171,7 +171,7 @@ def test_banded_uint8_image_and_png_equal_the_float_image(tmp_path):
 def test_box_sum_saturation_equals_neighbour_by_neighbour():
     """Eq. 25 by 3 x 3 box sums gives the plain neighbour-by-neighbour spreading (to float32
     rounding) and keeps the water."""
-    from sim.paper import Paper
+    from sim.paper.paper import Paper
     from tests.reference_paper import reference_saturate
 
     rng = np.random.default_rng(5)

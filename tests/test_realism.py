@@ -4,10 +4,10 @@ outcomes (not on timings)."""
 
 import numpy as np
 
-import sim.paper
+import sim.paper.paper
 from sim.core.recording import Dip, Recording
 from sim.engine import Simulation
-from sim.paper import GRAIN_DEPTH, paper_grain
+from sim.paper.paper import GRAIN_DEPTH, paper_grain
 from sim.strokes import stroke
 from sim.texture import perimeter, texture_stats
 
@@ -37,7 +37,7 @@ def _fibre_stroke(fibre: float, wetness: float = 0.9):
 
 
 def _stroke(monkeypatch, depth: float):
-    monkeypatch.setattr(sim.paper, "GRAIN_DEPTH", depth)
+    monkeypatch.setattr(sim.paper.paper, "GRAIN_DEPTH", depth)
     return _fibre_stroke(0.0)  # the grain alone
 
 
@@ -72,7 +72,7 @@ def test_qp2_stage_adds_the_texture_term():
 
 
 def test_the_papers_grain_is_the_recordings_seeds_sheet():
-    from sim.paper import paper_grain
+    from sim.paper.paper import paper_grain
 
     idx = np.arange(10_000)
     a, b = paper_grain(idx, 0), paper_grain(idx, 7)
@@ -82,7 +82,7 @@ def test_the_papers_grain_is_the_recordings_seeds_sheet():
 
 
 def test_paper_fibre_is_fixed_smooth_in_millimetres_and_spread():
-    from sim.paper import FIBRE_MM, paper_fibre
+    from sim.paper.paper import FIBRE_MM, paper_fibre
 
     rows, cols = np.mgrid[0:200, 0:200]
     f = paper_fibre(rows, cols, 10.0, seed=3)

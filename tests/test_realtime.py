@@ -8,10 +8,10 @@ import numpy as np
 import pytest
 
 from sim.core.recording import Recording
-from sim.display import PaperView, encode, linear_to_srgb
 from sim.engine import Simulation
 from sim.live import LiveBrush, LiveEvent
-from sim.paper import TILE
+from sim.paper.display import PaperView, encode, linear_to_srgb
+from sim.paper.paper import TILE
 from sim.strokes import stroke
 from sim.timeline import Timeline
 

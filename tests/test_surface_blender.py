@@ -15,7 +15,7 @@ bpy = pytest.importorskip("bpy")
 
 from sim.core.params import load_preset  # noqa: E402
 from sim.core.recording import DEFAULT_BRUSH  # noqa: E402
-from sim.display import linear_to_srgb  # noqa: E402
+from sim.paper.display import linear_to_srgb  # noqa: E402
 
 HAIR = load_preset("brush", DEFAULT_BRUSH).data["geometry"]["hair_length_mm"]  # the default's
 R_MM = 40.0  # the cylinder's radius

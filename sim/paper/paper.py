@@ -25,7 +25,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from .image.png import to_uint8
+from ..image.png import to_uint8
 
 _RGB = np.dtype((np.void, 12))  # a pixel's three float32 ink densities as one item
 DRY_RATE = 1.0  # capacity units per second at dry = 1
