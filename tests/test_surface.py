@@ -469,14 +469,14 @@ def test_a_fan_of_thousands_of_faces_gets_its_normals_in_linear_time():
     cross = np.cross(c[:, 1] - c[:, 0], c[:, 2] - c[:, 0])
     fn = cross / np.linalg.norm(cross, axis=1)[:, None]
     calls = []
-    real = sf._pairwise_normals
+    real = sf.mesh._pairwise_normals
     try:
-        sf._pairwise_normals = lambda v, cr, f, corners: (
+        sf.mesh._pairwise_normals = lambda v, cr, f, corners: (
             calls.append(len(corners)) or real(v, cr, f, corners)
         )
         cn = sf.corner_normals(tris, cross, fn)
     finally:
-        sf._pairwise_normals = real
+        sf.mesh._pairwise_normals = real
     assert np.allclose(cn, [0, 0, 1])
     assert sum(calls) == 0  # a flat fan: no pairs (n^2 = 16 M before)
     # a sharp vertex still compares its faces pairwise: a cube's corner keeps its faces' normals
@@ -494,9 +494,9 @@ def test_closest_point_through_the_grid_is_exact_and_cheap_far_off_the_surface()
     s = cylinder(n=96, m=24)
     grid = sf.TriangleGrid(s)
     looked = []
-    real = sf._closest_among
+    real = sf.mesh._closest_among
     try:
-        sf._closest_among = lambda surface, p, tris: (
+        sf.mesh._closest_among = lambda surface, p, tris: (
             looked.append(len(surface.tris) if tris is None else len(tris))
             or real(surface, p, tris)
         )
@@ -509,7 +509,7 @@ def test_closest_point_through_the_grid_is_exact_and_cheap_far_off_the_surface()
             want = real(s, p, None)
             assert got.tri == want.tri and np.array_equal(got.point, want.point)
     finally:
-        sf._closest_among = real
+        sf.mesh._closest_among = real
     # beside the cylinder (40 mm off its side, 5 mm inside it): a small part of it is looked at
     assert max(cost[:2]) < len(s.tris) / 4
     # develop uses the grid where the axis misses: poses beside the cylinder, pointing away

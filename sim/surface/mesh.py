@@ -51,7 +51,7 @@ from dataclasses import dataclass, field, replace
 
 import numpy as np
 
-from .core.frames import angles_from_matrix, rotation_matrix
+from ..core.frames import angles_from_matrix, rotation_matrix
 
 PAD_TEXELS = 1.5  # texels around each UV triangle that get its 3D points (filtering at seams)
 FRAME_WIDTH = 11  # a frame: chart cx, cy; point P; tangent T; normal N (mm, unit vectors)
