@@ -494,9 +494,9 @@ def test_closest_point_through_the_grid_is_exact_and_cheap_far_off_the_surface()
     s = cylinder(n=96, m=24)
     grid = sf.TriangleGrid(s)
     looked = []
-    real = sf.mesh._closest_among
+    real = sf.query._closest_among
     try:
-        sf.mesh._closest_among = lambda surface, p, tris: (
+        sf.query._closest_among = lambda surface, p, tris: (
             looked.append(len(surface.tris) if tris is None else len(tris))
             or real(surface, p, tris)
         )
@@ -509,7 +509,7 @@ def test_closest_point_through_the_grid_is_exact_and_cheap_far_off_the_surface()
             want = real(s, p, None)
             assert got.tri == want.tri and np.array_equal(got.point, want.point)
     finally:
-        sf.mesh._closest_among = real
+        sf.query._closest_among = real
     # beside the cylinder (40 mm off its side, 5 mm inside it): a small part of it is looked at
     assert max(cost[:2]) < len(s.tris) / 4
     # develop uses the grid where the axis misses: poses beside the cylinder, pointing away
