@@ -28,8 +28,8 @@ from .sim.core.params import (
     load_preset,
 )
 from .sim.core.recording import Dip, Recording, RecordingError, from_dict
+from .sim.engine.timeline import DEFAULT_BUDGET_BYTES as SNAPSHOT_BUDGET_BYTES
 from .sim.paper import display
-from .sim.timeline import DEFAULT_BUDGET_BYTES as SNAPSHOT_BUDGET_BYTES
 
 RECORDING_TEXT = "HairyBrush Recording"
 PAPER_IMAGE = "HairyBrush Paper"
@@ -471,7 +471,7 @@ class SurfaceWriting:
         under the brush, their frames followed over the surface from there (sim.surface.lay_on),
         the scene's settings (the texture keeps its size), simulated on the surface."""
         from .sim.core.recording import quantise
-        from .sim.engine import Simulation
+        from .sim.engine.simulation import Simulation
 
         samples = np.array(flat.samples, dtype=float)
         samples[:, :2] += self.centre - size_mm / 2

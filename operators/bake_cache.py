@@ -15,8 +15,8 @@ from __future__ import annotations
 import bpy
 
 from .. import bridge, playback
-from ..sim.engine import Simulation
-from ..sim.timeline import Timeline, save_checkpoints
+from ..sim.engine.simulation import Simulation
+from ..sim.engine.timeline import Timeline, save_checkpoints
 from . import polls
 from .jobs import Job, JobOperator, deadline
 

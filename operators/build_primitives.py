@@ -6,7 +6,7 @@ from __future__ import annotations
 import bpy
 
 from .. import bridge, playback
-from ..sim.engine import Simulation
+from ..sim.engine.simulation import Simulation
 from . import polls
 
 

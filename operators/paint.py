@@ -3,7 +3,7 @@
 mesh that is the paper (issue 17.4: the mouse's ray meets the mesh, sim.surface.ray_hit, and the
 point is placed on the chart of the latest sample's frame; each sample's frame then follows).
 
-The event logic is ``sim.live.LiveBrush`` (no bpy, tested with Blender's event sequences);
+The event logic is ``sim.engine.live.LiveBrush`` (no bpy, tested with Blender's event sequences);
 this operator only projects the mouse onto the paper, stamps each event with the clock
 (``time.perf_counter()``: the live samples follow the wall clock, see sim.live), gives the engine
 a share of each timer tick, refreshes the image from the tiles that changed, moves the brush and
@@ -21,8 +21,8 @@ from .. import bridge, playback
 from ..sim import surface as surf
 from ..sim.core import placement
 from ..sim.core.params import HOVER_MM
-from ..sim.engine import Simulation
-from ..sim.live import LiveBrush, LiveEvent
+from ..sim.engine.live import LiveBrush, LiveEvent
+from ..sim.engine.simulation import Simulation
 from . import polls
 
 TIMER_S = 1.0 / 120.0  # how often the modal operator gets the UI loop's attention

@@ -93,7 +93,7 @@ def operator(ext):
 
 def paint(ext, size_px: int, primitives: int, seconds: float):
     """One stroke painted in real time; returns (refresh times, lag at release, samples)."""
-    LiveEvent = ext.sim.live.LiveEvent  # noqa: N806
+    LiveEvent = ext.sim.engine.live.LiveEvent  # noqa: N806
     sc, st = scene(ext, size_px)
     paint_mod = ext.operators.paint
     x0, y = 40.0, PAPER_MM / 2
@@ -101,7 +101,7 @@ def paint(ext, size_px: int, primitives: int, seconds: float):
     if primitives > 1:
         split(sim, primitives)
     op = operator(ext)
-    op.start(bpy.context, st.paper_image, ext.sim.live.LiveBrush(sim, 6.0, 2.0, (x0, y)))
+    op.start(bpy.context, st.paper_image, ext.sim.engine.live.LiveBrush(sim, 6.0, 2.0, (x0, y)))
     t0 = op._live._t0
     op.step(bpy.context, LiveEvent("LEFTMOUSE", "PRESS", (x0, y), time=time.perf_counter()))
     next_move = t0

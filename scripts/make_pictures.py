@@ -12,7 +12,7 @@ ROOT = Path(__file__).resolve().parent.parent
 sys.path.insert(0, str(ROOT))
 
 from sim.core.recording import Dip, Recording  # noqa: E402
-from sim.engine import Simulation  # noqa: E402
+from sim.engine.simulation import Simulation  # noqa: E402
 from sim.image.png import write_png  # noqa: E402
 from sim.strokes import stroke  # noqa: E402
 

@@ -33,7 +33,7 @@ from scripts.picture_scan import (  # noqa: E402
     scan_picture,
     written_size_mm,
 )
-from sim.engine import Simulation  # noqa: E402
+from sim.engine.simulation import Simulation  # noqa: E402
 from sim.hanzi import find_char  # noqa: E402
 from sim.image.morph import resize  # noqa: E402
 from sim.image.png import write_png  # noqa: E402

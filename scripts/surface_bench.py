@@ -29,7 +29,7 @@ sys.path.insert(0, str(ROOT))
 from sim import surface as sf  # noqa: E402
 from sim.core.frames import rotation_matrix  # noqa: E402
 from sim.core.recording import Recording, from_dict  # noqa: E402
-from sim.engine import Simulation  # noqa: E402
+from sim.engine.simulation import Simulation  # noqa: E402
 
 L = 30.0  # the default brush's hair length, mm
 N = 240  # 2 s at 120 Hz

@@ -25,7 +25,7 @@ ROOT = Path(__file__).resolve().parent.parent
 sys.path.insert(0, str(ROOT))
 
 from sim.core.recording import Recording  # noqa: E402
-from sim.engine import Simulation  # noqa: E402
+from sim.engine.simulation import Simulation  # noqa: E402
 
 L = 30.0  # the default brush's hair length, mm
 N = 240  # 2 s at 120 Hz

@@ -6,7 +6,7 @@ from .brush.inertia import InertiaPredictor
 from .brush.primitive import HairyBrush, rotation_matrix
 from .core.params import BrushGeometry, InkSpec, PaperSpec, ParameterError, QualityParams
 from .core.recording import Dip, Recording, RecordingError
-from .engine import Simulation, render
+from .engine.simulation import Simulation, render
 
 __all__ = [
     "BrushGeometry",

@@ -36,7 +36,7 @@ def _writable(path) -> None:
 
 def cmd_render(args) -> int:
     from .core.recording import load
-    from .engine import Simulation
+    from .engine.simulation import Simulation
     from .image.png import write_png
 
     _writable(args.output)

@@ -16,7 +16,7 @@ from pathlib import Path
 import numpy as np
 
 from .core.recording import Dip, Recording
-from .engine import Simulation
+from .engine.simulation import Simulation
 from .strokes import stroke
 
 ROOT = Path(__file__).resolve().parent.parent

@@ -31,7 +31,7 @@ import numpy as np
 from .core.jsonio import read_json
 from .core.params import QP1, QP2, ParameterError, QualityParams, number_within, short_repr
 from .core.recording import MAX_SEED, Recording, from_dict
-from .engine import Simulation
+from .engine.simulation import Simulation
 
 
 @dataclass

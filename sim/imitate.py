@@ -21,7 +21,7 @@ import numpy as np
 
 from .core.params import HOVER_MM, MAX_PAPER_SIDE_PX, ParameterError, number_within, short_repr
 from .core.recording import PAPER_MM_RANGE, PX_PER_MM_RANGE, Dip, Recording, quantise
-from .engine import Simulation
+from .engine.simulation import Simulation
 from .hanzi import check_char
 from .outline import EM, TOP, median_pieces, median_radii, rasterise
 

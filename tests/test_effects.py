@@ -5,7 +5,7 @@ import numpy as np
 import pytest
 
 from sim.core.recording import Dip, Recording
-from sim.engine import Simulation
+from sim.engine.simulation import Simulation
 from sim.strokes import stroke
 
 L = 30.0

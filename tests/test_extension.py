@@ -19,7 +19,7 @@ from sim.core.nurbs import CIRCLE_KNOTS, evaluate_nurbs_surface  # noqa: E402
 from sim.core.params import load_preset  # noqa: E402
 from sim.core.recording import DEFAULT_BRUSH  # noqa: E402
 from sim.core.recording import load as load_recording  # noqa: E402
-from sim.engine import Simulation  # noqa: E402
+from sim.engine.simulation import Simulation  # noqa: E402
 from sim.paper.display import linear_to_srgb  # noqa: E402
 
 HAIR = load_preset("brush", DEFAULT_BRUSH).data["geometry"]["hair_length_mm"]  # the default's
@@ -440,14 +440,14 @@ def test_apply_to_mesh_puts_the_ink_over_the_meshs_own_material(hb):
 
 # ----------------------------------------------------------------------------- live painting
 def test_live_stroke_is_kept_in_the_recording_and_replays_identically(hb):
-    LiveEvent = ext().sim.live.LiveEvent  # noqa: N806 - the installed copy's class
+    LiveEvent = ext().sim.engine.live.LiveEvent  # noqa: N806 - the installed copy's class
 
     st = setup_scene(bpy)
     sc = bpy.context.scene
     paint = ext().operators.paint
     sim, fresh = paint.start_simulation(sc, (60.0, 100.0))
     assert fresh
-    live = ext().sim.live.LiveBrush(sim, press_mm=5.0, step_deg=2.0, xy=(60.0, 100.0))
+    live = ext().sim.engine.live.LiveBrush(sim, press_mm=5.0, step_deg=2.0, xy=(60.0, 100.0))
     events = [LiveEvent("LEFTMOUSE", "PRESS", (60.0, 100.0))]
     for i in range(60):
         events.append(LiveEvent("MOUSEMOVE", "NOTHING", (60.0 + i, 100.0)))
@@ -466,7 +466,7 @@ def test_live_stroke_is_kept_in_the_recording_and_replays_identically(hb):
     # a second stroke continues the stored recording; the frame cache adopts the live state
     sim2, fresh = paint.start_simulation(sc, (60.0, 60.0))
     assert not fresh and sim2.index == 61
-    live2 = ext().sim.live.LiveBrush(sim2, press_mm=5.0, xy=(60.0, 60.0))
+    live2 = ext().sim.engine.live.LiveBrush(sim2, press_mm=5.0, xy=(60.0, 60.0))
     live2.handle(LiveEvent("LEFTMOUSE", "PRESS", (60.0, 60.0)))
     for i in range(30):
         live2.handle(LiveEvent("MOUSEMOVE", "NOTHING", (60.0, 60.0 + i)))
@@ -637,7 +637,7 @@ def paint_operator():
 
 
 def test_paint_operator_refreshes_what_changed_moves_the_brush_and_cancels_exactly(hb):
-    LiveEvent = ext().sim.live.LiveEvent  # noqa: N806 - the installed copy's class
+    LiveEvent = ext().sim.engine.live.LiveEvent  # noqa: N806 - the installed copy's class
     paint = ext().operators.paint
     st = setup_scene(bpy, ppm=3.0)
     sc = bpy.context.scene
@@ -645,7 +645,9 @@ def test_paint_operator_refreshes_what_changed_moves_the_brush_and_cancels_exact
     prim = ext().playback.primitive_objects(sc)[0]
     sim, _ = paint.start_simulation(sc, (60.0, 100.0))
     op = paint_operator()
-    op.start(bpy.context, st.paper_image, ext().sim.live.LiveBrush(sim, 5.0, 2.0, (60.0, 100.0)))
+    op.start(
+        bpy.context, st.paper_image, ext().sim.engine.live.LiveBrush(sim, 5.0, 2.0, (60.0, 100.0))
+    )
     before = pixels(st.paper_image)
     t0 = op._live._t0
     op.step(bpy.context, LiveEvent("LEFTMOUSE", "PRESS", (60.0, 100.0), time=t0))
@@ -715,12 +717,12 @@ def test_bake_refuses_a_deleted_brush_and_keeps_the_recording(hb):
 
 
 def test_bake_asks_before_replacing_painted_strokes(hb):
-    LiveEvent = ext().sim.live.LiveEvent  # noqa: N806
+    LiveEvent = ext().sim.engine.live.LiveEvent  # noqa: N806
     st = setup_scene(bpy)
     sc = bpy.context.scene
     paint = ext().operators.paint
     sim, _ = paint.start_simulation(sc, (60.0, 100.0))
-    live = ext().sim.live.LiveBrush(sim, press_mm=5.0, xy=(60.0, 100.0))
+    live = ext().sim.engine.live.LiveBrush(sim, press_mm=5.0, xy=(60.0, 100.0))
     live.handle(LiveEvent("LEFTMOUSE", "PRESS", (60.0, 100.0)))
     for i in range(30):
         live.handle(LiveEvent("MOUSEMOVE", "NOTHING", (60.0 + i, 100.0)))

@@ -25,7 +25,7 @@ from test_extension import (  # noqa: E402
     setup_scene,
 )
 
-from sim.engine import Simulation  # noqa: E402
+from sim.engine.simulation import Simulation  # noqa: E402
 from sim.paper.display import linear_to_srgb  # noqa: E402
 
 

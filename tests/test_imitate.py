@@ -12,7 +12,7 @@ import pytest
 
 from sim.core.params import QP2, ParameterError
 from sim.core.recording import Recording, load
-from sim.engine import Simulation
+from sim.engine.simulation import Simulation
 from sim.fit import FitSettings, TrainingSample, fit, load_quality, render, target_function
 from sim.hanzi import DATA_DIR, find_char
 from sim.imitate import (

@@ -6,8 +6,8 @@ import pytest
 
 from sim.core.params import HOVER_MM
 from sim.core.recording import Recording
-from sim.engine import Simulation
-from sim.live import LiveBrush, LiveEvent
+from sim.engine.live import LiveBrush, LiveEvent
+from sim.engine.simulation import Simulation
 
 
 def fresh(xy=(50.0, 50.0)):

@@ -9,7 +9,7 @@ import numpy as np
 import pytest
 
 from sim.brush.mark import compute_marks
-from sim.engine import Simulation
+from sim.engine.simulation import Simulation
 from tests.builders import character, long_stroke, simulation, stepped
 from tests.reference_mark import reference_marks
 
@@ -193,7 +193,7 @@ def test_run_fills_marks_for_several_samples_at_once_and_equals_step_by_step():
     pass; the paper is the same, bit for bit, as one sample at a time (a written character with
     dips and splits), also when run stops and goes on, or snapshots in between."""
     from sim.core.recording import Dip
-    from sim.engine import BATCH_STEPS
+    from sim.engine.simulation import BATCH_STEPS
 
     rec = character(4.0)
     rec.dips.append(Dip(411, 0.7, (0.6, 0.1, 0.1), 0.9))  # a second dip, mid-batch

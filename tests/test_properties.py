@@ -8,7 +8,7 @@ from hypothesis import strategies as st
 from sim.brush.primitive import HairyBrush
 from sim.core.params import BrushGeometry, QualityParams
 from sim.core.recording import Dip, Recording
-from sim.engine import Simulation
+from sim.engine.simulation import Simulation
 from sim.strokes import stroke
 
 unit = st.floats(0.0, 1.0)

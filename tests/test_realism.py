@@ -6,7 +6,7 @@ import numpy as np
 
 import sim.paper.paper
 from sim.core.recording import Dip, Recording
-from sim.engine import Simulation
+from sim.engine.simulation import Simulation
 from sim.paper.paper import GRAIN_DEPTH, paper_grain
 from sim.strokes import stroke
 from sim.texture import perimeter, texture_stats

@@ -8,12 +8,12 @@ import numpy as np
 import pytest
 
 from sim.core.recording import Recording
-from sim.engine import Simulation
-from sim.live import LiveBrush, LiveEvent
+from sim.engine.live import LiveBrush, LiveEvent
+from sim.engine.simulation import Simulation
+from sim.engine.timeline import Timeline
 from sim.paper.display import PaperView, encode, linear_to_srgb
 from sim.paper.paper import TILE
 from sim.strokes import stroke
-from sim.timeline import Timeline
 
 RATE = 120.0
 
@@ -179,7 +179,7 @@ def test_snapshots_stop_at_the_budget_and_seeks_stay_exact():
 
 
 def test_checkpoints_on_disk_let_a_fresh_process_seek_anywhere_exactly(tmp_path):
-    from sim.timeline import cache_key_of, load_checkpoints, save_checkpoints
+    from sim.engine.timeline import cache_key_of, load_checkpoints, save_checkpoints
 
     rec = long_recording()
     n = len(rec.samples)

@@ -156,7 +156,7 @@ def test_the_papers_colour_and_capacity_travel_with_the_recording():
     import numpy as np
 
     from sim.core.recording import Recording, RecordingError, from_dict
-    from sim.engine import Simulation
+    from sim.engine.simulation import Simulation
 
     samples = np.array([[20.0, 20.0, 40.0, 0, 0, 0], [20.0, 20.0, 24.0, 0, 0, 0]])
     rec = Recording(samples, width_mm=40, height_mm=40, px_per_mm=2.0)

@@ -25,7 +25,7 @@ from test_extension import (
 bpy = pytest.importorskip("bpy")
 
 from sim.core.recording import Recording, load  # noqa: E402
-from sim.engine import Simulation  # noqa: E402
+from sim.engine.simulation import Simulation  # noqa: E402
 
 
 def paper_size_m(st):

@@ -11,7 +11,7 @@ from sim import surface as sf
 from sim.core.frames import rotation_matrix
 from sim.core.params import load_preset
 from sim.core.recording import DEFAULT_BRUSH, Recording, from_dict
-from sim.engine import Simulation
+from sim.engine.simulation import Simulation
 
 # the default brush's hair length (mm), as the engine reads it below
 L = load_preset("brush", DEFAULT_BRUSH).data["geometry"]["hair_length_mm"]

@@ -399,7 +399,7 @@ def _call(name):
 
 
 def test_live_painting_on_the_surface_follows_the_mesh_and_replays(hb):
-    LiveEvent = ext().sim.live.LiveEvent  # noqa: N806 - the installed copy's class
+    LiveEvent = ext().sim.engine.live.LiveEvent  # noqa: N806 - the installed copy's class
     sc = bpy.context.scene
     st = surface_scene(cylinder())
     paint = ext().operators.paint
@@ -409,7 +409,7 @@ def test_live_painting_on_the_surface_follows_the_mesh_and_replays(hb):
         return (np.array([math.sin(a), -math.cos(a), z]), np.array([-math.sin(a), math.cos(a), 0]))
 
     sim, xy = paint.start_on_surface(sc, ray(-20.0))
-    live = ext().sim.live.LiveBrush(sim, press_mm=4.0, step_deg=2.0, xy=xy)
+    live = ext().sim.engine.live.LiveBrush(sim, press_mm=4.0, step_deg=2.0, xy=xy)
     live.handle(LiveEvent("LEFTMOUSE", "PRESS", xy))
     for i in range(50):
         xy = paint.ray_to_paper(st, ray(-20.0 + i), live.sim)
@@ -423,7 +423,7 @@ def test_live_painting_on_the_surface_follows_the_mesh_and_replays(hb):
     assert ang[-1] > 25.0  # the frames went round the cylinder with the mouse
     assert np.abs(np.hypot(frames[:, 2], frames[:, 3]) - R_MM).max() < 0.5
     rec = ext().bridge.recording_from_scene(sc)
-    replay = ext().sim.engine.Simulation(rec, ext().bridge.surface_paper(st, rec)).run()
+    replay = ext().sim.engine.simulation.Simulation(rec, ext().bridge.surface_paper(st, rec)).run()
     np.testing.assert_array_equal(replay.paper.ink, live.sim.paper.ink)
     assert (replay.paper.ink.mean(axis=2) > 0.3).sum() > 100
 

@@ -19,7 +19,7 @@ from pathlib import Path
 
 import numpy as np
 
-from .engine import Simulation
+from .simulation import Simulation
 
 DEFAULT_BUDGET_BYTES = 768 * 2**20
 

@@ -10,13 +10,13 @@ from typing import NamedTuple
 
 import numpy as np
 
-from .brush.inertia import InertiaPredictor
-from .brush.mark import cut_marks, fill_marks
-from .brush.primitive import HairyBrush
-from .core.params import HOVER_MM
-from .core.recording import Recording
-from .paper.paper import DRY_RATE, Paper
-from .surface.paper import CHART_SHAPE
+from ..brush.inertia import InertiaPredictor
+from ..brush.mark import cut_marks, fill_marks
+from ..brush.primitive import HairyBrush
+from ..core.params import HOVER_MM
+from ..core.recording import Recording
+from ..paper.paper import DRY_RATE, Paper
+from ..surface.paper import CHART_SHAPE
 
 # samples whose marks are filled in together by ``run`` (the brush never reads the paper, so its
 # dynamics can run ahead of the paper; each step's deposit still comes in order)

@@ -27,9 +27,9 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .core.params import HOVER_MM
-from .core.recording import Dip, quantise
-from .engine import BATCH_STEPS, Simulation
+from ..core.params import HOVER_MM
+from ..core.recording import Dip, quantise
+from .simulation import BATCH_STEPS, Simulation
 
 WHEEL_STEP_MM = 0.5
 MAX_TILT_DEG = 60.0
