@@ -15,8 +15,9 @@ import numpy as np
 
 from . import bridge
 from .sim.core import placement
+from .sim.engine.checkpoints import cache_key_of, load_checkpoints
 from .sim.engine.simulation import Simulation
-from .sim.engine.timeline import Timeline, cache_key_of, load_checkpoints
+from .sim.engine.timeline import Timeline
 
 MAX_SNAPSHOT_EVERY = 64  # samples
 

@@ -15,8 +15,9 @@ from __future__ import annotations
 import bpy
 
 from .. import bridge, playback
+from ..sim.engine.checkpoints import save_checkpoints
 from ..sim.engine.simulation import Simulation
-from ..sim.engine.timeline import Timeline, save_checkpoints
+from ..sim.engine.timeline import Timeline
 from . import polls
 from .jobs import Job, JobOperator, deadline
 

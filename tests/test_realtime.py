@@ -179,7 +179,7 @@ def test_snapshots_stop_at_the_budget_and_seeks_stay_exact():
 
 
 def test_checkpoints_on_disk_let_a_fresh_process_seek_anywhere_exactly(tmp_path):
-    from sim.engine.timeline import cache_key_of, load_checkpoints, save_checkpoints
+    from sim.engine.checkpoints import cache_key_of, load_checkpoints, save_checkpoints
 
     rec = long_recording()
     n = len(rec.samples)
