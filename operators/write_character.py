@@ -17,8 +17,8 @@ import numpy as np
 from bpy_extras.io_utils import ImportHelper
 
 from .. import bridge, playback
-from ..sim.hanzi import find_char
-from ..sim.imitate import DEFAULT_PASSES, auto_size_mm, calibrate, write_character
+from ..sim.writing.hanzi import find_char
+from ..sim.writing.writer import DEFAULT_PASSES, auto_size_mm, calibrate, write_character
 from . import polls
 from .jobs import JobOperator, WorkerJob
 

@@ -54,7 +54,7 @@ def main(argv=None) -> int:
     args = ap.parse_args(argv)
     ext = install()
     sc, st = scene(ext, 1024)
-    stroke = sys.modules[ADDON + ".sim.strokes"].stroke
+    stroke = sys.modules[ADDON + ".sim.writing.strokes"].stroke
     parts, k = [], 0
     while sum(len(p) for p in parts) < args.samples:
         y = 180.0 - 14.0 * (k % 12)

@@ -128,7 +128,7 @@ def scrub(ext, size_px: int, frames: int, seed: int = 0):
     frame -1, frame +1 and random jumps, timed through the frame-change handler."""
     from importlib import import_module
 
-    stroke = import_module(ADDON + ".sim.strokes").stroke
+    stroke = import_module(ADDON + ".sim.writing.strokes").stroke
     sc, st = scene(ext, size_px)
     rate, fps = 120.0, 24.0
     need = int(frames / fps * rate)

@@ -14,7 +14,7 @@ sys.path.insert(0, str(ROOT))
 from sim.core.recording import Dip, Recording  # noqa: E402
 from sim.engine.simulation import Simulation  # noqa: E402
 from sim.image.png import write_png  # noqa: E402
-from sim.strokes import stroke  # noqa: E402
+from sim.writing.strokes import stroke  # noqa: E402
 
 OUT = ROOT / "docs" / "img"
 
@@ -76,9 +76,9 @@ def imitation(chars="永心法风", n=256):
     """docs/img/imitate.png: for each character, the font (left) and the brush's writing with
     the defaults (right), and below them the two laid over each other (red: ink outside the
     outline, cyan: outline the ink missed)."""
-    from sim.hanzi import find_char
-    from sim.imitate import coverage_mask, font_mask, write_character
-    from sim.outline import iou
+    from sim.writing.hanzi import find_char
+    from sim.writing.outline import iou
+    from sim.writing.writer import coverage_mask, font_mask, write_character
 
     tmpl = Recording(np.zeros((1, 6)))  # the default brush, paper and quality
     cols, response = [], None
@@ -101,9 +101,9 @@ def overlay(chars, n=512, passes=None, quality=None, out=None):
     """Each character as the defaults write it (or with a quality file), the font's outline
     laid over it in red (its boundary), one PNG per character and a contact sheet."""
     from sim.fit import load_quality
-    from sim.hanzi import find_char
-    from sim.imitate import coverage_mask, font_mask, write_character
-    from sim.outline import iou
+    from sim.writing.hanzi import find_char
+    from sim.writing.outline import iou
+    from sim.writing.writer import coverage_mask, font_mask, write_character
 
     q = load_quality(quality) if quality else {}
     tmpl = Recording(np.zeros((1, 6)), quality=q)  # the default brush and paper

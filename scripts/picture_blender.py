@@ -27,10 +27,10 @@ import numpy as np  # noqa: E402
 from build_extension import build  # noqa: E402
 from picture_scan import scan_picture, written_size_mm  # noqa: E402
 
-from sim.hanzi import find_char  # noqa: E402
 from sim.image.morph import resize  # noqa: E402
 from sim.image.png import write_png  # noqa: E402
 from sim.paper.display import linear_to_srgb  # noqa: E402
+from sim.writing.hanzi import find_char  # noqa: E402
 
 
 def install():

@@ -18,8 +18,8 @@ import numpy as np
 ROOT = Path(__file__).resolve().parent.parent
 sys.path.insert(0, str(ROOT))
 
-from sim.outline import rasterise  # noqa: E402
 from sim.texture import _gaussian  # noqa: E402
+from sim.writing.outline import rasterise  # noqa: E402
 
 PAPER_TINT = np.array([0.93, 0.87, 0.74])  # old xuan
 STAIN_TINT = np.array([0.80, 0.66, 0.45])
@@ -59,7 +59,7 @@ def _template(seed: int = 0, paper: str = "raw_xuan"):
 def written(char: dict, n: int = 512, seed: int = 0, paper: str = "raw_xuan"):
     """The brush's own writing of ``char`` (one pass, so it keeps the brush's texture): the
     RGB image and its ink (coverage above half), top row first."""
-    from sim.imitate import coverage_mask, write_character
+    from sim.writing.writer import coverage_mask, write_character
 
     _, _, sim = write_character(char, n, _template(seed, paper), passes=1)
     return sim.image(), coverage_mask(sim)
@@ -68,7 +68,7 @@ def written(char: dict, n: int = 512, seed: int = 0, paper: str = "raw_xuan"):
 def written_size_mm(char: dict, seed: int = 0, paper: str = "raw_xuan") -> float:
     """The size (mm) the scan's piece was written at (the writer's own size for ``char``): a
     scan of a real piece has a size too, which ``--size-mm`` gives the imitation."""
-    from sim.imitate import auto_size_mm, calibrate
+    from sim.writing.writer import auto_size_mm, calibrate
 
     return auto_size_mm(char, calibrate(_template(seed, paper)))
 
@@ -123,8 +123,8 @@ def scan_picture(char: dict, n: int = 512, seed: int = 0):
 
 
 def main(argv=None) -> int:
-    from sim.hanzi import find_char
     from sim.image.png import write_png
+    from sim.writing.hanzi import find_char
 
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("char", help="hanzi-writer JSON file or a character of data/hanzi")

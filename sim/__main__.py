@@ -85,14 +85,14 @@ def _template(args):
 
 
 def _chars(specs, data):
-    from .hanzi import find_char
+    from .writing.hanzi import find_char
 
     return [find_char(spec, data) for spec in specs]
 
 
 def cmd_write(args) -> int:
     from .image.png import write_png
-    from .imitate import write_character
+    from .writing.writer import write_character
 
     _writable(args.output)
     if args.recording:
@@ -131,10 +131,10 @@ def cmd_imitate(args) -> int:
     import json
 
     from .image.png import write_png
-    from .imitate import coverage_mask
-    from .outline import iou
     from .picture import imitate, ink_on
     from .texture import score, texture_stats
+    from .writing.outline import iou
+    from .writing.writer import coverage_mask
 
     for path in (args.output, args.recording, args.char_data):
         if path:
@@ -197,9 +197,9 @@ def cmd_iou(args) -> int:
 
     import numpy as np
 
-    from .imitate import coverage_mask, write_character
-    from .outline import baseline_masks, iou, rasterise
     from .texture import TextureStats, score, texture_stats
+    from .writing.outline import baseline_masks, iou, rasterise
+    from .writing.writer import coverage_mask, write_character
 
     chars = _chars(args.chars, args.data)
     template = _template(args)
@@ -446,7 +446,7 @@ def _add_imitate(sub, size, common):
 
 
 def _parser() -> argparse.ArgumentParser:
-    from .imitate import DEFAULT_PASSES, MAX_PASSES, MIN_SHEET_PX
+    from .writing.writer import DEFAULT_PASSES, MAX_PASSES, MIN_SHEET_PX
 
     seed = _whole(0, MAX_SEED)
     size = _whole(MIN_SHEET_PX, MAX_PAPER_SIDE_PX)

@@ -17,7 +17,7 @@ import numpy as np
 
 from .core.recording import Dip, Recording
 from .engine.simulation import Simulation
-from .strokes import stroke
+from .writing.strokes import stroke
 
 ROOT = Path(__file__).resolve().parent.parent
 PAPER_MM = 200.0
@@ -153,7 +153,7 @@ def _child_peak_rss(recording_path, size_px, out_png):
 
 
 def demo_recording(path: Path):
-    from .hanzi import character_recording
+    from .writing.hanzi import character_recording
 
     character_recording(ROOT / "data" / "hanzi" / "永.json").save(path)
 

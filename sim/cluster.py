@@ -79,7 +79,7 @@ def map_tasks(fn, tasks, workers: int, scheduler: str | None = None, done=None) 
 def write_task(task):
     """One character of a batch (``sim write-set``), written in a worker: (name, RGB image,
     recording dict) - returned, not saved, as a cluster's workers may not share our disk."""
-    from .imitate import write_character
+    from .writing.writer import write_character
 
     char, name, size, template, passes = task
     rec, _resp, sim = write_character(char, size, template, passes=passes)

@@ -439,9 +439,9 @@ def ink_image(mask, paper_rgb, ink_rgb) -> np.ndarray:
 
 def character_samples(chars: list[dict], n_px: int, template: Recording, names=None, passes=1):
     """Training samples from stroke data: the outline is the boundary, the median the path. The
-    recording is what the writer (``sim.imitate``) makes with the template's settings; the
+    recording is what the writer (``sim.writing``) makes with the template's settings; the
     target is the font's character in the template's ink on its paper."""
-    from .imitate import font_mask, write_character
+    from .writing.writer import font_mask, write_character
 
     out = []
     response = None

@@ -8,7 +8,7 @@ from pathlib import Path
 from sim.bench import long_stroke, workload
 from sim.core.recording import Recording, from_dict
 from sim.engine.simulation import Simulation
-from sim.hanzi import character_recording
+from sim.writing.hanzi import character_recording
 
 ROOT = Path(__file__).resolve().parent.parent
 

@@ -341,7 +341,7 @@ def test_fit_checks_the_image_size_before_decoding(tmp_path, capsys):
 
 # ------------------------------------------------------------------ the library's own checks
 def test_graphics_txt_lines_are_read_bounded(tmp_path):
-    from sim.hanzi import MAX_CHAR_BYTES, CharacterError, find_char
+    from sim.writing.hanzi import MAX_CHAR_BYTES, CharacterError, find_char
 
     good = json.dumps({"character": "一", **CHAR}, ensure_ascii=False)
     g = tmp_path / "graphics.txt"
@@ -361,7 +361,7 @@ def test_graphics_txt_lines_are_read_bounded(tmp_path):
 def test_writer_checks_its_arguments_before_calibrating():
     from sim.core.params import ParameterError
     from sim.core.recording import Recording
-    from sim.imitate import write_character
+    from sim.writing.writer import write_character
 
     template = Recording(REC["samples"])
     for kw, says in (

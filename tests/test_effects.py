@@ -6,7 +6,7 @@ import pytest
 
 from sim.core.recording import Dip, Recording
 from sim.engine.simulation import Simulation
-from sim.strokes import stroke
+from sim.writing.strokes import stroke
 
 L = 30.0
 

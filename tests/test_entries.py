@@ -6,9 +6,8 @@ import numpy as np
 import pytest
 
 from sim.core.recording import Recording
-from sim.hanzi import find_char
-from sim.imitate import WRITING, calibrate, coverage_mask, plan, write_character
-from sim.outline import (
+from sim.writing.hanzi import find_char
+from sim.writing.outline import (
     CUT_OVER_DISC,
     EM,
     TOP,
@@ -18,6 +17,7 @@ from sim.outline import (
     resample,
     stroke_polygons,
 )
+from sim.writing.writer import WRITING, calibrate, coverage_mask, plan, write_character
 
 # an L: a vertical bar 60 wide from y = 800 down to y = 200, and a foot 60 high running right
 # to x = 700; its median comes down the bar and turns right along the foot
@@ -130,7 +130,7 @@ def test_a_written_hook_ends_in_a_point_and_its_foot_stays_in_the_outline(respon
     assert min(body) > 8 and hook[0] > 0 and hook[1] < 0.9 * min(body)
     # the foot is no blot beside the outline: the brush fills the outline's foot round the
     # corner (before: 14 % of it missed, the blot sitting above it)
-    from sim.outline import fill, to_image
+    from sim.writing.outline import fill, to_image
 
     own = fill([to_image(p, n) for p in stroke_polygons(ch)[1]], n)
     x, y = img[-3].astype(int)
@@ -153,7 +153,7 @@ def test_the_foot_hangs_towards_the_outlines_farthest_point():
 def test_a_corner_is_pressed_firmly_not_to_the_heel(response):
     # the movement into a corner eases to the press that leaves CORNER_WIDTH of the widest
     # band over its last stretch; elsewhere, and on the stroke's last movement, the deepest
-    from sim.imitate import CORNER_WIDTH, _ceiling, _movement_ends
+    from sim.writing.writer import CORNER_WIDTH, _ceiling, _movement_ends
 
     pl = plan(L_CHAR, 100.0, 0.5)
     a, b = pl.strokes[0]

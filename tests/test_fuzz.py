@@ -31,10 +31,10 @@ from sim.core.params import (
 )
 from sim.core.recording import MAX_SEED, RecordingError, from_dict, loads, quantise
 from sim.fit import SETTING_RANGES, load_quality
-from sim.hanzi import CharacterError, check_char
 from sim.image.png import PNGError, read_png
-from sim.imitate import Response, auto_size_mm, plan
-from sim.outline import baseline_masks, rasterise
+from sim.writing.hanzi import CharacterError, check_char
+from sim.writing.outline import baseline_masks, rasterise
+from sim.writing.writer import Response, auto_size_mm, plan
 
 # FUZZ_EXAMPLES=5000 runs a longer campaign with the same tests
 EXAMPLES = int(os.environ.get("FUZZ_EXAMPLES", "150"))
@@ -197,7 +197,7 @@ def test_characters_load_or_raise_character_error(doc):
 @FUZZ
 @given(text=flipped(json.dumps(CHAR).encode()))
 def test_character_files_load_or_raise_character_error(text):
-    from sim.hanzi import load_char
+    from sim.writing.hanzi import load_char
 
     with tempfile.TemporaryDirectory() as d:
         p = Path(d) / "c.json"

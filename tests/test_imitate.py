@@ -14,8 +14,17 @@ from sim.core.params import QP2, ParameterError
 from sim.core.recording import Recording, load
 from sim.engine.simulation import Simulation
 from sim.fit import FitSettings, TrainingSample, fit, load_quality, render, target_function
-from sim.hanzi import DATA_DIR, find_char
-from sim.imitate import (
+from sim.writing.hanzi import DATA_DIR, find_char
+from sim.writing.outline import (
+    baseline_masks,
+    distance_to_outline,
+    fill,
+    iou,
+    parse_path,
+    rasterise,
+)
+from sim.writing.strokes import stroke
+from sim.writing.writer import (
     ENTRY_TOUCH,
     _entry_ramp,
     calibrate,
@@ -23,8 +32,6 @@ from sim.imitate import (
     plan,
     write_character,
 )
-from sim.outline import baseline_masks, distance_to_outline, fill, iou, parse_path, rasterise
-from sim.strokes import stroke
 
 ROOT = Path(__file__).resolve().parent.parent
 
@@ -272,7 +279,7 @@ def test_cli_iou_and_fit(tmp_path):
 
 
 def test_base_leads_the_ink_along_the_path_not_off_its_tangent():
-    from sim.imitate import _lead_along
+    from sim.writing.writer import _lead_along
 
     t = np.linspace(0, np.pi, 200)
     arc = np.stack([10 * np.cos(t), 10 * np.sin(t)], axis=1)  # a half circle, radius 10

@@ -7,7 +7,7 @@ from conftest import ROOT
 
 def test_sim_does_not_import_blender():
     code = (
-        "import sys, sim, sim.engine, sim.hanzi, sim.__main__; "
+        "import sys, sim, sim.engine, sim.writing.hanzi, sim.__main__; "
         "bad = [m for m in ('bpy', 'mathutils', 'bmesh') if m in sys.modules]; "
         "print(bad); sys.exit(1 if bad else 0)"
     )

@@ -14,11 +14,8 @@ import numpy as np
 import pytest
 
 from sim.core.recording import Recording
-from sim.hanzi import find_char
 from sim.image import morph as M
 from sim.image.png import PNGError, write_png
-from sim.imitate import coverage_mask, write_character
-from sim.outline import fill, iou, rasterise, stroke_polygons, to_image
 from sim.picture import (
     _must_precede,
     _straight_start,
@@ -32,6 +29,9 @@ from sim.picture import (
 from sim.picture_ink import Ink, PictureError, find_ink
 from sim.picture_strokes import Stroke
 from sim.texture import _gaussian, score, texture_stats
+from sim.writing.hanzi import find_char
+from sim.writing.outline import fill, iou, rasterise, stroke_polygons, to_image
+from sim.writing.writer import coverage_mask, write_character
 
 ROOT = Path(__file__).resolve().parent.parent
 UNSEEN = ROOT / "tests" / "data" / "unseen"

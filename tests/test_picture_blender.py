@@ -16,7 +16,7 @@ from conftest import ADDON, ROOT
 bpy = pytest.importorskip("bpy")
 
 from sim.image.png import write_png  # noqa: E402
-from sim.outline import rasterise  # noqa: E402
+from sim.writing.outline import rasterise  # noqa: E402
 
 
 def ext():

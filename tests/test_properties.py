@@ -9,7 +9,7 @@ from sim.brush.primitive import HairyBrush
 from sim.core.params import BrushGeometry, QualityParams
 from sim.core.recording import Dip, Recording
 from sim.engine.simulation import Simulation
-from sim.strokes import stroke
+from sim.writing.strokes import stroke
 
 unit = st.floats(0.0, 1.0)
 quality = st.fixed_dictionaries({k: unit for k in QualityParams.names()})

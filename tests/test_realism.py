@@ -8,8 +8,8 @@ import sim.paper.paper
 from sim.core.recording import Dip, Recording
 from sim.engine.simulation import Simulation
 from sim.paper.paper import GRAIN_DEPTH, paper_grain
-from sim.strokes import stroke
 from sim.texture import perimeter, texture_stats
+from sim.writing.strokes import stroke
 
 
 def test_paper_grain_is_fixed_and_spread():

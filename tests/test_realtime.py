@@ -13,7 +13,7 @@ from sim.engine.simulation import Simulation
 from sim.engine.timeline import Timeline
 from sim.paper.display import PaperView, encode, linear_to_srgb
 from sim.paper.paper import TILE
-from sim.strokes import stroke
+from sim.writing.strokes import stroke
 
 RATE = 120.0
 

@@ -521,7 +521,7 @@ def test_write_character_in_a_worker_stops_cleanly_and_finishes(hb):
 
     st = setup_scene(bpy, ppm=1.0)
     sc = bpy.context.scene
-    char = ext().sim.hanzi.find_char(str(ROOT / "data" / "hanzi" / "十.json"))
+    char = ext().sim.writing.hanzi.find_char(str(ROOT / "data" / "hanzi" / "十.json"))
     write = ext().operators.write_character
     before = (st.paper_width_mm, sc.frame_end, st.brush_object.animation_data)
     job = write.WriteJob(sc, char, 100.0, 1)
@@ -544,7 +544,7 @@ def test_fit_in_a_worker_reports_progress_and_sets_the_quality(hb):
     st = setup_scene(bpy, ppm=1.0)
     fit_mod = ext().operators.fit_parameters
     template = ext().bridge.settings_recording(bpy.context.scene)
-    char = ext().sim.hanzi.find_char("一")
+    char = ext().sim.writing.hanzi.find_char("一")
     settings = ext().sim.fit.FitSettings(
         divisions=1, rounds=1, iterations=1, max_grid=2, workers=1, seed=0
     )

@@ -563,7 +563,7 @@ def test_imitate_picture_on_a_cylinder_is_laid_on_it_too(hb):
 
     from conftest import ROOT
 
-    from sim.outline import rasterise
+    from sim.writing.outline import rasterise
 
     cyl = cylinder()
     st = surface_scene(cyl, ppm=2.0)
@@ -617,7 +617,7 @@ def test_write_character_on_a_surface_reports_progress_forwards_only(hb):
     b.location = (0.0, -(R_MM + HAIR + 5.0) / 1000, 0.0)
     b.rotation_euler = (math.pi / 2, 0.0, 0.0)
     mod = ext().operators.write_character
-    char = ext().sim.hanzi.find_char(str(ROOT / "data" / "hanzi" / "十.json"))
+    char = ext().sim.writing.hanzi.find_char(str(ROOT / "data" / "hanzi" / "十.json"))
     job = mod.WriteJob(bpy.context.scene, char, 30.0, 1)
     seen = []
     job._progress = lambda f, *details: seen.append((float(f), details))

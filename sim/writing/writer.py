@@ -19,9 +19,9 @@ from typing import NamedTuple
 
 import numpy as np
 
-from .core.params import HOVER_MM, MAX_PAPER_SIDE_PX, ParameterError, number_within, short_repr
-from .core.recording import PAPER_MM_RANGE, PX_PER_MM_RANGE, Dip, Recording, quantise
-from .engine.simulation import Simulation
+from ..core.params import HOVER_MM, MAX_PAPER_SIDE_PX, ParameterError, number_within, short_repr
+from ..core.recording import PAPER_MM_RANGE, PX_PER_MM_RANGE, Dip, Recording, quantise
+from ..engine.simulation import Simulation
 from .hanzi import check_char
 from .outline import EM, TOP, median_pieces, median_radii, rasterise
 
@@ -95,7 +95,7 @@ def _cache_key(template: Recording, *args) -> str:
 
     key = repr((template.resolve(), template.sample_rate_hz, template.seed, args))
     h = hashlib.sha256(key.encode())
-    for f in sorted(Path(__file__).parent.glob("*.py")):
+    for f in sorted(Path(__file__).resolve().parents[1].rglob("*.py")):  # all of sim
         h.update(f.read_bytes())
     return h.hexdigest()[:32]
 

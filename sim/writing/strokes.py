@@ -6,7 +6,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from .core.params import HOVER_MM
+from ..core.params import HOVER_MM
 
 
 def stroke(

@@ -10,8 +10,8 @@ from pathlib import Path
 
 import numpy as np
 
-from .core.jsonio import decode_text, parse_json, read_json
-from .core.params import HOVER_MM, number_within
+from ..core.jsonio import decode_text, parse_json, read_json
+from ..core.params import HOVER_MM, number_within
 from .outline import EM, TOP, parse_path
 from .strokes import stroke, travel
 
@@ -112,7 +112,7 @@ def load_char(path) -> dict:
     return check_char(read_json(p, "character data", CharacterError, MAX_CHAR_BYTES), str(p))
 
 
-DATA_DIR = Path(__file__).resolve().parent.parent / "data" / "hanzi"
+DATA_DIR = Path(__file__).resolve().parents[2] / "data" / "hanzi"
 
 
 def find_char(spec: str, data=None) -> dict:
@@ -195,7 +195,7 @@ def simple_samples(
 
 def character_recording(path, size_mm: float = 160.0, px_per_mm: float = 6.0):
     """The demo's recording: one character written by the soft goat-hair brush on raw xuan."""
-    from .core.recording import Dip, Recording
+    from ..core.recording import Dip, Recording
 
     samples = simple_samples(load_char(path), size_mm, hair_length_mm=34.0, press_mm=14.0)
     return Recording(
