@@ -18,7 +18,8 @@ from bpy_extras.io_utils import ImportHelper
 
 from .. import bridge, playback
 from ..sim.writing.hanzi import find_char
-from ..sim.writing.writer import DEFAULT_PASSES, auto_size_mm, calibrate, write_character
+from ..sim.writing.response import calibrate
+from ..sim.writing.writer import DEFAULT_PASSES, auto_size_mm, write_character
 from . import polls
 from .jobs import JobOperator, WorkerJob
 

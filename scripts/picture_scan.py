@@ -68,7 +68,8 @@ def written(char: dict, n: int = 512, seed: int = 0, paper: str = "raw_xuan"):
 def written_size_mm(char: dict, seed: int = 0, paper: str = "raw_xuan") -> float:
     """The size (mm) the scan's piece was written at (the writer's own size for ``char``): a
     scan of a real piece has a size too, which ``--size-mm`` gives the imitation."""
-    from sim.writing.writer import auto_size_mm, calibrate
+    from sim.writing.response import calibrate
+    from sim.writing.writer import auto_size_mm
 
     return auto_size_mm(char, calibrate(_template(seed, paper)))
 

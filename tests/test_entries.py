@@ -17,7 +17,9 @@ from sim.writing.outline import (
     resample,
     stroke_polygons,
 )
-from sim.writing.writer import WRITING, calibrate, coverage_mask, plan, write_character
+from sim.writing.planner import WRITING, plan
+from sim.writing.response import calibrate
+from sim.writing.writer import coverage_mask, write_character
 
 # an L: a vertical bar 60 wide from y = 800 down to y = 200, and a foot 60 high running right
 # to x = 700; its median comes down the bar and turns right along the foot
@@ -153,7 +155,7 @@ def test_the_foot_hangs_towards_the_outlines_farthest_point():
 def test_a_corner_is_pressed_firmly_not_to_the_heel(response):
     # the movement into a corner eases to the press that leaves CORNER_WIDTH of the widest
     # band over its last stretch; elsewhere, and on the stroke's last movement, the deepest
-    from sim.writing.writer import CORNER_WIDTH, _ceiling, _movement_ends
+    from sim.writing.practice import CORNER_WIDTH, _ceiling, _movement_ends
 
     pl = plan(L_CHAR, 100.0, 0.5)
     a, b = pl.strokes[0]

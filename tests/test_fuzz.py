@@ -34,7 +34,9 @@ from sim.fit import SETTING_RANGES, load_quality
 from sim.image.png import PNGError, read_png
 from sim.writing.hanzi import CharacterError, check_char
 from sim.writing.outline import baseline_masks, rasterise
-from sim.writing.writer import Response, auto_size_mm, plan
+from sim.writing.planner import plan
+from sim.writing.response import Response
+from sim.writing.writer import auto_size_mm
 
 # FUZZ_EXAMPLES=5000 runs a longer campaign with the same tests
 EXAMPLES = int(os.environ.get("FUZZ_EXAMPLES", "150"))

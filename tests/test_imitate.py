@@ -23,15 +23,10 @@ from sim.writing.outline import (
     parse_path,
     rasterise,
 )
+from sim.writing.planner import ENTRY_TOUCH, _entry_ramp, plan
+from sim.writing.response import calibrate
 from sim.writing.strokes import stroke
-from sim.writing.writer import (
-    ENTRY_TOUCH,
-    _entry_ramp,
-    calibrate,
-    coverage_mask,
-    plan,
-    write_character,
-)
+from sim.writing.writer import coverage_mask, write_character
 
 ROOT = Path(__file__).resolve().parent.parent
 
@@ -279,7 +274,7 @@ def test_cli_iou_and_fit(tmp_path):
 
 
 def test_base_leads_the_ink_along_the_path_not_off_its_tangent():
-    from sim.writing.writer import _lead_along
+    from sim.writing.planner import _lead_along
 
     t = np.linspace(0, np.pi, 200)
     arc = np.stack([10 * np.cos(t), 10 * np.sin(t)], axis=1)  # a half circle, radius 10

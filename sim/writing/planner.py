@@ -1,0 +1,253 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
+"""The plan of the writing: each median resampled at the brush's pace, one movement per
+piece between sharp corners, entries and lifts, travel in the air and dips (``plan``); and
+the samples of one stroke from its plan, press and sideways placement (``_fill``: the
+calligrapher's entry, the base leading the ink along the path, the lift-off)."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import TYPE_CHECKING
+
+import numpy as np
+
+from ..core.recording import quantise
+from .outline import EM, TOP, median_pieces
+
+if TYPE_CHECKING:  # the response is handed in (its module builds on this one)
+    from .response import Response
+
+
+ENTRY_SAMPLES = 8
+EXIT_SAMPLES = 8
+# what the brush does at a sample of a plan (Plan.phase)
+IN_THE_AIR, ENTERING, WRITING, LIFTING = 0, 1, 2, 3
+
+
+def _smooth(v, k: int) -> np.ndarray:
+    if k <= 1 or len(v) < 3:
+        return np.asarray(v, dtype=float)
+    w = np.ones(k) / k
+    pad = np.pad(np.asarray(v, dtype=float), (k // 2, k - 1 - k // 2), mode="edge")
+    return np.convolve(pad, w, mode="valid")
+
+
+@dataclass
+class Plan:
+    """Per sample of a character's writing: where the ink should land (paper mm), how wide the
+    stroke is there, the way of travel, and what the brush does: IN_THE_AIR, ENTERING (coming
+    down onto a stroke), WRITING, LIFTING (off the stroke's end). ``dips`` are the samples
+    before which the brush dips again."""
+
+    target: np.ndarray  # (N, 2)
+    width: np.ndarray  # (N,)
+    tangent: np.ndarray  # (N, 2)
+    phase: np.ndarray  # (N,) int
+    dips: list
+    strokes: list  # (first, end) sample of every stroke: entry, writing, lift-off
+
+
+def _timed(dense, width, step_mm: float, slow_corners: float):
+    """Sample a densely resampled median (mm) at the brush's pace: step_mm per sample on the
+    straight, slower where the stroke turns (down to (1 - slow_corners) of the pace at a right
+    angle), as a calligrapher slows into a turn so that the hair can follow."""
+    seg = np.linalg.norm(np.diff(dense, axis=0), axis=1)
+    s = np.concatenate([[0.0], np.cumsum(seg)])
+    if s[-1] <= 0 or len(dense) < 3:
+        return dense[:1], width[:1]
+    heading = np.unwrap(np.arctan2(*np.gradient(dense, axis=0).T[::-1]))
+    win = max(int(round(1.5 / max(s[1] - s[0], 1e-9))), 1)  # +-1.5 mm
+    pad = np.pad(heading, win, mode="edge")
+    turn = np.abs(pad[2 * win :] - pad[: -2 * win])
+    pace = np.clip(1.0 - slow_corners * turn / (np.pi / 2), 1.0 - slow_corners, 1.0)
+    t = np.concatenate([[0.0], np.cumsum(seg / (0.5 * (pace[1:] + pace[:-1])))])
+    n = max(int(np.ceil(t[-1] / step_mm)), 1) + 1
+    ts = np.linspace(0.0, t[-1], n)
+    si = np.interp(ts, t, s)
+    pts = np.stack([np.interp(si, s, dense[:, 0]), np.interp(si, s, dense[:, 1])], axis=1)
+    return pts, np.interp(si, s, width)
+
+
+def _air(tg, wd, tn, ph, a, b, tang, step_mm) -> None:
+    """Travel in the air from ``a`` to ``b`` (mm)."""
+    k = max(int(np.linalg.norm(b - a) / (2 * step_mm)), 4)
+    t = np.linspace(0.0, 1.0, k)[:, None]
+    tg.append(a * (1 - t) + b * t)
+    wd.append(np.zeros(k))
+    tn.append(np.tile(tang, (k, 1)))
+    ph.append(np.full(k, IN_THE_AIR))
+
+
+def plan(
+    char: dict,
+    size_mm: float,
+    step_mm: float,
+    dip_every_mm: float | None = None,
+    origin=(0.0, 0.0),
+    slow_corners: float = 0.7,
+) -> Plan:
+    """The path of the writing: each median resampled every step_mm with the outline's width,
+    one movement per piece of the median between its sharp corners (``median_pieces``: a
+    hook's foot, a 折), each with an entry and a lift, travel in the air between movements.
+    Each movement is smoothed on its own, so that a corner stays a corner."""
+    scale = size_mm / EM
+    dip_every = 0.0 if dip_every_mm is None else dip_every_mm
+    tg, wd, tn, ph, dips, strokes = [], [], [], [], [], []
+    since_dip, prev = np.inf, None
+    fine = max(step_mm / scale / 4.0, 0.25)
+    k = max(int(round(3.0 / fine / scale)), 1)  # +-1.5 mm: the cut's jitter smoothed
+    for pieces in median_pieces(char, step=fine):
+        moves = []
+        for pts_d, width_d in pieces:
+            dense = np.stack(
+                [origin[0] + pts_d[:, 0] * scale, origin[1] + (pts_d[:, 1] - (TOP - EM)) * scale],
+                axis=1,
+            )
+            dense = np.stack([_smooth(dense[:, 0], k), _smooth(dense[:, 1], k)], axis=1)
+            pts, width = _timed(dense, _smooth(width_d * scale, k), step_mm, slow_corners)
+            tang = np.gradient(pts, axis=0) if len(pts) > 1 else np.array([[1.0, 0.0]])
+            tang = np.stack([_smooth(tang[:, 0], 5), _smooth(tang[:, 1], 5)], axis=1)
+            tang /= np.maximum(np.linalg.norm(tang, axis=1, keepdims=True), 1e-9)
+            moves.append((pts, _smooth(width, 3), tang))
+        if prev is not None:  # travel in the air to the next stroke
+            _air(tg, wd, tn, ph, prev, moves[0][0][0], moves[0][2][0], step_mm)
+        n = sum(len(a) for a in tg)
+        stroke_len = step_mm * sum(len(m[0]) - 1 for m in moves)
+        if since_dip + stroke_len > dip_every:
+            dips.append(n)
+            since_dip = 0.0
+        since_dip += stroke_len
+        for j, (p, w, t) in enumerate(moves):
+            if j:  # a sharp turn: lift, turn the tip in the air, come down on the corner
+                _air(tg, wd, tn, ph, moves[j - 1][0][-1], p[0], t[0], step_mm)
+            tg += [np.tile(p[0], (ENTRY_SAMPLES, 1)), p, np.tile(p[-1], (EXIT_SAMPLES, 1))]
+            wd += [np.full(ENTRY_SAMPLES, w[0]), w, np.full(EXIT_SAMPLES, w[-1])]
+            tn += [np.tile(t[0], (ENTRY_SAMPLES, 1)), t, np.tile(t[-1], (EXIT_SAMPLES, 1))]
+            ph += [
+                np.full(ENTRY_SAMPLES, ENTERING),
+                np.full(len(p), WRITING),
+                np.full(EXIT_SAMPLES, LIFTING),
+            ]
+        strokes.append((n, sum(len(a) for a in tg)))
+        prev = moves[-1][0][-1]
+    return Plan(
+        np.concatenate(tg),
+        np.concatenate(wd),
+        np.concatenate(tn),
+        np.concatenate(ph),
+        dips,
+        strokes,
+    )
+
+
+def _lead_along(path, lag, stop: bool = False):
+    """Where the brush's base must be so that the ink lands on ``path``: the hair trails the
+    base along the way it came, so the base runs ahead of the mark by the lag *along the path*
+    (round a curve, not off its tangent). The lead builds up over the first stretch of the
+    stroke, as the hair bends over behind the base, and beyond the path's end the base goes on
+    along the last direction."""
+    seg = np.linalg.norm(np.diff(path, axis=0), axis=1)
+    s = np.concatenate([[0.0], np.cumsum(seg)])
+    lead = np.asarray(lag, dtype=float) * np.clip(s / np.maximum(lag, 1e-6), 0.0, 1.0)
+    q = s + lead
+    if stop:  # into a corner: the base stops on the corner, the hair catches up beneath it
+        q = np.minimum(q, s[-1])
+    out = np.stack([np.interp(q, s, path[:, 0]), np.interp(q, s, path[:, 1])], axis=1)
+    if len(path) > 1 and s[-1] > 0:
+        end_dir = path[-1] - path[-2]
+        end_dir = end_dir / max(float(np.linalg.norm(end_dir)), 1e-9)
+        past = np.maximum(q - s[-1], 0.0)
+        out += past[:, None] * end_dir[None, :]
+    return out
+
+
+ENTRY_TOUCH = 0.15  # share of the press the tip lands with; the belly presses as it goes
+TURN_EASE = 0.8  # press taken off at a reversal (a hook), less at a milder turn
+
+
+def _entry_ramp(path, width) -> np.ndarray:
+    """The press as a share of the planned press along the start of a stroke: the tip lands
+    (``ENTRY_TOUCH``) while the brush already moves along the stroke, and the belly presses
+    over the first stroke width of the way (a smoothstep), as a calligrapher enters - not a
+    stationary press, which splays the hair into a round blob."""
+    seg = np.linalg.norm(np.diff(path, axis=0), axis=1)
+    s = np.concatenate([[0.0], np.cumsum(seg)])
+    ramp = float(np.clip(0.5 * np.max(width[: max(len(width) // 3, 1)]), 0.5, 0.25 * s[-1]))
+    t = np.clip(s / max(ramp, 1e-6), 0.0, 1.0)
+    entry = ENTRY_TOUCH + (1.0 - ENTRY_TOUCH) * t * t * (3.0 - 2.0 * t)
+    return entry * _turn_ease(path, s)
+
+
+def _turn_ease(path, s) -> np.ndarray:
+    """Less press where the stroke turns back on itself (a hook, the sharp turn of a 折): a
+    calligrapher eases the belly off and turns on the tip there; pressed through a sharp turn
+    the hair sweeps round and leaves a round blot. 1 on the straight, down to 1 - TURN_EASE at a
+    reversal, over +-1.5 mm."""
+    if len(path) < 3 or s[-1] <= 0:
+        return np.ones(len(path))
+    d = np.gradient(path, axis=0)
+    heading = np.unwrap(np.arctan2(d[:, 1], d[:, 0]))
+    win = max(int(round(1.5 / max(s[-1] / (len(s) - 1), 1e-9))), 1)
+    pad = np.pad(heading, win, mode="edge")
+    turn = np.abs(pad[2 * win :] - pad[: -2 * win])
+    return 1.0 - TURN_EASE * np.clip((turn - 0.9) / 1.4, 0.0, 1.0)
+
+
+def _enter_and_leave(samples, pl, body, hover, hair, step_mm, at_turn=(False, False)) -> None:
+    """The brush comes down moving along the movement's first direction, the tip touching where
+    the body begins, and lifts off moving on along the last direction (a flick, so that hooks
+    and left-falling strokes end in a point, not a blot from a lift on the spot). ``at_turn``:
+    the movement begins after / ends at a sharp corner (``median_pieces``), where the brush lifts
+    and lands on the corner itself (a flick there overshoots the corner)."""
+    a = body[0] - 1
+    while a >= 0 and pl.phase[a] == ENTERING:
+        a -= 1
+    entry = np.arange(a + 1, body[0])
+    t0 = pl.tangent[body[0]]
+    f = np.arange(1, len(entry) + 1) / max(len(entry), 1)
+    back = (len(entry) + 1 - np.arange(1, len(entry) + 1)) * 0.5 * step_mm
+    if at_turn[0]:  # after a sharp turn the tip comes down on the corner, not before it
+        back = back * 0.0
+    samples[entry, :2] = samples[body[0], :2] - back[:, None] * t0
+    z_touch = max(samples[body[0], 2], hair - 0.2)  # the tip reaches the paper at the start
+    samples[entry, 2] = hover + (z_touch - hover) * f
+    b = body[-1] + 1
+    while b < len(pl.phase) and pl.phase[b] == LIFTING:
+        b += 1
+    lift = np.arange(body[-1] + 1, b)
+    lift = np.flatnonzero(pl.phase[a:b] == LIFTING) + a
+    t1 = pl.tangent[body[-1]]
+    f = np.arange(1, len(lift) + 1) / max(len(lift), 1)
+    flick = 0.0 if at_turn[1] else 0.5 * step_mm  # into a sharp turn: lift on the corner
+    samples[lift, :2] = samples[body[-1], :2] + (f * len(lift) * flick)[:, None] * t1
+    samples[lift, 2] = samples[body[-1], 2] + (hover - samples[body[-1], 2]) * np.sqrt(f)
+
+
+def _movements(items, body=None) -> list[np.ndarray]:
+    """``items`` cut where the body samples (``body``, or the items themselves) jump: one piece
+    per movement of the stroke (the brush lifts between them)."""
+    body = items if body is None else body
+    return np.split(items, np.flatnonzero(np.diff(body) > 1) + 1)
+
+
+def _fill(samples, pl: Plan, response: Response, span, press, side, brush) -> np.ndarray:
+    """Samples a..b (``span``) of one stroke of plan ``pl``: for each of its movements, come
+    down, write with the given press and sideways placement per body sample (the press eased at
+    the entry and at sharp turns, the base leading the ink by the response's lag), lift off
+    (``_enter_and_leave``). ``brush`` is (hover, hair length, step) in mm."""
+    a, b = span
+    hover, hair, step_mm = brush
+    body = np.flatnonzero(pl.phase[a:b] == WRITING) + a
+    normal = np.stack([-pl.tangent[:, 1], pl.tangent[:, 0]], axis=1)
+    j0 = 0
+    runs = _movements(body)
+    for r, run in enumerate(runs):
+        j1 = j0 + len(run)
+        p = press[j0:j1] * _entry_ramp(pl.target[run], pl.width[run])
+        samples[run, :2] = _lead_along(pl.target[run], response.lag_for(p), r < len(runs) - 1)
+        samples[run, :2] += side[j0:j1, None] * normal[run]
+        samples[run, 2] = hair - p
+        _enter_and_leave(samples, pl, run, hover, hair, step_mm, (r > 0, r < len(runs) - 1))
+        j0 = j1
+    samples[a:b] = quantise(samples[a:b])  # as the saved recording will hold them
+    return body

@@ -1,0 +1,223 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
+"""Practice passes (Sec. 7.2, as a student of MiaoHong): a stroke written, the band it left
+read across its median (``measure_band``) against the outline's width, the press and the
+sideways placement corrected, the stroke taken back and written again; the pass that best fills
+the stroke's own outline stays."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import NamedTuple
+
+import numpy as np
+
+from ..engine.simulation import Simulation
+from .planner import LIFTING, WRITING, Plan, _movements, _smooth
+from .response import Response, _coverage
+
+
+class Pass(NamedTuple):
+    """One practice pass of a stroke: how far its ink is from the outline (lower is better),
+    the press and sideways placement it was written with, and its number."""
+
+    error: float
+    press: np.ndarray
+    side: np.ndarray
+    number: int
+
+
+def measure_band(sim: Simulation, points, tangents, reach_mm: float, before=None, laid=None):
+    """Across the way of travel at each of ``points`` (mm): the width (mm) of the ink band
+    (coverage above half) nearest the point, the offset (mm, along the left normal) of its
+    centre from the point, and whether the reading is the brush's own there: ink that was on
+    the paper before the brush came to the point - ``before(index, rows, cols)`` says where,
+    per point - makes up less than a third of the band. The band is read on ``laid(index, rows,
+    cols)`` when given (the ink once the point's movement had lifted off), else on the paper."""
+    ppm = sim.paper.ppm
+    normal = np.stack([-tangents[:, 1], tangents[:, 0]], axis=1)
+    k = max(int(reach_mm * ppm), 1)
+    off = np.arange(-k, k + 1) / ppm
+    pts = points[:, None, :] + off[None, :, None] * normal[:, None, :]
+    cols = np.clip((pts[..., 0] * ppm).astype(int), 0, sim.paper.W - 1)
+    rows = np.clip((pts[..., 1] * ppm).astype(int), 0, sim.paper.H - 1)
+    idx = np.arange(len(points))
+    cov = laid(idx, rows, cols) if laid is not None else _coverage(sim, rows, cols)
+    old = before(idx, rows, cols) if before is not None else np.zeros_like(cov)
+    width = np.zeros(len(points))
+    centre = np.zeros(len(points))
+    valid = np.zeros(len(points), dtype=bool)
+    for j in range(len(points)):
+        c = cov[j]
+        if not c.any():
+            valid[j] = True  # no ink near: a real reading of width zero
+            continue
+        edges = np.diff(np.concatenate([[0], c.astype(np.int8), [0]]))
+        starts, ends = np.flatnonzero(edges == 1), np.flatnonzero(edges == -1)
+        mid = (starts + ends - 1) / 2.0
+        dist = np.where((starts <= k) & (k < ends), 0.0, np.abs(mid - k))
+        r = int(np.argmin(dist))
+        a, b = starts[r], ends[r]
+        width[j] = (b - a) / ppm
+        centre[j] = (mid[r] - k) / ppm
+        valid[j] = np.count_nonzero(old[j, a:b]) < (b - a) / 3.0
+    return width, centre, valid
+
+
+@dataclass
+class _Window:
+    rows: np.ndarray  # (h, w) paper rows (bottom first) of the window
+    cols: np.ndarray
+    inside: np.ndarray  # (h, w) the stroke's outline
+
+
+def _stroke_masks(char: dict, H: int, W: int) -> list[_Window]:
+    """Every stroke's filled outline on the paper grid (the sheet is the em box), as a window
+    around it."""
+    from .outline import fill, stroke_polygons, to_image
+
+    out = []
+    for polys in stroke_polygons(char):
+        img = [to_image(p, H) for p in polys]  # top-first pixel coordinates, H x H em box
+        m = fill(img, H)[::-1]  # bottom row first, as the paper
+        ys, xs = np.nonzero(m)
+        if ys.size == 0:
+            ys, xs = np.array([0]), np.array([0])
+        r0, r1 = max(ys.min() - 2, 0), min(ys.max() + 3, H)
+        c0, c1 = max(xs.min() - 2, 0), min(xs.max() + 3, W)
+        rr, cc = np.mgrid[r0:r1, c0:c1]
+        out.append(_Window(rr, cc, m[r0:r1, c0:c1]))
+    return out
+
+
+RECORD_EVERY = 4  # samples between the coverage records of a practice pass
+PRACTICE_GAIN = 0.45  # share of a pass's width error corrected for the next (measured best)
+PRACTICE_SIDE_GAIN = 0.8  # share of the band's sideways offset corrected (issue 16: measured)
+
+
+def _movement_ends(phase, body) -> np.ndarray:
+    """For each body sample, the first sample after its movement has lifted off."""
+    runs = _movements(body)
+    ends = []
+    for run in runs:
+        e = run[-1] + 1
+        while e < len(phase) and phase[e] == LIFTING:
+            e += 1
+        ends.append(np.full(len(run), e))
+    return np.concatenate(ends)
+
+
+def _practise(sim, a, b, body, want, step_mm, pl, reach):
+    """Write samples a..b, keeping a record of the ink coverage around the stroke every few
+    samples and as each movement lifts off; returns ``before(index, rows, cols)``, the coverage
+    each body point had just before the brush's mark reached it, and ``laid(index, rows,
+    cols)``, the coverage once the point's movement had lifted off. So a stroke crossing its
+    own ink, as at a hook, reads only the band it is laying down, and the band at a 折's
+    shoulder or a hook's foot is read before the next movement lays its ink across the cut."""
+    ppm = sim.paper.ppm
+    lo = pl.target[a:b].min(axis=0) - reach - 2.0
+    hi = pl.target[a:b].max(axis=0) + reach + 2.0
+    c0, r0 = max(int(lo[0] * ppm), 0), max(int(lo[1] * ppm), 0)
+    c1, r1 = min(int(hi[0] * ppm) + 1, sim.paper.W), min(int(hi[1] * ppm) + 1, sim.paper.H)
+    rr, cc = np.mgrid[r0:r1, c0:c1]
+    times, records = [], []
+    for i in range(a, b + 1):
+        lifted = i > a and pl.phase[i - 1] == LIFTING and (i == b or pl.phase[i] != LIFTING)
+        if (i - a) % RECORD_EVERY == 0 or lifted or i == b:
+            times.append(i)
+            records.append(_coverage(sim, rr, cc))
+        if i < b:
+            sim.step()
+    times, records = np.array(times), np.stack(records)
+    # the brush's mark reaches a point about half its width (plus a millimetre) ahead of time
+    ahead = np.ceil((want / 2.0 + 1.0) / step_mm).astype(int) + 1
+    which = np.clip(np.searchsorted(times, body - ahead, side="right") - 1, 0, len(times) - 1)
+    done = np.searchsorted(times, np.minimum(_movement_ends(pl.phase, body), b))
+
+    def at(record_of):
+        def cover(idx, rows, cols):
+            inside = (rows >= r0) & (rows < r1) & (cols >= c0) & (cols < c1)
+            rr_ = np.clip(rows - r0, 0, r1 - r0 - 1)
+            cc_ = np.clip(cols - c0, 0, c1 - c0 - 1)
+            return inside & records[record_of[idx][:, None], rr_, cc_]
+
+        return cover
+
+    return at(which), at(done)
+
+
+def _correct(response, press, side, want, got, centre, valid, ceiling):
+    """The next pass's press and sideways placement: where the reading is this stroke's own,
+    a share of the width error through the response's slope, and of the band's offset; smoothed
+    along the stroke."""
+    w_env = np.maximum.accumulate(response.width_mm)
+    slope_tab = np.gradient(w_env, response.press_mm)
+    p_max = float(response.press_mm[-1])
+    mean_slope = 0.5 * (w_env[-1] - w_env[0]) / max(p_max - float(response.press_mm[0]), 1e-6)
+    slope = np.maximum(np.interp(press, response.press_mm, slope_tab), mean_slope)
+    dp = np.where(valid, PRACTICE_GAIN * (want - got) / slope, 0.0)
+    dp = np.where(valid & (got == 0) & (want > 0), 0.5, dp)
+    press = np.clip(press + _smooth(dp, 5), 0.0, ceiling)
+    side = side - _smooth(np.where(valid & (got > 0), PRACTICE_SIDE_GAIN * centre, 0.0), 5)
+    return press, side
+
+
+CORNER_WIDTH = 0.9  # share of the widest band the brush is pressed for into a corner (measured:
+# 0.8 is cleaner still but costs texture, 0.748 -> 0.73 on the bundled characters)
+
+
+def _ceiling(pl: Plan, body, response: Response) -> np.ndarray:
+    """The deepest press per body sample: the deepest measured, but into a sharp corner (the
+    last stretch, as long as the movement is wide, of a movement ending at a 折's shoulder or a
+    hook's foot) easing to the press that leaves ``CORNER_WIDTH`` of the widest band. The brush
+    slows there and lifts on the spot, and a belly pressed to the calibration's limit splays
+    and sweeps a grey, fibrous puff round the corner; a calligrapher presses into the turn
+    firmly, not to the heel of the hair."""
+    p_max = float(response.press_mm[-1])
+    at_corner = float(response.press_for(CORNER_WIDTH * response.max_width_mm))
+    top = np.full(len(body), p_max)
+    runs = _movements(np.arange(len(body)), body)
+    for run in runs[:-1]:  # every movement but the stroke's last ends at a corner
+        path = pl.target[body[run]]
+        seg = np.linalg.norm(np.diff(path, axis=0), axis=1)
+        to_end = np.concatenate([np.cumsum(seg[::-1])[::-1], [0.0]])
+        t = np.clip(1.0 - to_end / max(float(pl.width[body[run]].max()), 1e-6), 0.0, 1.0)
+        top[run] = p_max - (p_max - at_corner) * t * t * (3.0 - 2.0 * t)
+    return top
+
+
+def _practise_stroke(sim, a, b, passes, fill, own, ctx) -> None:
+    """Write samples a..b (one stroke) with ``fill(a, b, press, side)``; with passes > 1,
+    practise it: write, read the band, correct, take it back (a snapshot), write again; the
+    pass that best fills the stroke's own outline ``own`` stays."""
+    pl, response, step_mm, reach = ctx
+    body = np.flatnonzero(pl.phase[a:b] == WRITING) + a
+    want = pl.width[body]
+    ceiling = _ceiling(pl, body, response)
+    press = np.minimum(response.press_for(want), ceiling)
+    side = np.zeros(len(body))
+    if passes == 1:
+        fill(a, b, press, side)
+        sim.run(until=b)
+        return
+    snap = sim.snapshot()
+    inked_before = _coverage(sim, own.rows, own.cols)
+    best = None
+    for k in range(passes):
+        if k:
+            sim.restore(snap)
+        fill(a, b, press, side)
+        seen = _practise(sim, a, b, body, want, step_mm, pl, reach)
+        got, centre, valid = measure_band(sim, pl.target[body], pl.tangent[body], reach, *seen)
+        # the pass that best fills the stroke's own outline stays (new ink against it)
+        new = _coverage(sim, own.rows, own.cols) & ~inked_before
+        inter = np.count_nonzero(new & own.inside)
+        err = -inter / max(np.count_nonzero(new | own.inside), 1)
+        if best is None or err < best.error:
+            best = Pass(err, press.copy(), side.copy(), k)
+        if k == passes - 1:
+            break
+        press, side = _correct(response, press, side, want, got, centre, valid, ceiling)
+    if best.number != k:  # the last pass was not the best: write the best again
+        sim.restore(snap)
+        fill(a, b, best.press, best.side)
+        sim.run(until=b)
