@@ -13,8 +13,8 @@ from bpy_extras.io_utils import ImportHelper
 
 from .. import bridge
 from ..sim.image.png import SIGNATURE
-from ..sim.picture import MAX_DETAIL, PASSES, read_picture
-from ..sim.picture_ink import MAX_PICTURE_PIXELS, PictureError, load_picture
+from ..sim.picture.imitate import MAX_DETAIL, PASSES, read_picture
+from ..sim.picture.ink import MAX_PICTURE_PIXELS, PictureError, load_picture
 from . import polls
 from .jobs import JobOperator, WorkerJob
 from .write_character import WriteJob

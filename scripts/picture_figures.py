@@ -36,7 +36,7 @@ from scripts.picture_scan import (  # noqa: E402
 from sim.engine.simulation import Simulation  # noqa: E402
 from sim.image.morph import resize  # noqa: E402
 from sim.image.png import write_png  # noqa: E402
-from sim.picture import imitate  # noqa: E402
+from sim.picture.imitate import imitate  # noqa: E402
 from sim.writing.hanzi import find_char  # noqa: E402
 
 OUT = ROOT / "docs" / "img"

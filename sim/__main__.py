@@ -131,7 +131,7 @@ def cmd_imitate(args) -> int:
     import json
 
     from .image.png import write_png
-    from .picture import imitate, ink_on
+    from .picture.imitate import imitate, ink_on
     from .texture import score, texture_stats
     from .writing.outline import iou
     from .writing.writer import coverage_mask
@@ -421,7 +421,7 @@ def _add_fit(sub, size, common):
 
 def _add_imitate(sub, size, common):
     """The ``imitate`` command's options."""
-    from .picture import MAX_DETAIL, PASSES
+    from .picture.imitate import MAX_DETAIL, PASSES
 
     im = sub.add_parser("imitate", help="read a picture of writing and write it with the brush")
     im.add_argument("image", help="dark writing on a light ground: PNG (JPEG etc. with Pillow)")

@@ -16,7 +16,7 @@ import pytest
 from sim.core.recording import Recording
 from sim.image import morph as M
 from sim.image.png import PNGError, write_png
-from sim.picture import (
+from sim.picture.imitate import (
     _must_precede,
     _straight_start,
     imitate,
@@ -26,8 +26,8 @@ from sim.picture import (
     simplify,
     trace_outline,
 )
-from sim.picture_ink import Ink, PictureError, find_ink
-from sim.picture_strokes import Stroke
+from sim.picture.ink import Ink, PictureError, find_ink
+from sim.picture.strokes import Stroke
 from sim.texture import _gaussian, score, texture_stats
 from sim.writing.hanzi import find_char
 from sim.writing.outline import fill, iou, rasterise, stroke_polygons, to_image
@@ -118,7 +118,7 @@ def test_ink_is_found_on_uneven_stained_noisy_paper():
 def test_a_large_picture_is_read_in_float32_and_shrunk_first():
     import tracemalloc
 
-    from sim.picture_ink import grey_of
+    from sim.picture.ink import grey_of
 
     # a small character in a 1024 x 2048 RGBA picture, read on a 128 px em box: about 9 bytes
     # a pixel at the peak (it was 64: float64 copies of all four channels and a full-size
@@ -384,18 +384,18 @@ def test_cli_imitate_writes_a_recording_that_replays(tmp_path):
 def test_the_picture_is_read_at_most_max_detail_and_written_at_the_size_asked(
     tmp_path, monkeypatch, capsys
 ):
-    import sim.picture
+    import sim.picture.imitate
     from sim.__main__ import main
     from sim.image.png import read_png
 
-    with pytest.raises(PictureError, match=f"1 to {sim.picture.MAX_DETAIL} px a side"):
-        read_picture(picture("王", 128), sim.picture.MAX_DETAIL + 1)
+    with pytest.raises(PictureError, match=f"1 to {sim.picture.imitate.MAX_DETAIL} px a side"):
+        read_picture(picture("王", 128), sim.picture.imitate.MAX_DETAIL + 1)
     src, out, data = tmp_path / "wang.png", tmp_path / "out.png", tmp_path / "char.json"
     write_png(src, picture("王", 200))
     fine = read_picture(src, 160).char
     # `imitate --size 160` with reading capped at 128 (2048 for real): the strokes are read at
     # 128 px, the writing is 160 px, and the report compares the two at the sheet's size
-    monkeypatch.setattr(sim.picture, "MAX_DETAIL", 128)
+    monkeypatch.setattr(sim.picture.imitate, "MAX_DETAIL", 128)
     args = [str(src), "-o", str(out), "--size", "160", "--passes", "1", "--char-data", str(data)]
     assert main(["imitate", *args]) == 0, capsys.readouterr().err
     assert read_png(out).shape[:2] == (160, 160)

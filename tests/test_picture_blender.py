@@ -153,7 +153,7 @@ def test_the_size_tooltip_says_what_size_does_on_a_surface(hb):
 
 
 def test_detail_is_capped_where_the_cli_caps_reading(hb):
-    from sim.picture import MAX_DETAIL
+    from sim.picture.imitate import MAX_DETAIL
 
     props = bpy.ops.hairy_brush.imitate_image.get_rna_type().properties
-    assert props["detail"].hard_max == MAX_DETAIL == ext().sim.picture.MAX_DETAIL
+    assert props["detail"].hard_max == MAX_DETAIL == ext().sim.picture.imitate.MAX_DETAIL

@@ -10,9 +10,9 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .core.params import ParameterError
-from .image import morph as M
-from .texture import _gaussian, otsu
+from ..core.params import ParameterError
+from ..image import morph as M
+from ..texture import _gaussian, otsu
 
 MAX_PICTURE_SIDE = 8192
 MAX_PICTURE_PIXELS = 32 * 2**20
@@ -101,7 +101,7 @@ def _without_seals(lum: np.ndarray, coloured: np.ndarray, neutral_dark: int) -> 
 def load_picture(path) -> np.ndarray:
     """A picture file's luminance: a PNG by ``sim.image.png`` (bounded; PNGError for a damaged or
     huge file), any other format (JPEG, ...) by Pillow when it is installed (optional)."""
-    from .image.png import SIGNATURE, read_png
+    from ..image.png import SIGNATURE, read_png
 
     try:
         with open(path, "rb") as f:

@@ -28,11 +28,11 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .image import morph as M
-from .picture_ink import Ink, PictureError, find_ink, grey_of, load_picture
-from .picture_strokes import Stroke, find_strokes
-from .writing.hanzi import MAX_STROKES
-from .writing.outline import EM, TOP, discs
+from ..image import morph as M
+from ..writing.hanzi import MAX_STROKES
+from ..writing.outline import EM, TOP, discs
+from .ink import Ink, PictureError, find_ink, grey_of, load_picture
+from .strokes import Stroke, find_strokes
 
 FLAT = np.tan(np.radians(30.0))  # a stroke whose chord rises less than this lies flat
 STEEP = np.tan(np.radians(60.0))
@@ -442,7 +442,7 @@ def piece_boxes(mask: np.ndarray) -> list[tuple[int, int, int, int]]:
 def _character_ink(ink: Ink, box, n: int) -> Ink:
     """One character of a piece on its own n x n em box (filling PIECE_FILL of it): the
     piece's darkness round it resampled, thresholded as the piece's."""
-    from .picture_ink import _clean
+    from .ink import _clean
 
     y0, y1, x0, x1 = box
     side = int(np.ceil(max(y1 - y0, x1 - x0) / PIECE_FILL))
@@ -532,7 +532,7 @@ def read_picture(source, n: int = 512, name: str | None = None, piece: bool = Fa
     found = read_piece(ink) if piece else None
     strokes, regions, char = found if found is not None else read_strokes(ink)
     if found is not None:  # the sheet's ink: each character in its square
-        from .writing.outline import rasterise
+        from ..writing.outline import rasterise
 
         sheet = rasterise(char, n)
         ink = Ink(sheet, sheet.astype(np.float64), 0.5, ink.separation)
@@ -555,7 +555,7 @@ def imitate(
     picture is read on an em box of n_px, at most MAX_DETAIL, px a side (the Imitation's ink is
     at that size). Returns the recording, the response, the finished simulation and the
     Imitation."""
-    from .writing.writer import write_character
+    from ..writing.writer import write_character
 
     if progress is not None:
         progress(0.0, "reading the picture")
@@ -594,7 +594,7 @@ def order_agreement(found: dict, known: dict, n: int = 512) -> dict:
     is the share of pairs of found strokes (matched to different known ones) written in the
     known order, ``directions`` the share of matched strokes running the known way, ``same``
     whether the found strokes are the known ones in the known order."""
-    from .writing.outline import fill, resample, stroke_polygons, to_image
+    from ..writing.outline import fill, resample, stroke_polygons, to_image
 
     masks = [fill([to_image(p, n) for p in polys], n) for polys in stroke_polygons(known)]
     match, runs = [], []
