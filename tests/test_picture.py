@@ -16,17 +16,10 @@ import pytest
 from sim.core.recording import Recording
 from sim.image import morph as M
 from sim.image.png import PNGError, write_png
-from sim.picture.imitate import (
-    _must_precede,
-    _straight_start,
-    imitate,
-    order_agreement,
-    read_picture,
-    read_strokes,
-    simplify,
-    trace_outline,
-)
+from sim.picture.imitate import imitate, order_agreement, read_picture
 from sim.picture.ink import Ink, PictureError, find_ink
+from sim.picture.order import _must_precede
+from sim.picture.outline import _straight_start, read_strokes, simplify, trace_outline
 from sim.picture.strokes import Stroke
 from sim.texture import _gaussian, score, texture_stats
 from sim.writing.hanzi import find_char

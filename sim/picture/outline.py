@@ -1,0 +1,189 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
+"""Character data from a picture's strokes (see ``imitate``, step 4): each stroke's own ink
+(``stroke_regions``) traced into polygons (``trace_outline``, ``simplify``) as its SVG
+outline, its median simplified, in data units (``read_strokes``)."""
+
+from __future__ import annotations
+
+import numpy as np
+
+from ..image import morph as M
+from ..writing.hanzi import MAX_STROKES
+from ..writing.outline import EM, TOP, discs
+from .ink import Ink, PictureError
+from .order import orient, writing_order
+from .strokes import Stroke, find_strokes
+
+TUBE = (1.0, 0.5)  # a stroke's own ink: within its half-width of its median, plus pixels
+MEDIAN_EPS = 2.0  # px at 512: the median simplified this closely
+OUTLINE_EPS = 0.6  # px: the outline's polygons simplified this closely
+MAX_OUTLINE_POINTS = 1500  # per stroke (sim.hanzi takes up to 2000)
+MAX_MEDIAN_POINTS = 200  # per stroke (sim.hanzi takes up to 256)
+BLOT_CURL = np.radians(35.0)  # a median's end that turns more than this inside its blot
+
+
+# ----------------------------------------------------------------- each stroke's own ink
+def stroke_regions(strokes: list, mask: np.ndarray) -> list[np.ndarray]:
+    """Each stroke's own ink: the ink within its width of its median (strokes overlap at
+    crossings), and the ink no stroke reaches so goes to the nearest stroke."""
+    n = mask.shape[0]
+    tubes = [discs(s.pts + 0.5, s.radius * TUBE[0] + TUBE[1], n) & mask for s in strokes]
+    rest = mask & ~np.any(tubes, axis=0) if tubes else mask
+    if rest.any():
+        owner = np.zeros(mask.shape, dtype=np.int32)
+        for i, s in enumerate(strokes):
+            iy = np.clip(np.round(s.pts[:, 1]).astype(int), 0, n - 1)
+            ix = np.clip(np.round(s.pts[:, 0]).astype(int), 0, n - 1)
+            owner[iy, ix] = i + 1
+        _, ry, rx = M.nearest_feature(owner > 0)
+        near = owner[np.maximum(ry, 0), np.maximum(rx, 0)]
+        for i in range(len(strokes)):
+            tubes[i] |= rest & (near == i + 1)
+    return tubes
+
+
+def trace_outline(region: np.ndarray) -> list[np.ndarray]:
+    """The boundary of a pixel region as closed polygons along the pixels' edges (image
+    pixels, x right, y down); filled even-odd by pixel centres they give the region back."""
+    r = np.pad(np.asarray(region, dtype=bool), 1)
+    edges = []
+    for (dy, dx), (a, b) in (
+        ((-1, 0), ((0, 0), (1, 0))),  # top edge, left to right
+        ((0, 1), ((1, 0), (1, 1))),  # right edge, downwards
+        ((1, 0), ((1, 1), (0, 1))),  # bottom edge, right to left
+        ((0, -1), ((0, 1), (0, 0))),  # left edge, upwards
+    ):
+        ys, xs = np.nonzero(r & ~np.roll(r, (-dy, -dx), axis=(0, 1)))
+        for y, x in zip(ys.tolist(), xs.tolist(), strict=True):
+            edges.append(((x + a[0] - 1, y + a[1] - 1), (x + b[0] - 1, y + b[1] - 1)))
+    out_of: dict = {}
+    for e in edges:
+        out_of.setdefault(e[0], []).append(e[1])
+    polys = []
+    while out_of:
+        start = next(iter(out_of))
+        loop, cur = [start], start
+        while True:
+            nxt = out_of[cur].pop()
+            if not out_of[cur]:
+                del out_of[cur]
+            if nxt == start:
+                break
+            loop.append(nxt)
+            cur = nxt
+        if len(loop) >= 3:
+            polys.append(np.array(loop, dtype=np.float64))
+    return polys
+
+
+def simplify(poly: np.ndarray, eps: float, closed: bool = True) -> np.ndarray:
+    """Douglas-Peucker on a closed polygon (or an open polyline): its points within ``eps``
+    of the original."""
+    n = len(poly)
+    if n <= 3:
+        return poly
+    far = int(np.argmax(np.linalg.norm(poly - poly[0], axis=1))) if closed else n - 1
+    keep = np.zeros(n, dtype=bool)
+    keep[[0, far]] = True
+    stack = [(0, far), (far, n)] if closed else [(0, n - 1)]
+    while stack:
+        i, j = stack.pop()
+        a, b = poly[i], poly[j % n]
+        if j - i < 2:
+            continue
+        seg = poly[i + 1 : j]
+        ab = b - a
+        L = float(np.linalg.norm(ab))
+        if L < 1e-9:
+            d = np.linalg.norm(seg - a, axis=1)
+        else:
+            d = np.abs(ab[0] * (seg[:, 1] - a[1]) - ab[1] * (seg[:, 0] - a[0])) / L
+        k = int(np.argmax(d))
+        if d[k] > eps:
+            m = i + 1 + k
+            keep[m] = True
+            stack += [(i, m), (m, j)]
+    return poly[keep]
+
+
+# -------------------------------------------------------------------- character data
+def _to_data(pts: np.ndarray, n: int) -> np.ndarray:
+    return np.stack([pts[:, 0] * EM / n, TOP - pts[:, 1] * EM / n], axis=1)
+
+
+def _svg(polys: list, n: int) -> str:
+    parts = []
+    for p in polys:
+        d = _to_data(p, n)
+        parts.append("M " + " L ".join(f"{x:.1f} {y:.1f}" for x, y in d) + " Z")
+    return " ".join(parts)
+
+
+def outline_svg(region: np.ndarray, n: int) -> str:
+    """A stroke's own ink as an SVG path in data units, within the point budget."""
+    polys = trace_outline(region)
+    eps = OUTLINE_EPS
+    while True:
+        simple = [q for q in (simplify(p, eps) for p in polys) if len(q) >= 3]
+        if sum(len(q) for q in simple) <= MAX_OUTLINE_POINTS or eps > 8:
+            return _svg(simple, n)
+        eps *= 1.6
+
+
+def _straight_start(pts: np.ndarray, radius: np.ndarray) -> np.ndarray:
+    """The median's start straightened inside the blot where the brush landed: the skeleton of
+    a round blot (the head of the scan's 永 撇) curls within the blot's half-width of the end,
+    and the writer takes such a curl for a sharp turn (it lifts and lands again there: a false
+    折 and a second blot). Where the heading within the blot differs from the stroke's heading
+    beyond it by more than BLOT_CURL, the median runs straight on along the stroke's heading
+    there instead. (The stroke's last end is left alone: a hook turns inside its foot.)"""
+    p = pts.astype(np.float64).copy()
+    s = np.concatenate([[0.0], np.cumsum(np.linalg.norm(np.diff(p, axis=0), axis=1))])
+    reach = float(radius[: max(len(radius) // 4, 1)].max())
+    i = int(np.searchsorted(s, reach))
+    j = int(np.searchsorted(s, s[min(i, len(s) - 1)] + reach))
+    if i < 2 or j >= len(p) - 1 or s[-1] < 3.0 * reach:
+        return p
+    beyond, inside = p[i] - p[j], p[0] - p[i]
+    cos = beyond @ inside / max(float(np.linalg.norm(beyond) * np.linalg.norm(inside)), 1e-9)
+    if np.arccos(np.clip(cos, -1.0, 1.0)) > BLOT_CURL:
+        u = beyond / max(float(np.linalg.norm(beyond)), 1e-9)
+        p[:i] = p[i] + u * (s[i] - s[:i])[:, None]
+    return p
+
+
+def _median(s: Stroke, n: int) -> list:
+    """The stroke's centre line as a polyline within MEDIAN_EPS of it (the skeleton's jitter
+    gone, its corners kept, its start straight inside its blot), in data units."""
+    eps = MEDIAN_EPS * n / 512
+    line = _straight_start(s.pts, s.radius)
+    pts = simplify(line, eps, closed=False)
+    while len(pts) > MAX_MEDIAN_POINTS:
+        eps *= 1.5
+        pts = simplify(line, eps, closed=False)
+    return [[round(float(x), 1), round(float(y), 1)] for x, y in _to_data(pts, n)]
+
+
+def read_strokes(ink: Ink) -> tuple[list, list, dict]:
+    """The strokes of a picture's ink in writing order, their own ink, and the character data
+    for the writer."""
+    n = ink.mask.shape[0]
+    found = [orient(s) for s in find_strokes(ink.mask)]
+    found = [s for s in found if len(s.pts) >= 2 and s.radius.max() > 0]
+    if not found:
+        raise PictureError("no strokes found in the picture's ink")
+    if len(found) > MAX_STROKES:
+        raise PictureError(
+            f"the picture's ink makes {len(found)} strokes; at most {MAX_STROKES} (one character)"
+        )
+    strokes = [found[i] for i in writing_order(found, n, ink.mask)]
+    regions = stroke_regions(strokes, ink.mask)
+    keep = [i for i, r in enumerate(regions) if r.sum() >= 4]
+    if not keep:  # every stroke's own ink is a few pixels: nothing the writer could write
+        raise PictureError("no strokes found in the picture's ink")
+    strokes, regions = [strokes[i] for i in keep], [regions[i] for i in keep]
+    char = {
+        "strokes": [outline_svg(r, n) for r in regions],
+        "medians": [_median(s, n) for s in strokes],
+    }
+    return strokes, regions, char
