@@ -100,7 +100,7 @@ def imitation(chars="永心法风", n=256):
 def overlay(chars, n=512, passes=None, quality=None, out=None):
     """Each character as the defaults write it (or with a quality file), the font's outline
     laid over it in red (its boundary), one PNG per character and a contact sheet."""
-    from sim.fit import load_quality
+    from sim.fitting.search import load_quality
     from sim.writing.hanzi import find_char
     from sim.writing.outline import iou
     from sim.writing.writer import coverage_mask, font_mask, write_character

@@ -23,8 +23,8 @@ ROOT = Path(__file__).resolve().parent.parent
 sys.path.insert(0, str(ROOT))
 
 from sim.core.recording import Recording  # noqa: E402
+from sim.fitting.texture import score, texture_stats  # noqa: E402
 from sim.picture.imitate import imitate, order_agreement, read_picture  # noqa: E402
-from sim.texture import score, texture_stats  # noqa: E402
 from sim.writing.hanzi import find_char  # noqa: E402
 from sim.writing.outline import iou, rasterise  # noqa: E402
 from sim.writing.writer import coverage_mask, write_character  # noqa: E402

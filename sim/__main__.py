@@ -69,7 +69,7 @@ def _template(args):
 
     quality = {}
     if getattr(args, "quality", None):
-        from .fit import load_quality
+        from .fitting.search import load_quality
 
         quality = load_quality(args.quality)
     rec = Recording(
@@ -130,9 +130,9 @@ def cmd_imitate(args) -> int:
     """Read a picture of writing, write it with the brush, report how close the ink is."""
     import json
 
+    from .fitting.texture import score, texture_stats
     from .image.png import write_png
     from .picture.imitate import imitate, ink_on
-    from .texture import score, texture_stats
     from .writing.outline import iou
     from .writing.writer import coverage_mask
 
@@ -171,7 +171,7 @@ def cmd_write_set(args) -> int:
     Dask cluster (the executor of ``fit --scheduler``)."""
     import json
 
-    from .cluster import map_tasks, write_task
+    from .fitting.cluster import map_tasks, write_task
     from .image.png import write_png
 
     if not os.path.isdir(args.out_dir):
@@ -191,13 +191,13 @@ def cmd_write_set(args) -> int:
 
 
 def cmd_iou(args) -> int:
-    """IoU against the outline and the five texture statistics (sim.texture) per character,
+    """IoU against the outline and the five texture statistics (sim.fitting.texture) per character,
     then their means and one JSON line."""
     import json
 
     import numpy as np
 
-    from .texture import TextureStats, score, texture_stats
+    from .fitting.texture import TextureStats, score, texture_stats
     from .writing.outline import baseline_masks, iou, rasterise
     from .writing.writer import coverage_mask, write_character
 
@@ -270,7 +270,14 @@ def _tex_line(tex) -> str:
 def cmd_fit(args) -> int:
     from .core.params import load_preset, quality_from_presets
     from .core.recording import load
-    from .fit import FitSettings, character_samples, fit, image_sample, load_quality, save_preset
+    from .fitting.search import (
+        FitSettings,
+        character_samples,
+        fit,
+        image_sample,
+        load_quality,
+        save_preset,
+    )
 
     _writable(args.output)
     if len(args.image or []) != len(args.image_recording or []):
@@ -381,7 +388,7 @@ def _bound(text: str) -> tuple:
 
 def _add_fit(sub, size, common):
     """The ``fit`` command's options."""
-    from .fit import SETTING_RANGES
+    from .fitting.search import SETTING_RANGES
 
     f = sub.add_parser("fit", help="fit the quality parameters (Sec. 7.2, Eq. 28)")
     f.add_argument("--chars", nargs="*", default=[], help="training characters (stroke data)")

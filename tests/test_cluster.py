@@ -9,7 +9,7 @@ pytest.importorskip("distributed")
 from test_imitate import _line_samples  # noqa: E402
 
 from sim.core.params import QP2, ParameterError  # noqa: E402
-from sim.fit import FitSettings, fit  # noqa: E402
+from sim.fitting.search import FitSettings, fit  # noqa: E402
 
 
 def test_a_fit_on_a_local_dask_cluster_equals_the_local_fit():
@@ -26,9 +26,9 @@ def test_a_fit_on_a_local_dask_cluster_equals_the_local_fit():
 
 
 def test_an_unreachable_scheduler_is_one_clear_error(monkeypatch):
-    import sim.cluster
+    import sim.fitting.cluster
 
-    monkeypatch.setattr(sim.cluster, "CONNECT_TIMEOUT_S", 2)
+    monkeypatch.setattr(sim.fitting.cluster, "CONNECT_TIMEOUT_S", 2)
     samples = _line_samples({"e": 0.3, **{k: 0.0 for k in QP2}}, n=1)
     settings = FitSettings(rounds=1, iterations=1, workers=1, scheduler="tcp://127.0.0.1:9")
     with pytest.raises(ParameterError, match="cannot reach the Dask scheduler"):

@@ -30,7 +30,7 @@ from sim.core.params import (
     paper_from_preset,
 )
 from sim.core.recording import MAX_SEED, RecordingError, from_dict, loads, quantise
-from sim.fit import SETTING_RANGES, load_quality
+from sim.fitting.search import SETTING_RANGES, load_quality
 from sim.image.png import PNGError, read_png
 from sim.writing.hanzi import CharacterError, check_char
 from sim.writing.outline import baseline_masks, rasterise

@@ -14,6 +14,7 @@ import numpy as np
 import pytest
 
 from sim.core.recording import Recording
+from sim.fitting.texture import _gaussian, score, texture_stats
 from sim.image import morph as M
 from sim.image.png import PNGError, write_png
 from sim.picture.imitate import imitate, order_agreement, read_picture
@@ -21,7 +22,6 @@ from sim.picture.ink import Ink, PictureError, find_ink
 from sim.picture.order import _must_precede
 from sim.picture.outline import _straight_start, read_strokes, simplify, trace_outline
 from sim.picture.strokes import Stroke
-from sim.texture import _gaussian, score, texture_stats
 from sim.writing.hanzi import find_char
 from sim.writing.outline import fill, iou, rasterise, stroke_polygons, to_image
 from sim.writing.writer import coverage_mask, write_character
@@ -102,7 +102,7 @@ def test_ink_is_found_on_uneven_stained_noisy_paper():
     found = find_ink(np.clip(grey, 0, 1), n)
     assert iou(found.mask, ink) > 0.96
     # a global threshold (no paper level) takes the dark side of the sheet for ink
-    from sim.texture import otsu
+    from sim.fitting.texture import otsu
 
     plain = (1 - grey) > otsu(1 - np.clip(grey, 0, 1))
     assert iou(plain, ink) < 0.9

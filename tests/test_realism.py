@@ -7,8 +7,8 @@ import numpy as np
 import sim.paper.paper
 from sim.core.recording import Dip, Recording
 from sim.engine.simulation import Simulation
+from sim.fitting.texture import perimeter, texture_stats
 from sim.paper.paper import GRAIN_DEPTH, paper_grain
-from sim.texture import perimeter, texture_stats
 from sim.writing.strokes import stroke
 
 
@@ -58,8 +58,8 @@ def test_paper_grain_makes_the_edge_ragged_and_keeps_the_body(monkeypatch):
 def test_qp2_stage_adds_the_texture_term():
     # Sec. 7.2's texture class: in the Qp2 stage the fit's target adds the distance of the
     # result's five statistics from real writing's; the shape stage is Eq. 28 alone
-    from sim.fit import TEXTURE_WEIGHT, TrainingSample, render, target_function
-    from sim.texture import score
+    from sim.fitting.search import TEXTURE_WEIGHT, TrainingSample, render, target_function
+    from sim.fitting.texture import score
 
     s = stroke([[8, 12], [36, 18]], press_mm=9.0, speed_mm_s=70, hover_mm=4.0)
     rec = Recording(s, width_mm=44, height_mm=30, px_per_mm=3.0, brush={"preset": "wolf_stiff"})
@@ -132,7 +132,7 @@ def test_fit_keeps_a_parameter_inside_its_bound():
     import pytest
 
     from sim.core.params import QP2, ParameterError
-    from sim.fit import FitSettings, TrainingSample, fit, render
+    from sim.fitting.search import FitSettings, TrainingSample, fit, render
 
     known = {"e": 0.3, **{k: 0.0 for k in QP2}}
     s = stroke([[8, 12], [36, 16]], press_mm=9.0, speed_mm_s=70, hover_mm=4.0)

@@ -117,7 +117,7 @@ def test_every_shipped_preset_loads_and_is_in_range():
     for b in preset_names("brush"):
         rec.brush = {"preset": b}
         rec.resolve()
-    from sim.fit import load_quality
+    from sim.fitting.search import load_quality
 
     for n in preset_names("quality"):  # fitted quality presets: all eleven values, in range
         q = load_quality(PRESET_DIR / "qualities" / f"{n}.json")

@@ -545,12 +545,12 @@ def test_fit_in_a_worker_reports_progress_and_sets_the_quality(hb):
     fit_mod = ext().operators.fit_parameters
     template = ext().bridge.settings_recording(bpy.context.scene)
     char = ext().sim.writing.hanzi.find_char("一")
-    settings = ext().sim.fit.FitSettings(
+    settings = ext().sim.fitting.search.FitSettings(
         divisions=1, rounds=1, iterations=1, max_grid=2, workers=1, seed=0
     )
 
     def make():
-        return ext().sim.fit.character_samples([char], 24, template, names=["一"])
+        return ext().sim.fitting.search.character_samples([char], 24, template, names=["一"])
 
     before = st.quality.as_dict()
     job = fit_mod.FitJob(st, make, settings, "Sliced Fit")

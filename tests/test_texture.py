@@ -1,11 +1,11 @@
 # SPDX-License-Identifier: GPL-3.0-or-later
-"""The texture statistics (sim.texture, numpy only) against scikit-image's and scipy's own
+"""The texture statistics (sim.fitting.texture, numpy only) against scikit-image's and scipy's own
 tools, and on images whose texture is known."""
 
 import numpy as np
 import pytest
 
-from sim import texture as T
+from sim.fitting import texture as T
 
 skimage = pytest.importorskip("skimage")
 ndimage = pytest.importorskip("scipy.ndimage")

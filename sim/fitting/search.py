@@ -28,10 +28,10 @@ from pathlib import Path
 
 import numpy as np
 
-from .core.jsonio import read_json
-from .core.params import QP1, QP2, ParameterError, QualityParams, number_within, short_repr
-from .core.recording import MAX_SEED, Recording, from_dict
-from .engine.simulation import Simulation
+from ..core.jsonio import read_json
+from ..core.params import QP1, QP2, ParameterError, QualityParams, number_within, short_repr
+from ..core.recording import MAX_SEED, Recording, from_dict
+from ..engine.simulation import Simulation
 
 
 @dataclass
@@ -190,7 +190,7 @@ TEXTURE_WEIGHT = 0.05  # the texture term's weight against Eq. 28 (per pixel) in
 def target_function(quality: dict, samples=None, stage: str | None = None) -> float:
     """Eq. 28 divided by the number of pixels: mean per-pixel |dr| + |dg| + |db|. In the Qp2
     stage (texture samples) a texture term is added: TEXTURE_WEIGHT times (1 - the texture
-    score, sim.texture.score) of each result against REAL_WRITING, the five statistics of
+    score, sim.fitting.texture.score) of each result against REAL_WRITING, the five statistics of
     real brush writing. Sec. 7.2 fits Qp2 to scanned texture samples with Eq. 28; no licensed
     scans can ship with the project, so comparing the statistics measured on such scans is the
     honest form of that class of training (an image target S^i still adds its Eq. 28)."""
@@ -298,7 +298,7 @@ class _Pool:
 
 
 def _pool(samples, workers: int, scheduler: str | None):
-    """The local process pool, or a Dask cluster's (sim.cluster) when a scheduler is named."""
+    """The local process pool, or a Dask cluster's (``cluster``) when a scheduler is named."""
     if scheduler is None:
         return _Pool(samples, workers)
     from .cluster import DaskPool
@@ -441,7 +441,7 @@ def character_samples(chars: list[dict], n_px: int, template: Recording, names=N
     """Training samples from stroke data: the outline is the boundary, the median the path. The
     recording is what the writer (``sim.writing``) makes with the template's settings; the
     target is the font's character in the template's ink on its paper."""
-    from .writing.writer import font_mask, write_character
+    from ..writing.writer import font_mask, write_character
 
     out = []
     response = None
@@ -455,7 +455,7 @@ def character_samples(chars: list[dict], n_px: int, template: Recording, names=N
 def image_sample(recording: Recording, png_path, name: str = "") -> TrainingSample:
     """A training sample from the user's own image and the recording that goes with it; the
     image's size is checked against the recording's paper before it is decoded."""
-    from .image.png import png_header, read_png
+    from ..image.png import png_header, read_png
 
     w, h, _ = png_header(png_path)
     if (w, h) != (recording.width_px, recording.height_px):

@@ -10,7 +10,7 @@ address of a running scheduler (``tcp://host:8786``)."""
 
 from __future__ import annotations
 
-from .core.params import ParameterError
+from ..core.params import ParameterError
 
 CONNECT_TIMEOUT_S = 10
 
@@ -79,7 +79,7 @@ def map_tasks(fn, tasks, workers: int, scheduler: str | None = None, done=None) 
 def write_task(task):
     """One character of a batch (``sim write-set``), written in a worker: (name, RGB image,
     recording dict) - returned, not saved, as a cluster's workers may not share our disk."""
-    from .writing.writer import write_character
+    from ..writing.writer import write_character
 
     char, name, size, template, passes = task
     rec, _resp, sim = write_character(char, size, template, passes=passes)
