@@ -18,7 +18,7 @@ import numpy as np
 ROOT = Path(__file__).resolve().parent.parent
 sys.path.insert(0, str(ROOT))
 
-from sim.fitting.texture import _gaussian  # noqa: E402
+from sim.image.filters import _gaussian  # noqa: E402
 from sim.writing.outline import rasterise  # noqa: E402
 
 PAPER_TINT = np.array([0.93, 0.87, 0.74])  # old xuan

@@ -14,8 +14,9 @@ import numpy as np
 import pytest
 
 from sim.core.recording import Recording
-from sim.fitting.texture import _gaussian, score, texture_stats
+from sim.fitting.texture import score, texture_stats
 from sim.image import morph as M
+from sim.image.filters import _gaussian
 from sim.image.png import PNGError, write_png
 from sim.picture.imitate import imitate, order_agreement, read_picture
 from sim.picture.ink import Ink, PictureError, find_ink
@@ -102,7 +103,7 @@ def test_ink_is_found_on_uneven_stained_noisy_paper():
     found = find_ink(np.clip(grey, 0, 1), n)
     assert iou(found.mask, ink) > 0.96
     # a global threshold (no paper level) takes the dark side of the sheet for ink
-    from sim.fitting.texture import otsu
+    from sim.image.filters import otsu
 
     plain = (1 - grey) > otsu(1 - np.clip(grey, 0, 1))
     assert iou(plain, ink) < 0.9

@@ -7,7 +7,8 @@ import numpy as np
 import sim.paper.paper
 from sim.core.recording import Dip, Recording
 from sim.engine.simulation import Simulation
-from sim.fitting.texture import perimeter, texture_stats
+from sim.fitting.texture import texture_stats
+from sim.image.filters import perimeter
 from sim.paper.paper import GRAIN_DEPTH, paper_grain
 from sim.writing.strokes import stroke
 

@@ -6,6 +6,7 @@ import numpy as np
 import pytest
 
 from sim.fitting import texture as T
+from sim.image import filters as F
 
 skimage = pytest.importorskip("skimage")
 ndimage = pytest.importorskip("scipy.ndimage")
@@ -13,7 +14,7 @@ from skimage import filters, measure, morphology  # noqa: E402
 
 
 def blobs(seed=0, keep=0.4):
-    a = T._gaussian(np.random.default_rng(seed).random((256, 256)), 4.0)
+    a = F._gaussian(np.random.default_rng(seed).random((256, 256)), 4.0)
     mask = a > np.quantile(a, 1 - keep)
     out = np.zeros_like(mask)
     out[20:-20, 20:-20] = mask[20:-20, 20:-20]
@@ -22,18 +23,18 @@ def blobs(seed=0, keep=0.4):
 
 def test_the_image_tools_equal_scikit_images():
     mask = blobs()
-    assert T.perimeter(mask) == pytest.approx(measure.perimeter(mask, 4), rel=1e-12)
+    assert F.perimeter(mask) == pytest.approx(measure.perimeter(mask, 4), rel=1e-12)
     disk = morphology.disk
-    np.testing.assert_array_equal(T._erode(mask, 3), ndimage.binary_erosion(mask, disk(3)))
+    np.testing.assert_array_equal(F._erode(mask, 3), ndimage.binary_erosion(mask, disk(3)))
     np.testing.assert_array_equal(
-        T._erode(T._dilate(mask, 2), 2), ndimage.binary_closing(mask, disk(2))
+        F._erode(F._dilate(mask, 2), 2), ndimage.binary_closing(mask, disk(2))
     )
     g = filters.gaussian(mask.astype(float), sigma=1.0, mode="nearest", truncate=4.0)
-    np.testing.assert_allclose(T._gaussian(mask.astype(float), 1.0), g, atol=1e-12)
+    np.testing.assert_allclose(F._gaussian(mask.astype(float), 1.0), g, atol=1e-12)
     v = np.random.default_rng(1).random((64, 64)) ** 2
-    np.testing.assert_allclose(T._median3(v), ndimage.median_filter(v, 3, mode="constant"))
-    assert abs(T.otsu(v) - filters.threshold_otsu(v, nbins=256)) < 1 / 256
-    skel = T.skeleton(mask)
+    np.testing.assert_allclose(F._median3(v), ndimage.median_filter(v, 3, mode="constant"))
+    assert abs(F.otsu(v) - filters.threshold_otsu(v, nbins=256)) < 1 / 256
+    skel = F.skeleton(mask)
     edt = ndimage.distance_transform_edt(mask)
     np.testing.assert_allclose(T._distance_to(~mask, skel), edt[skel], atol=1e-12)
     # Zhang-Suen thinning: a one-pixel-wide skeleton inside the shape, near skimage's

@@ -2,7 +2,7 @@
 """Image tools for imitating a picture, numpy only (they run inside Blender with its own
 numpy): the exact Euclidean distance transform with the nearest feature pixel, connected
 components, the paper's level under uneven lighting, and resampling. Zhang-Suen thinning,
-Otsu's threshold and the Gaussian blur are ``sim.texture``'s. The tests check each against
+Otsu's threshold and the Gaussian blur are in ``filters``. The tests check each against
 scipy.ndimage / scikit-image."""
 
 from __future__ import annotations

@@ -11,8 +11,8 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..core.params import ParameterError
-from ..fitting.texture import _gaussian, otsu
 from ..image import morph as M
+from ..image.filters import _gaussian, otsu
 
 MAX_PICTURE_SIDE = 8192
 MAX_PICTURE_PIXELS = 32 * 2**20

@@ -13,8 +13,8 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from ..fitting.texture import _gaussian, skeleton
 from ..image import morph as M
+from ..image.filters import _gaussian, skeleton
 
 CONTINUE_COS = -0.77  # two ways out of a junction continue each other within ~40 degrees
 LOOSE_COS = -0.5  # ... and a short overhang continues a stroke within 60 degrees
