@@ -12,7 +12,8 @@ import numpy as np
 
 from .. import bridge
 from ..sim.core.params import QualityParams
-from ..sim.fitting.search import FitSettings, TrainingSample, character_samples, fit
+from ..sim.fitting.samples import TrainingSample, character_samples
+from ..sim.fitting.search import FitSettings, fit
 from ..sim.writing.hanzi import find_char
 from . import polls
 from .add_settings_preset import PRESET_SUBDIR, HAIRY_BRUSH_OT_add_settings_preset

@@ -270,14 +270,8 @@ def _tex_line(tex) -> str:
 def cmd_fit(args) -> int:
     from .core.params import load_preset, quality_from_presets
     from .core.recording import load
-    from .fitting.search import (
-        FitSettings,
-        character_samples,
-        fit,
-        image_sample,
-        load_quality,
-        save_preset,
-    )
+    from .fitting.samples import character_samples, image_sample
+    from .fitting.search import FitSettings, fit, load_quality, save_preset
 
     _writable(args.output)
     if len(args.image or []) != len(args.image_recording or []):

@@ -406,7 +406,7 @@ def test_bad_presets_name_the_field(tmp_path):
 def test_fit_takes_grey_and_alpha_images(tmp_path, channels):
     import numpy as np
 
-    from sim.fitting.search import image_sample
+    from sim.fitting.samples import image_sample
     from sim.image.png import write_png
 
     rec = from_dict(REC)  # a 240 x 160 px paper

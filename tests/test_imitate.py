@@ -13,14 +13,9 @@ import pytest
 from sim.core.params import QP2, ParameterError
 from sim.core.recording import Recording, load
 from sim.engine.simulation import Simulation
-from sim.fitting.search import (
-    FitSettings,
-    TrainingSample,
-    fit,
-    load_quality,
-    render,
-    target_function,
-)
+from sim.fitting.samples import TrainingSample
+from sim.fitting.search import FitSettings, fit, load_quality
+from sim.fitting.target import render, target_function
 from sim.writing.hanzi import DATA_DIR, find_char
 from sim.writing.outline import (
     baseline_masks,

@@ -59,7 +59,8 @@ def test_paper_grain_makes_the_edge_ragged_and_keeps_the_body(monkeypatch):
 def test_qp2_stage_adds_the_texture_term():
     # Sec. 7.2's texture class: in the Qp2 stage the fit's target adds the distance of the
     # result's five statistics from real writing's; the shape stage is Eq. 28 alone
-    from sim.fitting.search import TEXTURE_WEIGHT, TrainingSample, render, target_function
+    from sim.fitting.samples import TrainingSample
+    from sim.fitting.target import TEXTURE_WEIGHT, render, target_function
     from sim.fitting.texture import score
 
     s = stroke([[8, 12], [36, 18]], press_mm=9.0, speed_mm_s=70, hover_mm=4.0)
@@ -133,7 +134,9 @@ def test_fit_keeps_a_parameter_inside_its_bound():
     import pytest
 
     from sim.core.params import QP2, ParameterError
-    from sim.fitting.search import FitSettings, TrainingSample, fit, render
+    from sim.fitting.samples import TrainingSample
+    from sim.fitting.search import FitSettings, fit
+    from sim.fitting.target import render
 
     known = {"e": 0.3, **{k: 0.0 for k in QP2}}
     s = stroke([[8, 12], [36, 16]], press_mm=9.0, speed_mm_s=70, hover_mm=4.0)

@@ -550,7 +550,7 @@ def test_fit_in_a_worker_reports_progress_and_sets_the_quality(hb):
     )
 
     def make():
-        return ext().sim.fitting.search.character_samples([char], 24, template, names=["一"])
+        return ext().sim.fitting.samples.character_samples([char], 24, template, names=["一"])
 
     before = st.quality.as_dict()
     job = fit_mod.FitJob(st, make, settings, "Sliced Fit")

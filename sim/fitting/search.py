@@ -30,35 +30,9 @@ import numpy as np
 
 from ..core.jsonio import read_json
 from ..core.params import QP1, QP2, ParameterError, QualityParams, number_within, short_repr
-from ..core.recording import MAX_SEED, Recording, from_dict
-from ..engine.simulation import Simulation
-
-
-@dataclass
-class TrainingSample:
-    """One training pair: a recording and the image S^i (H, W, 3) in [0, 1], top row first, at
-    the recording's paper size."""
-
-    recording: Recording
-    target: np.ndarray
-    name: str = ""
-    # Sec. 7.2's two classes of training samples: "shape" (boundaries only, fits Qp1 with
-    # Qp2 = 0), "texture" (fits Qp2); "both" serves either stage
-    kind: str = "both"
-
-    def __post_init__(self):
-        t = np.asarray(self.target, dtype=np.float32)
-        if t.ndim != 3 or t.shape[2] != 3:
-            raise ParameterError(f"training sample {self.name!r}: image must be (H, W, 3) RGB")
-        h, w = self.recording.height_px, self.recording.width_px
-        if t.shape[:2] != (h, w):
-            raise ParameterError(
-                f"training sample {self.name!r}: image is {t.shape[1]} x {t.shape[0]} px but "
-                f"its recording's paper is {w} x {h} px"
-            )
-        self.target = t
-        if self.kind not in ("shape", "texture", "both"):
-            raise ParameterError(f"training sample {self.name!r}: kind must be shape or texture")
+from ..core.recording import MAX_SEED
+from .samples import TrainingSample
+from .target import _init_worker, target_function
 
 
 @dataclass
@@ -157,58 +131,6 @@ class FitResult:
                 "evaluations": self.evaluations,
             },
         }
-
-
-# ---------------------------------------------------------------- the target function, Eq. 28
-_SAMPLES: list[TrainingSample] = []
-
-
-def _init_worker(samples):
-    global _SAMPLES
-    _SAMPLES = samples
-
-
-def _for_stage(samples, stage: str | None):
-    """The samples of a stage's class (all of them when that class is empty)."""
-    if stage is None:
-        return samples
-    want = "shape" if stage == "qp1" else "texture"
-    own = [s for s in samples if s.kind in (want, "both")]
-    return own or samples
-
-
-def render(rec: Recording, quality: dict) -> np.ndarray:
-    """The brush's result C^i for a recording with the given quality values."""
-    d = rec.to_dict()
-    d["quality"] = {**d.get("quality", {}), **quality}
-    return Simulation(from_dict(d)).run().image()
-
-
-TEXTURE_WEIGHT = 0.05  # the texture term's weight against Eq. 28 (per pixel) in the Qp2 stage
-
-
-def target_function(quality: dict, samples=None, stage: str | None = None) -> float:
-    """Eq. 28 divided by the number of pixels: mean per-pixel |dr| + |dg| + |db|. In the Qp2
-    stage (texture samples) a texture term is added: TEXTURE_WEIGHT times (1 - the texture
-    score, sim.fitting.texture.score) of each result against REAL_WRITING, the five statistics of
-    real brush writing. Sec. 7.2 fits Qp2 to scanned texture samples with Eq. 28; no licensed
-    scans can ship with the project, so comparing the statistics measured on such scans is the
-    honest form of that class of training (an image target S^i still adds its Eq. 28)."""
-    from .texture import score, texture_stats
-
-    samples = _for_stage(_SAMPLES if samples is None else samples, stage)
-    total, pixels, tex = 0.0, 0, []
-    for s in samples:
-        c = render(s.recording, quality)
-        total += float(np.abs(s.target - c).sum(dtype=np.float64))
-        pixels += s.target.shape[0] * s.target.shape[1]
-        if stage == "qp2":
-            try:
-                tex.append(1.0 - score(texture_stats(c)))
-            except ValueError:  # no ink at all: as far from real writing as it gets
-                tex.append(1.0)
-    eq28 = total / max(pixels, 1)
-    return eq28 + TEXTURE_WEIGHT * float(np.mean(tex)) if tex else eq28
 
 
 # ---------------------------------------------------------------- steepest descent (Sec. 7.2)
@@ -426,47 +348,6 @@ def fit(
     finally:
         pool.close()
     return FitResult(current, final, start_target, evaluations, history)
-
-
-# ---------------------------------------------------------------- training samples
-def ink_image(mask, paper_rgb, ink_rgb) -> np.ndarray:
-    """S^i from a boundary: ink colour inside, paper colour outside; (H, W, 3) float32."""
-    m = np.asarray(mask, dtype=np.float32)[..., None]
-    return (
-        np.asarray(paper_rgb, np.float32) * (1 - m) + np.asarray(ink_rgb, np.float32) * m
-    ).astype(np.float32)
-
-
-def character_samples(chars: list[dict], n_px: int, template: Recording, names=None, passes=1):
-    """Training samples from stroke data: the outline is the boundary, the median the path. The
-    recording is what the writer (``sim.writing``) makes with the template's settings; the
-    target is the font's character in the template's ink on its paper."""
-    from ..writing.writer import font_mask, write_character
-
-    out = []
-    response = None
-    for k, ch in enumerate(chars):
-        rec, response, sim = write_character(ch, n_px, template, response=response, passes=passes)
-        target = ink_image(font_mask(ch, n_px), sim.paper.color, sim.ink.color)
-        out.append(TrainingSample(rec, target, (names or [""] * len(chars))[k]))
-    return out
-
-
-def image_sample(recording: Recording, png_path, name: str = "") -> TrainingSample:
-    """A training sample from the user's own image and the recording that goes with it; the
-    image's size is checked against the recording's paper before it is decoded."""
-    from ..image.png import png_header, read_png
-
-    w, h, _ = png_header(png_path)
-    if (w, h) != (recording.width_px, recording.height_px):
-        raise ParameterError(
-            f"image {png_path} is {w} x {h} px but its recording's paper is "
-            f"{recording.width_px} x {recording.height_px} px"
-        )
-    a = read_png(png_path).astype(np.float32) / 255.0
-    if a.shape[2] <= 2:  # grey, grey + alpha
-        a = np.repeat(a[..., :1], 3, axis=2)
-    return TrainingSample(recording, a[..., :3], name or str(png_path))
 
 
 def load_quality(path) -> dict:
