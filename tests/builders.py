@@ -5,7 +5,7 @@ from __future__ import annotations
 
 from pathlib import Path
 
-from sim.bench import long_stroke, workload
+from sim.cli.bench import long_stroke, workload
 from sim.core.recording import Recording, from_dict
 from sim.engine.simulation import Simulation
 from sim.writing.hanzi import character_recording

@@ -14,7 +14,7 @@ import zlib
 import pytest
 from conftest import ROOT
 
-from sim.__main__ import main
+from sim.cli.main import main
 from sim.core.recording import MAX_DIPS, RecordingError, from_dict, loads
 from sim.image.png import PNGError, read_png
 

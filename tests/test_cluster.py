@@ -36,7 +36,7 @@ def test_an_unreachable_scheduler_is_one_clear_error(monkeypatch):
 
 
 def test_the_batch_writer_gives_the_same_files_on_a_dask_cluster(tmp_path):
-    from sim.__main__ import main
+    from sim.cli.main import main
 
     outs = []
     for extra in ([], ["--scheduler", "local"]):

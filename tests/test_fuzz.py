@@ -21,7 +21,7 @@ from conftest import ROOT
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
-from sim.__main__ import _parser
+from sim.cli.main import _parser
 from sim.core.params import (
     ParameterError,
     geometry_from_preset,

@@ -217,7 +217,7 @@ def test_run_fills_marks_for_several_samples_at_once_and_equals_step_by_step():
 def test_timings_split_a_run_into_its_stages_without_changing_it():
     """The benchmark's per-stage figures: every sample's time lands in a named stage, and
     keeping timings does not change the artwork."""
-    from sim.bench import STAGES, samples_per_second
+    from sim.cli.bench import STAGES, samples_per_second
 
     s = long_stroke()[:90]
     a, b = simulation(s, 400, 2.0, 4), simulation(s, 400, 2.0, 4)

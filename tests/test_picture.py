@@ -379,7 +379,7 @@ def test_the_picture_is_read_at_most_max_detail_and_written_at_the_size_asked(
     tmp_path, monkeypatch, capsys
 ):
     import sim.picture.imitate
-    from sim.__main__ import main
+    from sim.cli.main import main
     from sim.image.png import read_png
 
     with pytest.raises(PictureError, match=f"1 to {sim.picture.imitate.MAX_DETAIL} px a side"):

@@ -15,11 +15,11 @@ from pathlib import Path
 
 import numpy as np
 
-from .core.recording import Dip, Recording
-from .engine.simulation import Simulation
-from .writing.strokes import stroke
+from ..core.recording import Dip, Recording
+from ..engine.simulation import Simulation
+from ..writing.strokes import stroke
 
-ROOT = Path(__file__).resolve().parent.parent
+ROOT = Path(__file__).resolve().parents[2]
 PAPER_MM = 200.0
 
 
@@ -86,7 +86,7 @@ def _stage_row(label, stages):
 
 def nurbs_speedup(repeats=3):
     """Engine's surface evaluation against geomdl's, same surfaces and parameters."""
-    from .core.nurbs import CIRCLE_KNOTS, surface_control_net, to_geomdl
+    from ..core.nurbs import CIRCLE_KNOTS, surface_control_net, to_geomdl
 
     sim = workload(long_stroke(), 1024, 5.0, primitives=8)
     b = sim.brush
@@ -126,8 +126,8 @@ def nurbs_speedup(repeats=3):
 
 
 def replay_seconds(recording_path, size_px, out_png, repeats=2):
-    from .core.recording import from_dict, load
-    from .image.png import write_png
+    from ..core.recording import from_dict, load
+    from ..image.png import write_png
 
     rec = load(recording_path)
     d = rec.to_dict()
@@ -144,7 +144,7 @@ def replay_seconds(recording_path, size_px, out_png, repeats=2):
 
 def _child_peak_rss(recording_path, size_px, out_png):
     code = (
-        f"import sys; sys.path.insert(0, {str(ROOT)!r}); from sim.bench import replay_seconds;"
+        f"import sys; sys.path.insert(0, {str(ROOT)!r}); from sim.cli.bench import replay_seconds;"
         f"replay_seconds({str(recording_path)!r}, {size_px}, {str(out_png)!r}, repeats=1);"
         "import resource; print(resource.getrusage(resource.RUSAGE_SELF).ru_maxrss)"
     )
@@ -153,7 +153,7 @@ def _child_peak_rss(recording_path, size_px, out_png):
 
 
 def demo_recording(path: Path):
-    from .writing.hanzi import character_recording
+    from ..writing.hanzi import character_recording
 
     character_recording(ROOT / "data" / "hanzi" / "永.json").save(path)
 
