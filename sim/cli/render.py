@@ -1,0 +1,35 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
+"""``python -m sim render``: a recording to a PNG."""
+
+from __future__ import annotations
+
+import time
+
+from .shared import _progress, _writable
+
+
+def cmd_render(args) -> int:
+    from ..core.recording import load
+    from ..engine.simulation import Simulation
+    from ..image.png import write_png
+
+    _writable(args.output)
+    rec = load(args.recording)
+    if args.px_per_mm is not None:
+        from ..core.recording import from_dict
+
+        d = rec.to_dict()
+        d["paper"]["px_per_mm"] = args.px_per_mm
+        rec = from_dict(d)
+    if args.seed is not None:
+        rec.seed = args.seed
+    t0 = time.perf_counter()
+    sim = Simulation(rec).run(progress=None if args.quiet else _progress)
+    write_png(args.output, sim.image8())
+    if not args.quiet:
+        dt = time.perf_counter() - t0
+        print(
+            f"{args.output}: {rec.width_px} x {rec.height_px} px, {len(rec.samples)} samples in "
+            f"{dt:.2f} s, {sim.brush.m} writing primitive(s) at the end"
+        )
+    return 0

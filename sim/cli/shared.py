@@ -1,0 +1,87 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
+"""What the commands share: the progress bar, the output check, the template recording and the
+characters from the options, and the argparse types of numbers in a range."""
+
+from __future__ import annotations
+
+import argparse
+import os
+import sys
+
+from ..core.params import ParameterError, number_within, short_repr
+
+
+def _progress(frac: float) -> None:
+    bar = int(frac * 30)
+    sys.stderr.write(f"\r[{'#' * bar}{'.' * (30 - bar)}] {frac * 100:5.1f}%")
+    if frac >= 1.0:
+        sys.stderr.write("\n")
+    sys.stderr.flush()
+
+
+def _writable(path) -> None:
+    """Refuse an output path whose folder does not exist before any long work."""
+    folder = os.path.dirname(os.path.abspath(path))
+    if os.path.isdir(path) or not os.path.isdir(folder):
+        raise ParameterError(f"cannot write {path}: no such folder, or it is a folder")
+
+
+def _template(args):
+    """A recording carrying the chosen brush, paper, ink, quality and seed (no samples yet)."""
+    import numpy as np
+
+    from ..core.recording import Recording
+
+    quality = {}
+    if getattr(args, "quality", None):
+        from ..fitting.search import load_quality
+
+        quality = load_quality(args.quality)
+    rec = Recording(
+        np.zeros((1, 6)),
+        seed=args.seed,
+        brush={"preset": args.brush},
+        paper_preset=args.paper,
+        ink={"preset": args.ink},
+        quality=quality,
+    )
+    rec.resolve()  # the presets exist and are sound
+    return rec
+
+
+def _chars(specs, data):
+    from ..writing.hanzi import find_char
+
+    return [find_char(spec, data) for spec in specs]
+
+
+def _whole(lo: int, hi: int):
+    """An argparse type: a whole number in [lo, hi]."""
+
+    def parse(text: str) -> int:
+        try:
+            v = int(text)
+        except ValueError:
+            raise argparse.ArgumentTypeError(
+                f"must be a whole number, got {short_repr(text)}"
+            ) from None
+        if not lo <= v <= hi:
+            raise argparse.ArgumentTypeError(f"must lie in [{lo}, {hi}], got {short_repr(v)}")
+        return v
+
+    return parse
+
+
+def _real(lo: float, hi: float):
+    """An argparse type: a finite number in [lo, hi]."""
+
+    def parse(text: str) -> float:
+        try:
+            v = float(text)
+        except ValueError:
+            raise argparse.ArgumentTypeError(f"must be a number, got {short_repr(text)}") from None
+        if not number_within(v, lo, hi):
+            raise argparse.ArgumentTypeError(f"must lie in [{lo:g}, {hi:g}], got {text}")
+        return v
+
+    return parse
