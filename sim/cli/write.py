@@ -45,7 +45,7 @@ def cmd_write_set(args) -> int:
     Dask cluster (the executor of ``fit --scheduler``)."""
     import json
 
-    from ..fitting.cluster import map_tasks, write_task
+    from ..fitting.cluster import map_tasks
     from ..image.png import write_png
 
     if not os.path.isdir(args.out_dir):
@@ -62,3 +62,13 @@ def cmd_write_set(args) -> int:
             json.dump(rec, f, separators=(",", ":"))
     print(f"{args.out_dir}: {len(tasks)} characters, {time.perf_counter() - t0:.1f} s")
     return 0
+
+
+def write_task(task):
+    """One character of a batch (``sim write-set``), written in a worker: (name, RGB image,
+    recording dict) - returned, not saved, as a cluster's workers may not share our disk."""
+    from ..writing.writer import write_character
+
+    char, name, size, template, passes = task
+    rec, _resp, sim = write_character(char, size, template, passes=passes)
+    return name, sim.image8(), rec.to_dict()

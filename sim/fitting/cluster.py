@@ -76,16 +76,6 @@ def map_tasks(fn, tasks, workers: int, scheduler: str | None = None, done=None) 
     return out
 
 
-def write_task(task):
-    """One character of a batch (``sim write-set``), written in a worker: (name, RGB image,
-    recording dict) - returned, not saved, as a cluster's workers may not share our disk."""
-    from ..writing.writer import write_character
-
-    char, name, size, template, passes = task
-    rec, _resp, sim = write_character(char, size, template, passes=passes)
-    return name, sim.image8(), rec.to_dict()
-
-
 class DaskPool:
     def __init__(self, samples, scheduler: str, workers: int, init):
         self.client, self._cluster = connect(scheduler, workers)
