@@ -1,9 +1,17 @@
 # SPDX-License-Identifier: GPL-3.0-or-later
 """Virtual Hairy Brush engine: the solid-model brush, ink and paper of Xu et al., "A Solid Model
-Based Virtual Hairy Brush" (Eurographics 2002). numpy and geomdl only; never bpy."""
+Based Virtual Hairy Brush" (Eurographics 2002). numpy and geomdl only; never bpy.
+
+Its packages, in the order of the paper's data flow; each imports only packages before it (its
+``__init__`` says which; tests/test_layout.py checks): ``core`` (parameters, recordings,
+frames, NURBS), ``image`` (PNG, filters), ``brush`` (the primitive, dynamics, ink, inertia,
+the mark), ``paper``, ``surface`` (writing on a 3D mesh), ``engine`` (the simulation, the
+timeline, live painting), ``writing`` (characters from stroke data), ``picture`` (imitating a
+picture), ``fitting`` (Sec. 7.2's fit) and ``cli`` (``python -m sim``)."""
 
 from .brush.inertia import InertiaPredictor
-from .brush.primitive import HairyBrush, rotation_matrix
+from .brush.primitive import HairyBrush
+from .core.frames import rotation_matrix
 from .core.params import BrushGeometry, InkSpec, PaperSpec, ParameterError, QualityParams
 from .core.recording import Dip, Recording, RecordingError
 from .engine.simulation import Simulation, render
