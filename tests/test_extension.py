@@ -95,7 +95,7 @@ def test_zip_holds_the_extension_and_no_dev_files(extension_zip):
     names = zipfile.ZipFile(extension_zip).namelist()
     assert "blender_manifest.toml" in names and "__init__.py" in names
     assert any(n.startswith("wheels/geomdl-") and n.endswith(".whl") for n in names)
-    assert "sim/engine.py" in names and "presets/brushes/mixed.json" in names
+    assert "sim/engine/simulation.py" in names and "presets/brushes/mixed.json" in names
     assert "operators/paint.py" in names and "panels/sidebar.py" in names
     for bad in ("tests/", "scripts/", ".venv/", ".ci/", "out/", "docs/", "pyproject.toml"):
         assert not any(n.startswith(bad) for n in names), bad
