@@ -1,15 +1,16 @@
 # SPDX-License-Identifier: GPL-3.0-or-later
 """Virtual Hairy Brush: a Blender extension (id ``hairy_brush``) around the engine in ``sim``.
 
-Registration is explicit: properties, operators, handlers and panels register in this order and
-unregister in reverse.
+Registration is explicit: the runtime state, properties, operators, handlers and panels register
+in this order and unregister in reverse.
 """
 
 from __future__ import annotations
 
-from . import handlers, operators, panels, properties
+from . import operators, panels
+from .blender import handlers, properties, runtime
 
-_MODULES = (properties, operators, handlers, panels)
+_MODULES = (runtime, properties, operators, handlers, panels)
 
 
 def register():

@@ -6,8 +6,8 @@ from __future__ import annotations
 
 import bpy
 
-from .. import bridge
-from ..properties import (
+from ..blender import checks
+from ..blender.presets import (
     PRESET_INFO,
     QUALITY_LABELS,
     apply_ink_preset,
@@ -49,7 +49,7 @@ class HAIRY_BRUSH_OT_apply_preset(bpy.types.Operator):
         return polls.scene(cls, context)
 
     def execute(self, context):
-        st = bridge.settings(context.scene)
+        st = checks.settings(context.scene)
         try:
             preset = load_preset(self.kind, self.name)
             if self.kind == "quality":

@@ -14,12 +14,12 @@ from __future__ import annotations
 
 import bpy
 
-from .. import bridge, playback
+from ..blender import checks, playback, recordings, runtime
+from ..blender.jobs import Job, JobOperator, deadline
 from ..sim.engine.checkpoints import save_checkpoints
 from ..sim.engine.simulation import Simulation
 from ..sim.engine.timeline import Timeline
 from . import polls
-from .jobs import Job, JobOperator, deadline
 
 
 class CacheJob(Job):
@@ -32,9 +32,9 @@ class CacheJob(Job):
         self.scene = scene
         self.folder = playback.cache_folder(scene)
         if self.folder is None:
-            raise bridge.UserError("Save the file first: the cache goes next to the .blend")
+            raise checks.UserError("Save the file first: the cache goes next to the .blend")
         self.key = playback.cache_key(scene)
-        self.rec = bridge.recording_from_scene(scene)
+        self.rec = recordings.recording_from_scene(scene)
         self.timeline = Timeline(Simulation(self.rec), playback.CACHE_EVERY, budget_bytes=2**62)
 
     def step(self, budget_s: float) -> bool:
@@ -46,7 +46,7 @@ class CacheJob(Job):
 
     def finish(self, context):
         save_checkpoints(self.timeline, self.folder, self.key)
-        playback.clear()  # the next frame change reads the new checkpoints
+        runtime.get().forget_playbacks()  # the next frame change reads the new checkpoints
         n = len(self.timeline.snaps)
         return "INFO", f"{n} checkpoints in {self.folder} ({self.timeline.nbytes / 2**20:.0f} MB)"
 
@@ -75,6 +75,6 @@ class HAIRY_BRUSH_OT_bake_cache(JobOperator, bpy.types.Operator):
     def execute(self, context):
         try:
             job = CacheJob(context.scene)
-        except (*bridge.USER_ERRORS, MemoryError) as exc:
+        except (*checks.USER_ERRORS, MemoryError) as exc:
             return self._failed(exc)
         return self.run_job(context, job)

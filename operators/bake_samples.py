@@ -8,7 +8,7 @@ import math
 import bpy
 import numpy as np
 
-from .. import bridge, handlers
+from ..blender import checks, keyframes, presets, recordings, runtime, surfaces, transforms
 from ..sim import surface as surf
 from ..sim.core.recording import from_dict
 from . import polls
@@ -25,7 +25,7 @@ def nan_keyframes(obj):
         ad = o.animation_data
         if ad is None or ad.action is None:
             continue
-        for fc in bridge.fcurves(ad):
+        for fc in keyframes.fcurves(ad):
             for kp in fc.keyframe_points:
                 vals = (*kp.co, *kp.handle_left, *kp.handle_right)
                 if not all(math.isfinite(v) for v in vals):
@@ -38,23 +38,23 @@ def sample_brush(scene, st, frame_start: int, frame_end: int, rate: float, progr
     it (keyframes, constraints, drivers, parents) at rate samples per second. On a surface
     (issue 17), (samples, frames): the samples in the local frames where the brush's axis
     meets the surface, developed into its chart (sim.surface.develop)."""
-    if bridge.is_surface(st):
-        surface = bridge.mesh_surface(st.paper_object)[0]
+    if surfaces.is_surface(st):
+        surface = surfaces.mesh_surface(st.paper_object)[0]
         n = _count(scene, frame_start, frame_end, rate)
         poses = _brush_poses(scene, st, frame_start, rate, n, _half(progress, 0.0))
         return surf.develop(
             surface,
             poses[:, :3],
             poses[:, 3:].reshape(-1, 3, 3),
-            bridge.surface_origin(st),
-            bridge.surface_caster(st),
+            surfaces.surface_origin(st),
+            surfaces.surface_caster(st),
             surf.TriangleGrid(surface),  # the nearest points where the axis misses
             _half(progress, 0.5),
         )
     n = _count(scene, frame_start, frame_end, rate)
     out = np.empty((n, 6))
     for i in _at_frames(scene, frame_start, rate, n, progress):
-        out[i] = bridge.sample_from_matrices(
+        out[i] = transforms.sample_from_matrices(
             st, st.brush_object.matrix_world, st.paper_object.matrix_world
         )
     return out
@@ -75,7 +75,7 @@ def _at_frames(scene, frame_start, rate, n, progress=None):
     scene's own frame is put back afterwards."""
     fps = scene.render.fps / scene.render.fps_base
     keep = scene.frame_current, scene.frame_subframe
-    with handlers.suspended():
+    with runtime.get().frames_suspended():
         try:
             for i in range(n):
                 f = frame_start + i * fps / rate
@@ -92,11 +92,11 @@ def _brush_poses(scene, st, frame_start, rate, n, progress=None) -> np.ndarray:
     """(n, 12): the brush's base (mm) and rotation (row-major) in the surface's space."""
     out = np.empty((n, 12))
     for i in _at_frames(scene, frame_start, rate, n, progress):
-        base, rot = bridge.surface_pose(st, st.brush_object.matrix_world)
+        base, rot = surfaces.surface_pose(st, st.brush_object.matrix_world)
         out[i, :3], out[i, 3:] = base, rot.ravel()
     bad = ~np.isfinite(out).all(axis=1)
     if bad.any():
-        raise bridge.UserError(f"The brush's pose is not a number at sample {int(np.argmax(bad))}")
+        raise checks.UserError(f"The brush's pose is not a number at sample {int(np.argmax(bad))}")
     return out
 
 
@@ -138,7 +138,7 @@ def contact_problems(
 def painted_samples(rec) -> int:
     """How many of a recording's samples were painted live (0 for None)."""
     info = rec.extra.get("blender", {}) if rec is not None and isinstance(rec.extra, dict) else {}
-    n = info.get(bridge.PAINTED_KEY, 0) if isinstance(info, dict) else 0
+    n = info.get(recordings.PAINTED_KEY, 0) if isinstance(info, dict) else 0
     return int(n) if isinstance(n, int) else 0
 
 
@@ -162,18 +162,18 @@ class HAIRY_BRUSH_OT_bake_samples(bpy.types.Operator):
 
     def execute(self, context):
         scene = context.scene
-        st = bridge.settings(scene)
+        st = checks.settings(scene)
         try:
-            bridge.require_brush_and_paper(st)
-            bridge.check_settings(st)
-        except bridge.USER_ERRORS as exc:
+            checks.require_brush_and_paper(st)
+            checks.check_settings(st)
+        except checks.USER_ERRORS as exc:
             self.report({"ERROR"}, str(exc))
             return {"CANCELLED"}
         old, unreadable = None, None
         if st.recording is not None:
             try:
-                old = from_dict(bridge.read_recording_dict(st))
-            except bridge.USER_ERRORS as exc:
+                old = from_dict(recordings.read_recording_dict(st))
+            except checks.USER_ERRORS as exc:
                 unreadable = str(exc)
         painted = painted_samples(old)
         if painted and not self.replace_painted:
@@ -197,23 +197,23 @@ class HAIRY_BRUSH_OT_bake_samples(bpy.types.Operator):
             return {"CANCELLED"}
         try:
             samples, frames = self.sampled(context, st)
-        except bridge.USER_ERRORS as exc:
+        except checks.USER_ERRORS as exc:
             self.report({"ERROR"}, str(exc))
             return {"CANCELLED"}
         dips = None
         if old is not None and old.dips and not painted:  # re-baking keeps the dips recorded
             dips = [dp for dp in old.dips if dp.before_sample <= len(samples)]
         try:
-            rec = bridge.new_recording(scene, samples, dips)
-        except bridge.USER_ERRORS as exc:
+            rec = recordings.new_recording(scene, samples, dips)
+        except checks.USER_ERRORS as exc:
             self.report({"ERROR"}, f"Cannot bake: {exc}")
             return {"CANCELLED"}
         if frames is not None:
-            rec.extra[bridge.SURFACE_KEY] = {"frames": frames.tolist()}
+            rec.extra[recordings.SURFACE_KEY] = {"frames": frames.tolist()}
         fps = scene.render.fps / scene.render.fps_base
         level, problem = contact_problems(
             samples,
-            bridge.hair_length(st),
+            presets.hair_length(st),
             lambda i: scene.frame_start + i * fps / rec.sample_rate_hz,
             f"the surface of '{st.paper_object.name}'" if frames is not None else "the paper",
         )
@@ -224,7 +224,7 @@ class HAIRY_BRUSH_OT_bake_samples(bpy.types.Operator):
             old_name = st.recording.name
             st.recording = None
             self.report({"WARNING"}, f"{unreadable}; kept as '{old_name}', baked into a new text")
-        bridge.store_recording(st, rec)
+        recordings.store_recording(st, rec)
         self.report({"INFO"}, f"Baked {len(samples)} samples at {st.sample_rate_hz:g} Hz")
         if level:
             self.report({level}, problem)
@@ -253,5 +253,5 @@ class HAIRY_BRUSH_OT_bake_samples(bpy.types.Operator):
         bad_rows = ~np.all(np.isfinite(samples), axis=1)
         if bad_rows.any():
             i = int(np.argmax(bad_rows))
-            raise bridge.UserError(f"The brush's pose is not a number at sample {i}")
+            raise checks.UserError(f"The brush's pose is not a number at sample {i}")
         return samples, frames

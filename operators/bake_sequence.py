@@ -8,25 +8,25 @@ import os
 
 import bpy
 
-from .. import bridge, handlers, playback
+from ..blender import checks, frames, playback, runtime
+from ..blender.jobs import Job, JobOperator, deadline
 from ..sim.image.png import write_png
 from . import polls
-from .jobs import Job, JobOperator, deadline
 
 
 def sequence_folder(path: str) -> str:
     """The folder as an absolute path; UserError for one relative to an unsaved .blend (it
     would land wherever Blender was started from)."""
     if not path.strip():
-        raise bridge.UserError("Choose a Sequence Folder first")
+        raise checks.UserError("Choose a Sequence Folder first")
     if path.startswith("//") and not bpy.data.filepath:
-        raise bridge.UserError(
+        raise checks.UserError(
             f"Sequence Folder '{path}' is relative to the .blend, which is not saved yet: "
             "save the file first or choose an absolute folder"
         )
     folder = bpy.path.abspath(path)
     if not os.path.isabs(folder):
-        raise bridge.UserError(f"Sequence Folder '{path}' is not an absolute path")
+        raise checks.UserError(f"Sequence Folder '{path}' is not an absolute path")
     return folder
 
 
@@ -47,10 +47,10 @@ class SequenceJob(Job):
     def step(self, budget_s: float) -> bool:
         stop = deadline(budget_s)
         os.makedirs(self.folder, exist_ok=True)
-        with handlers.suspended():
+        with runtime.get().frames_suspended():
             while self.k < len(self.frames):
                 f = self.frames[self.k]
-                target = bridge.samples_at_frame(self.pb.rec, self.scene, f)
+                target = frames.samples_at_frame(self.pb.rec, self.scene, f)
                 sim = self.pb.seek(target, should_stop=stop)
                 if sim.index < target:
                     break  # the slice's time is up inside a frame
@@ -87,9 +87,9 @@ class HAIRY_BRUSH_OT_bake_sequence(JobOperator, bpy.types.Operator):
     def execute(self, context):
         scene = context.scene
         try:
-            folder = sequence_folder(bridge.settings(scene).sequence_dir)
+            folder = sequence_folder(checks.settings(scene).sequence_dir)
             job = SequenceJob(scene, folder)
-        except bridge.USER_ERRORS as exc:
+        except checks.USER_ERRORS as exc:
             self.report({"ERROR"}, str(exc))
             return {"CANCELLED"}
         return self.run_job(context, job)

@@ -5,7 +5,7 @@ from __future__ import annotations
 
 import bpy
 
-from .. import bridge, playback
+from ..blender import checks, frames, playback, primitives, recordings, transforms
 from ..sim.engine.simulation import Simulation
 from . import polls
 
@@ -24,20 +24,20 @@ class HAIRY_BRUSH_OT_build_primitives(bpy.types.Operator):
 
     def execute(self, context):
         scene = context.scene
-        st = bridge.settings(scene)
+        st = checks.settings(scene)
         try:
-            bridge.require_brush_and_paper(st)
+            checks.require_brush_and_paper(st)
             if st.recording is not None:
                 pb = playback.playback_for(scene)
-                sim = pb.seek(bridge.samples_at_frame(pb.rec, scene, scene.frame_current))
+                sim = pb.seek(frames.samples_at_frame(pb.rec, scene, scene.frame_current))
             else:  # no recording yet: the free brush where the empty is
-                s = bridge.sample_from_matrices(
+                s = transforms.sample_from_matrices(
                     st, st.brush_object.matrix_world, st.paper_object.matrix_world
                 )
-                sim = Simulation(bridge.new_recording(scene, [s]))
+                sim = Simulation(recordings.new_recording(scene, [s]))
                 sim.brush.place(s)
-            n = playback.sync_primitives(scene, sim, create=True)
-        except bridge.USER_ERRORS as exc:
+            n = primitives.sync_primitives(scene, sim, create=True)
+        except checks.USER_ERRORS as exc:
             self.report({"ERROR"}, str(exc))
             return {"CANCELLED"}
         self.report({"INFO"}, f"{n} writing primitive(s)")

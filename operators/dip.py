@@ -5,7 +5,7 @@ from __future__ import annotations
 
 import bpy
 
-from .. import bridge
+from ..blender import checks, frames, recordings
 from ..sim.core.recording import RecordingError, from_dict
 from . import polls
 
@@ -37,11 +37,11 @@ class HAIRY_BRUSH_OT_dip(bpy.types.Operator):
 
     def execute(self, context):
         scene = context.scene
-        st = bridge.settings(scene)
+        st = checks.settings(scene)
         try:
-            d = bridge.read_recording_dict(st)
+            d = recordings.read_recording_dict(st)
             rec = from_dict(d)
-        except bridge.UserError:
+        except checks.UserError:
             self.report({"ERROR"}, "No recording to dip in: bake samples or paint first")
             return {"CANCELLED"}
         except RecordingError as exc:
@@ -51,14 +51,14 @@ class HAIRY_BRUSH_OT_dip(bpy.types.Operator):
         at = (
             n
             if self.at == "END"
-            else bridge.first_sample_from_frame(rec, scene, scene.frame_current)
+            else frames.first_sample_from_frame(rec, scene, scene.frame_current)
         )
         if not rec.dips:
             rec.dips = list(rec.dips_or_default())
         rec.dips = [dp for dp in rec.dips if dp.before_sample != at]
-        rec.dips.append(bridge.current_dip(st, at))
+        rec.dips.append(recordings.current_dip(st, at))
         rec.dips.sort(key=lambda dp: dp.before_sample)
-        bridge.store_recording(st, rec)
+        recordings.store_recording(st, rec)
         if at >= n:
             self.report(
                 {"WARNING"},

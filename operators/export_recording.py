@@ -6,7 +6,7 @@ from __future__ import annotations
 import bpy
 from bpy_extras.io_utils import ExportHelper
 
-from .. import bridge
+from ..blender import checks, recordings
 from . import polls
 
 
@@ -26,9 +26,9 @@ class HAIRY_BRUSH_OT_export_recording(bpy.types.Operator, ExportHelper):
 
     def execute(self, context):
         try:
-            rec = bridge.recording_from_scene(context.scene)
+            rec = recordings.recording_from_scene(context.scene)
             rec.save(self.filepath)
-        except (*bridge.USER_ERRORS, OSError) as exc:
+        except (*checks.USER_ERRORS, OSError) as exc:
             self.report({"ERROR"}, str(exc))
             return {"CANCELLED"}
         self.report({"INFO"}, f"Wrote {len(rec.samples)} samples to {self.filepath}")

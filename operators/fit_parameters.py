@@ -10,14 +10,14 @@ import os
 import bpy
 import numpy as np
 
-from .. import bridge
+from ..blender import checks, recordings
+from ..blender.jobs import JobOperator, WorkerJob
 from ..sim.core.params import QualityParams
 from ..sim.fitting.samples import TrainingSample, character_samples
 from ..sim.fitting.search import FitSettings, fit
 from ..sim.writing.hanzi import find_char
 from . import polls
 from .add_settings_preset import PRESET_SUBDIR, HAIRY_BRUSH_OT_add_settings_preset
-from .jobs import JobOperator, WorkerJob
 
 
 def write_user_preset(st, name: str) -> str:
@@ -177,7 +177,7 @@ class HAIRY_BRUSH_OT_fit_parameters(JobOperator, bpy.types.Operator):
     def _samples(self, scene):
         """A function that makes the training samples (in the worker: characters are written
         there); what needs Blender's data is read here."""
-        template = bridge.settings_recording(scene)
+        template = recordings.settings_recording(scene)
         if self.source == "CHARACTERS":
             chars = [find_char(c, self.data_path or None) for c in self.characters if c.strip()]
             if not chars:
@@ -187,7 +187,7 @@ class HAIRY_BRUSH_OT_fit_parameters(JobOperator, bpy.types.Operator):
         img = bpy.data.images.get(self.image)
         if img is None:
             raise ValueError(f"no image named {self.image!r} to train against")
-        rec = bridge.recording_from_scene(scene)
+        rec = recordings.recording_from_scene(scene)
         w, h = img.size
         if (w, h) != (rec.width_px, rec.height_px):
             raise ValueError(
@@ -201,11 +201,11 @@ class HAIRY_BRUSH_OT_fit_parameters(JobOperator, bpy.types.Operator):
 
     def execute(self, context):
         scene = context.scene
-        st = bridge.settings(scene)
+        st = checks.settings(scene)
         try:
-            bridge.require_brush_and_paper(st)
+            checks.require_brush_and_paper(st)
             make_samples = self._samples(scene)
-        except (*bridge.USER_ERRORS, ValueError) as exc:
+        except (*checks.USER_ERRORS, ValueError) as exc:
             self.report({"ERROR"}, str(exc))
             return {"CANCELLED"}
         settings = FitSettings(
@@ -214,6 +214,6 @@ class HAIRY_BRUSH_OT_fit_parameters(JobOperator, bpy.types.Operator):
             iterations=self.iterations,
             max_grid=self.max_grid,
             workers=1,  # Blender's executable is not a plain Python to fork workers from
-            seed=bridge.scene_seed(st),
+            seed=recordings.scene_seed(st),
         )
         return self.run_job(context, FitJob(st, make_samples, settings, self.preset_name))

@@ -11,13 +11,13 @@ import bpy
 import numpy as np
 from bpy_extras.io_utils import ImportHelper
 
-from .. import bridge
+from ..blender import checks, recordings
+from ..blender.jobs import JobOperator, WorkerJob
+from ..blender.writing import WriteJob
 from ..sim.image.png import SIGNATURE
 from ..sim.picture.imitate import MAX_DETAIL, PASSES, read_picture
 from ..sim.picture.ink import MAX_PICTURE_PIXELS, PictureError, load_picture
 from . import polls
-from .jobs import JobOperator, WorkerJob
-from .write_character import WriteJob
 
 READ_SHARE = 0.05  # of the progress bar: reading the picture
 
@@ -70,9 +70,9 @@ class ImitateJob(WriteJob):
     def __init__(
         self, scene, picture, name: str, size_mm: float, passes: int, detail: int, piece=False
     ):
-        st = bridge.settings(scene)
+        st = checks.settings(scene)
         self.scene, self.char, self.name = scene, None, name
-        self.template = bridge.settings_recording(scene)
+        self.template = recordings.settings_recording(scene)
         self.ppm = float(st.px_per_mm)
         self.strokes = 0
         self.picture = picture  # let go once read: a large picture is not kept while writing
@@ -162,7 +162,7 @@ class HAIRY_BRUSH_OT_imitate_image(JobOperator, bpy.types.Operator, ImportHelper
     def execute(self, context):
         scene = context.scene
         try:
-            bridge.require_brush_and_paper(bridge.settings(scene))
+            checks.require_brush_and_paper(checks.settings(scene))
             if self.image:
                 img = bpy.data.images.get(self.image)
                 if img is None:
@@ -173,7 +173,7 @@ class HAIRY_BRUSH_OT_imitate_image(JobOperator, bpy.types.Operator, ImportHelper
             job = ImitateJob(
                 scene, picture, name, self.size_mm, self.passes, self.detail, self.piece
             )
-        except (*bridge.USER_ERRORS, ValueError, OSError) as exc:
+        except (*checks.USER_ERRORS, ValueError, OSError) as exc:
             self.report({"ERROR"}, str(exc))
             return {"CANCELLED"}
         return self.run_job(context, job)

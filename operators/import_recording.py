@@ -6,7 +6,7 @@ from __future__ import annotations
 import bpy
 from bpy_extras.io_utils import ImportHelper
 
-from .. import bridge
+from ..blender import checks, recordings
 from ..sim.core.recording import load
 from . import polls
 
@@ -27,15 +27,15 @@ class HAIRY_BRUSH_OT_import_recording(bpy.types.Operator, ImportHelper):
         return polls.object_mode(cls, context)
 
     def execute(self, context):
-        st = bridge.settings(context.scene)
+        st = checks.settings(context.scene)
         try:
             rec = load(self.filepath)
-            bridge.copy_settings_from_recording(st, rec)
-        except bridge.USER_ERRORS as exc:
+            recordings.copy_settings_from_recording(st, rec)
+        except checks.USER_ERRORS as exc:
             self.report({"ERROR"}, f"{bpy.path.basename(self.filepath)}: {exc}")
             return {"CANCELLED"}
         st.recording = None  # a new text block: the previous recording stays in the file
-        text = bridge.store_recording(st, rec)
+        text = recordings.store_recording(st, rec)
         self.report(
             {"INFO"},
             f"Imported {len(rec.samples)} samples into '{text.name}'; paper "

@@ -17,7 +17,16 @@ import bpy
 from bpy_extras import view3d_utils
 from mathutils import Matrix
 
-from .. import bridge, playback
+from ..blender import (
+    checks,
+    images,
+    playback,
+    presets,
+    primitives,
+    recordings,
+    surfaces,
+    transforms,
+)
 from ..sim import surface as surf
 from ..sim.core import placement
 from ..sim.core.params import HOVER_MM
@@ -52,35 +61,35 @@ def ray_to_paper(st, ray, sim=None):
     """mouse_to_paper for a world ray (origin, direction), or None."""
     if ray is None:
         return None
-    if bridge.is_surface(st):
-        hit = bridge.surface_ray(st, *ray)
+    if surfaces.is_surface(st):
+        hit = surfaces.surface_ray(st, *ray)
         if hit is None or sim is None or not sim.surface.frames:
             return None
         paper = sim.surface
         return surf.chart_xy_over(paper.surface, paper.frames[-1], hit.point, paper.near)
-    return placement.ray_to_paper(bridge.engine_to_world(st, st.paper_object), *ray)
+    return placement.ray_to_paper(transforms.engine_to_world(st, st.paper_object), *ray)
 
 
 def start_on_surface(scene, ray) -> tuple[Simulation, tuple | None]:
     """The simulation at the end of the scene's recording on its surface (a fresh one, with its
     first frame where the mouse's world ray meets the mesh, when there is none), and the
     mouse's chart position."""
-    st = bridge.settings(scene)
-    hit = bridge.surface_ray(st, *ray) if ray is not None else None
+    st = checks.settings(scene)
+    hit = surfaces.surface_ray(st, *ray) if ray is not None else None
     if st.recording is not None:
         pb = playback.playback_for(scene)
         sim = pb.seek(len(pb.rec.samples))
     elif hit is None:
-        raise bridge.UserError(
+        raise checks.UserError(
             f"Start painting with the mouse over '{st.paper_object.name}' (the paper surface)"
         )
     else:
-        surface = bridge.mesh_surface(st.paper_object)[0]
-        frame = surf.new_frame(surface, hit, None, bridge.surface_origin(st))
-        hover = bridge.hair_length(st) + HOVER_MM
-        rec = bridge.new_recording(scene, [[frame[0], frame[1], hover, 0.0, 0.0, 0.0]])
-        rec.extra[bridge.SURFACE_KEY] = {"frames": [frame.tolist()]}
-        sim = Simulation(rec, bridge.surface_paper(st, rec)).run()
+        surface = surfaces.mesh_surface(st.paper_object)[0]
+        frame = surf.new_frame(surface, hit, None, surfaces.surface_origin(st))
+        hover = presets.hair_length(st) + HOVER_MM
+        rec = recordings.new_recording(scene, [[frame[0], frame[1], hover, 0.0, 0.0, 0.0]])
+        rec.extra[recordings.SURFACE_KEY] = {"frames": [frame.tolist()]}
+        sim = Simulation(rec, surfaces.surface_paper(st, rec)).run()
     paper = sim.surface
     xy = (
         None
@@ -93,13 +102,13 @@ def start_on_surface(scene, ray) -> tuple[Simulation, tuple | None]:
 def start_simulation(scene, xy) -> tuple[Simulation, bool]:
     """The simulation at the end of the scene's recording, or a fresh one (True) hovering at
     ``xy`` when there is none."""
-    st = bridge.settings(scene)
+    st = checks.settings(scene)
     if st.recording is not None:
         pb = playback.playback_for(scene)
         return pb.seek(len(pb.rec.samples)), False
-    geom_len = bridge.hair_length(st)
+    geom_len = presets.hair_length(st)
     x, y = xy if xy is not None else (st.paper_width_mm / 2, st.paper_height_mm / 2)
-    rec = bridge.new_recording(scene, [[x, y, geom_len + HOVER_MM, 0.0, 0.0, 0.0]])
+    rec = recordings.new_recording(scene, [[x, y, geom_len + HOVER_MM, 0.0, 0.0, 0.0]])
     return Simulation(rec).run(), True
 
 
@@ -109,10 +118,10 @@ def keep_stroke(scene, live: LiveBrush):
     rec = live.sim.rec
     if live.sim.surface is not None:  # the frames the samples were simulated in
         frames = live.sim.surface.frames[: len(rec.samples)]
-        rec.extra[bridge.SURFACE_KEY] = {"frames": [f.tolist() for f in frames]}
+        rec.extra[recordings.SURFACE_KEY] = {"frames": [f.tolist() for f in frames]}
     info = rec.extra.setdefault("blender", {})
-    info[bridge.PAINTED_KEY] = int(info.get(bridge.PAINTED_KEY, 0)) + len(live.new_samples)
-    bridge.store_recording(bridge.settings(scene), rec)
+    info[recordings.PAINTED_KEY] = int(info.get(recordings.PAINTED_KEY, 0)) + len(live.new_samples)
+    recordings.store_recording(checks.settings(scene), rec)
     playback.adopt(scene, live.sim)
 
 
@@ -130,26 +139,26 @@ class HAIRY_BRUSH_OT_paint(bpy.types.Operator):
         if context.area is None or context.area.type != "VIEW_3D":
             cls.poll_message_set("Paint from a 3D Viewport")
             return False
-        if bridge.settings(context.scene).paper_object is None:
+        if checks.settings(context.scene).paper_object is None:
             cls.poll_message_set("No paper plane: run Setup first")
             return False
         return polls.object_mode(cls, context)
 
     def invoke(self, context, event):
         scene = context.scene
-        st = bridge.settings(scene)
+        st = checks.settings(scene)
         if st.paper_object is None:
             self.report({"ERROR"}, "No paper plane: run Setup first")
             return {"CANCELLED"}
         mx, my = event.mouse_region_x, event.mouse_region_y
         try:
-            img = bridge.ensure_paper_image(st)
-            if bridge.is_surface(st):
+            img = images.ensure_paper_image(st)
+            if surfaces.is_surface(st):
                 sim, xy = start_on_surface(scene, mouse_ray(context, mx, my))
             else:
                 xy = mouse_to_paper(context, st, mx, my)
                 sim, _fresh = start_simulation(scene, xy)
-        except bridge.USER_ERRORS as exc:
+        except checks.USER_ERRORS as exc:
             self.report({"ERROR"}, str(exc))
             return {"CANCELLED"}
         self.start(context, img, LiveBrush(sim, st.paint_press_mm, st.paint_angle_step, xy))
@@ -164,18 +173,18 @@ class HAIRY_BRUSH_OT_paint(bpy.types.Operator):
 
     def start(self, context, img, live: LiveBrush):
         """The stroke's state (also used by tests, which have no window to run a modal in)."""
-        st = bridge.settings(context.scene)
+        st = checks.settings(context.scene)
         self._img = img
         self._live = live
         self._brush_mw = st.brush_object.matrix_world.copy() if st.brush_object else None
         self._last_draw = 0.0
         self._refresh_s = 0.0  # what the last refresh cost
         self._timer = None
-        bridge.show_paper(img, live.sim.paper, live.sim.index)  # later refreshes: what changed
+        images.show_paper(img, live.sim.paper, live.sim.index)  # later refreshes: what changed
         live.handle(LiveEvent("START", "NOTHING", time=time.perf_counter()))
 
     def modal(self, context, event):
-        st = bridge.settings(context.scene)
+        st = checks.settings(context.scene)
         if event.type in NAVIGATION or event.type.startswith(NAVIGATION_PREFIX):
             return {"PASS_THROUGH"}
         now = time.perf_counter()  # the sample clock: when the event is handled
@@ -225,9 +234,9 @@ class HAIRY_BRUSH_OT_paint(bpy.types.Operator):
         if not final and now - self._last_draw < wait:
             return
         scene = context.scene
-        st = bridge.settings(scene)
+        st = checks.settings(scene)
         sim = self._live.sim
-        bridge.show_paper(self._img, sim.paper, sim.index)
+        images.show_paper(self._img, sim.paper, sim.index)
         self._last_draw = time.perf_counter()
         self._refresh_s = self._last_draw - now
         if final:
@@ -235,18 +244,18 @@ class HAIRY_BRUSH_OT_paint(bpy.types.Operator):
         if st.brush_object is not None:
             pose = sim.rec.samples[-1]
             if sim.surface is not None:  # in the latest frame the engine has made
-                mw = bridge.surface_matrix(st, sim.surface.frames[-1], pose)
+                mw = surfaces.surface_matrix(st, sim.surface.frames[-1], pose)
             else:
-                mw = bridge.matrix_from_sample(st, st.paper_object.matrix_world, pose)
+                mw = transforms.matrix_from_sample(st, st.paper_object.matrix_world, pose)
             st.brush_object.matrix_world = Matrix(mw.tolist())
-        if playback.primitive_objects(scene):
-            playback.sync_primitives(scene, sim, create=False)
+        if primitives.primitive_objects(scene):
+            primitives.sync_primitives(scene, sim, create=False)
 
     def _finish(self, context):
         if self._timer is not None:
             context.window_manager.event_timer_remove(self._timer)
             context.workspace.status_text_set(None)
-        st = bridge.settings(context.scene)
+        st = checks.settings(context.scene)
         if st.brush_object is not None and self._brush_mw is not None:
             st.brush_object.matrix_world = self._brush_mw
 

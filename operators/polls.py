@@ -4,7 +4,7 @@
 
 from __future__ import annotations
 
-from .. import bridge
+from ..blender import checks, surfaces
 
 
 def scene(cls, context) -> bool:
@@ -15,17 +15,17 @@ def scene(cls, context) -> bool:
 
 
 def brush_and_paper(cls, context) -> bool:
-    st = bridge.settings(context.scene)
+    st = checks.settings(context.scene)
     try:
-        bridge.require_brush_and_paper(st)
-    except bridge.UserError as exc:
+        checks.require_brush_and_paper(st)
+    except checks.UserError as exc:
         cls.poll_message_set(str(exc))
         return False
     return True
 
 
 def recording(cls, context) -> bool:
-    if bridge.settings(context.scene).recording is None:
+    if checks.settings(context.scene).recording is None:
         cls.poll_message_set("No recording yet: bake the brush's animation, paint, or import one")
         return False
     return True
@@ -34,14 +34,14 @@ def recording(cls, context) -> bool:
 def selected_meshes(context) -> list:
     """The selected meshes other than the paper plane (a mesh that is the paper itself, set
     up with setup(surface=True), counts: its writing can be carved into it)."""
-    st = bridge.settings(context.scene)
-    plane = None if bridge.is_surface(st) else st.paper_object
+    st = checks.settings(context.scene)
+    plane = None if surfaces.is_surface(st) else st.paper_object
     return [o for o in context.selected_objects or [] if o.type == "MESH" and o != plane]
 
 
 def paper_image_and_meshes(cls, context) -> bool:
     """A paper image to read, and meshes to put it on."""
-    if bridge.settings(context.scene).paper_image is None:
+    if checks.settings(context.scene).paper_image is None:
         cls.poll_message_set("No paper image yet: run Setup and Simulate first")
         return False
     if not selected_meshes(context):

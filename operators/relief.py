@@ -6,7 +6,7 @@ It stays live: a Displace modifier reads the paper image, so re-simulating or a 
 updates the relief. Displacement along the normal is (texture value - paper's value) x
 strength, so the bare paper does not move and full ink moves by the depth. By default
 (``follow='DENSITY'``, issue 17.3: "in proportion to the ink density") the modifier reads an ink
-density image (bridge.density_image, refreshed with the paper image), and the displacement is
+density image (images.density_image, refreshed with the paper image), and the displacement is
 exactly the density x the depth. With ``follow='VALUE'`` it reads the paper image's value
 instead (linear light for a float image, so thin ink moves more than in proportion to its
 density: half density, 79% of the depth), which costs no second image refresh."""
@@ -15,7 +15,7 @@ from __future__ import annotations
 
 import bpy
 
-from .. import bridge, playback
+from ..blender import checks, images, playback, transforms
 from ..sim.paper import display
 from . import polls
 
@@ -26,7 +26,7 @@ LUMA = (1 / 3, 1 / 3, 1 / 3)  # a texture's value is its colour's mean (Blender'
 
 def paper_value(st, img) -> float:
     """The texture value the blank paper has in the image (what the Displace modifier reads)."""
-    color = display.encode(bridge.blank_color(st), linear=img.is_float)
+    color = display.encode(images.blank_color(st), linear=img.is_float)
     return float(sum(c * w for c, w in zip(color, LUMA, strict=True)))
 
 
@@ -117,7 +117,7 @@ class HAIRY_BRUSH_OT_relief(bpy.types.Operator):
         return polls.paper_image_and_meshes(cls, context)
 
     def execute(self, context):
-        st = bridge.settings(context.scene)
+        st = checks.settings(context.scene)
         meshes = polls.selected_meshes(context)
         with_uv = [o for o in meshes if o.data.uv_layers]
         if not with_uv:
@@ -127,16 +127,16 @@ class HAIRY_BRUSH_OT_relief(bpy.types.Operator):
         sign = 1.0 if self.mode == "CARVE" else -1.0
         if self.follow == "DENSITY":  # displacement = density x (-sign depth)
             try:  # the engine's own density at the sample the image shows
-                ink = playback.show(context.scene, int(img[bridge.SHOWN_TAG])).paper.ink
-                density = bridge.density_of(ink)
-            except (*bridge.USER_ERRORS, KeyError, MemoryError):  # else as the image shows it
-                density = bridge.density_from_image(st, img)
-            dens = bridge.density_image(img, create=True)  # made once nothing can fail
-            bridge.write_density(dens, density)
-            mid, strength, tex = 0.0, -sign * self.depth_mm / bridge.MM, relief_texture(dens)
+                ink = playback.show(context.scene, int(img[images.SHOWN_TAG])).paper.ink
+                density = images.density_of(ink)
+            except (*checks.USER_ERRORS, KeyError, MemoryError):  # else as the image shows it
+                density = images.density_from_image(st, img)
+            dens = images.density_image(img, create=True)  # made once nothing can fail
+            images.write_density(dens, density)
+            mid, strength, tex = 0.0, -sign * self.depth_mm / transforms.MM, relief_texture(dens)
         else:  # displacement = (value - paper's value) x strength: 0 bare, -sign depth full
             mid = paper_value(st, img)
-            strength = sign * self.depth_mm / bridge.MM / max(mid, 1e-6)
+            strength = sign * self.depth_mm / transforms.MM / max(mid, 1e-6)
             tex = relief_texture(img)
         for obj in with_uv:
             add_relief(obj, tex, strength, mid, self.detail)

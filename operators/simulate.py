@@ -8,9 +8,9 @@ import time
 
 import bpy
 
-from .. import bridge, playback
+from ..blender import checks, frames, images, playback
+from ..blender.jobs import Job, JobOperator, deadline
 from . import polls
-from .jobs import Job, JobOperator, deadline
 
 SHOW_EVERY_S = 1.0  # the paper image shows the ink so far this often while simulating
 
@@ -26,10 +26,10 @@ class SimulateJob(Job):
         self.pb = playback.playback_for(scene)
         n = len(self.pb.rec.samples)
         if to_current_frame:
-            n = bridge.samples_at_frame(self.pb.rec, scene, scene.frame_current)
+            n = frames.samples_at_frame(self.pb.rec, scene, scene.frame_current)
         self.target = n if target is None else target
-        img = bridge.settings(scene).paper_image
-        self.shown_before = int(img[bridge.SHOWN_TAG]) if img and bridge.SHOWN_TAG in img else None
+        img = checks.settings(scene).paper_image
+        self.shown_before = int(img[images.SHOWN_TAG]) if img and images.SHOWN_TAG in img else None
         self._last_show = time.perf_counter()
 
     def step(self, budget_s: float) -> bool:
@@ -42,19 +42,19 @@ class SimulateJob(Job):
         return done
 
     def _show(self, sim):
-        img = bridge.ensure_paper_image(bridge.settings(self.scene))
-        bridge.show_paper(img, sim.paper, sim.index)
+        img = images.ensure_paper_image(checks.settings(self.scene))
+        images.show_paper(img, sim.paper, sim.index)
         self._last_show = time.perf_counter()
 
     def cancel(self):
         if self.shown_before is not None:
             playback.show(self.scene, self.shown_before)
-        elif bridge.settings(self.scene).paper_image is not None:
-            bridge.show_blank(bridge.settings(self.scene))
+        elif checks.settings(self.scene).paper_image is not None:
+            images.show_blank(checks.settings(self.scene))
 
     def finish(self, context):
         playback.show(self.scene, self.target)
-        img = bridge.settings(self.scene).paper_image
+        img = checks.settings(self.scene).paper_image
         return "INFO", f"Simulated {self.target} samples into '{img.name}'"
 
 
@@ -82,6 +82,6 @@ class HAIRY_BRUSH_OT_simulate(JobOperator, bpy.types.Operator):
     def execute(self, context):
         try:
             job = SimulateJob(context.scene, to_current_frame=self.to_current_frame)
-        except (*bridge.USER_ERRORS, MemoryError) as exc:
+        except (*checks.USER_ERRORS, MemoryError) as exc:
             return self._failed(exc)
         return self.run_job(context, job)

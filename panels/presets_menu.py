@@ -7,8 +7,8 @@ from __future__ import annotations
 
 import bpy
 
+from ..blender.presets import ITEMS
 from ..operators.add_settings_preset import NO_PRESET_LABEL, PRESET_SUBDIR
-from ..properties import _ITEMS
 
 
 class _ShippedPresets:
@@ -18,7 +18,7 @@ class _ShippedPresets:
     def draw(self, context):
         st = context.scene.hairy_brush
         active = getattr(st, self.active_property) if self.active_property else None
-        for name, label, _tip, _i in _ITEMS[self.kind]:
+        for name, label, _tip, _i in ITEMS[self.kind]:
             icon = "CHECKMARK" if name == active else "BLANK1"
             op = self.layout.operator("hairy_brush.apply_preset", text=label, icon=icon)
             op.kind, op.name = self.kind, name

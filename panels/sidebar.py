@@ -7,8 +7,8 @@ from __future__ import annotations
 
 import bpy
 
-from .. import bridge
-from ..properties import HAIR_LENGTH_MM, QUALITY_GROUPS, preset_label
+from ..blender import checks, recordings, surfaces, transforms
+from ..blender.presets import HAIR_LENGTH_MM, QUALITY_GROUPS, preset_label
 
 
 class _Panel:
@@ -37,9 +37,9 @@ class HAIRY_BRUSH_PT_paper(_Panel, bpy.types.Panel):
         col.prop(st, "paper_width_mm")
         col.prop(st, "paper_height_mm")
         col.prop(st, "px_per_mm")
-        w, h = bridge.paper_pixels(st)
+        w, h = checks.paper_pixels(st)
         layout.label(text=f"Image {w} x {h} px", icon="IMAGE_DATA")
-        if bridge.is_surface(st):  # Width and Height are the texture's, in the mesh's mm
+        if surfaces.is_surface(st):  # Width and Height are the texture's, in the mesh's mm
             layout.label(
                 text=f"Writing on the surface of '{st.paper_object.name}'", icon="MESH_DATA"
             )
@@ -80,10 +80,10 @@ def _brush_height(st):
     if st.brush_object is None or st.paper_object is None:
         return None
     try:
-        s = bridge.sample_from_matrices(
+        s = transforms.sample_from_matrices(
             st, st.brush_object.matrix_world, st.paper_object.matrix_world
         )
-    except bridge.USER_ERRORS:
+    except checks.USER_ERRORS:
         return None
     return float(s[2])
 
@@ -156,11 +156,11 @@ class HAIRY_BRUSH_PT_recording(_Panel, bpy.types.Panel):
         layout.prop(st, "recording")
         text = st.recording
         if text is not None:
-            n = text.get(bridge.SAMPLES_TAG)
+            n = text.get(recordings.SAMPLES_TAG)
             if n is None:
                 layout.label(text="Not counted: stored outside the extension", icon="INFO")
             else:
-                layout.label(text=f"{n} samples, {text.get(bridge.DIPS_TAG, 0)} dips")
+                layout.label(text=f"{n} samples, {text.get(recordings.DIPS_TAG, 0)} dips")
         row = layout.row(align=True)
         row.operator("hairy_brush.import_recording", icon="IMPORT")
         row.operator("hairy_brush.export_recording", icon="EXPORT")

@@ -61,7 +61,7 @@ def main(argv=None) -> int:
         parts.append(stroke([[25.0, y], [175.0, y - 6.0]], press_mm=6, speed_mm_s=25))
         k += 1
     samples = np.concatenate(parts)[: args.samples]
-    ext.bridge.store_recording(st, ext.bridge.new_recording(sc, samples))
+    ext.blender.recordings.store_recording(st, ext.blender.recordings.new_recording(sc, samples))
     sc.frame_start, sc.frame_end = 1, int(args.samples / 120 * 24)
     folder = Path(tempfile.mkdtemp(prefix="hairy-brush-farm-"))
     path = folder / "shot.blend"

@@ -141,8 +141,8 @@ def scrub(ext, size_px: int, frames: int, seed: int = 0):
         rows += len(s)
         k += 1
     samples = np.concatenate(parts)[:need]
-    rec = ext.bridge.new_recording(sc, samples)
-    ext.bridge.store_recording(st, rec)
+    rec = ext.blender.recordings.new_recording(sc, samples)
+    ext.blender.recordings.store_recording(st, rec)
     sc.frame_start, sc.frame_end = 1, frames
     st.sync_frames = True
 

@@ -100,7 +100,7 @@ def laid_on(samples, radius, z_mid, size_mm):
 
 
 def keyframe(obj, matrices, rate_hz: float):
-    """One key a sample (linear), location and quaternion, as bridge.keyframe_samples does."""
+    """One key a sample (linear), location and quaternion, as keyframes.keyframe_samples does."""
     from mathutils import Matrix
 
     sc = bpy.context.scene
@@ -120,7 +120,7 @@ def keyframe(obj, matrices, rate_hz: float):
             obj.keyframe_insert(path, index=k, frame=float(frames[0]))
         curves = {
             (fc.data_path, fc.array_index): fc
-            for fc in sys.modules[bench_live.ADDON].bridge.fcurves(obj.animation_data)
+            for fc in sys.modules[bench_live.ADDON].blender.keyframes.fcurves(obj.animation_data)
         }
         for k in range(values.shape[1]):
             fc = curves[(path, k)]
@@ -154,7 +154,7 @@ def write_on(obj, ppm: float, radius, z_mid, ring_below_mm=None):
     sc = bpy.context.scene
     assert bpy.ops.hairy_brush.import_recording(filepath=str(OUT / "demo_recording.json"))
     st = sc.hairy_brush
-    rec = sys.modules[bench_live.ADDON].bridge.recording_from_scene(sc)
+    rec = sys.modules[bench_live.ADDON].blender.recordings.recording_from_scene(sc)
     st.paper_color = (1.0, 1.0, 1.0)  # the mesh's own colour under the ink
     st.px_per_mm = ppm
     for o in sc.objects:
@@ -293,16 +293,16 @@ def sphere():
     st.brush_preset, st.px_per_mm, st.paper_color = "wolf_stiff", 5.0, (1.0, 1.0, 1.0)
     assert bpy.ops.hairy_brush.setup(surface=True) == {"FINISHED"}
     seam = seam_longitude(obj)
-    hair = sys.modules[bench_live.ADDON].bridge.hair_length(st)
+    hair = sys.modules[bench_live.ADDON].blender.presets.hair_length(st)
     first = meridian(seam, hair, 80.0)
     poses = first + meridian(seam, hair, 80.0, equator=True)
     sc.frame_start = 1
     keyframe(st.brush_object, poses, st.sample_rate_hz)
     assert bpy.ops.hairy_brush.bake_samples() == {"FINISHED"}
     ext = sys.modules[bench_live.ADDON]
-    rec = ext.bridge.recording_from_scene(sc)  # a full dip before each stroke
+    rec = ext.blender.recordings.recording_from_scene(sc)  # a full dip before each stroke
     rec.dips = [ext.sim.core.recording.Dip(0), ext.sim.core.recording.Dip(len(first))]
-    ext.bridge.store_recording(st, rec)
+    ext.blender.recordings.store_recording(st, rec)
     assert bpy.ops.hairy_brush.simulate() == {"FINISHED"}
     sc.frame_set(sc.frame_end)
     st.brush_object.hide_render = True

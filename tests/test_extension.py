@@ -141,13 +141,15 @@ def test_brush_pose_is_read_as_the_papers_six_dof(hb):
     b.location = (0.010, -0.020, 0.004)  # 4 mm above the paper
     b.rotation_euler = (math.radians(-12), math.radians(20), math.radians(35))  # q, d, r
     bpy.context.view_layer.update()
-    s = ext().bridge.sample_from_matrices(st, b.matrix_world, st.paper_object.matrix_world)
+    s = ext().blender.transforms.sample_from_matrices(
+        st, b.matrix_world, st.paper_object.matrix_world
+    )
     np.testing.assert_allclose(s, [110.0, 80.0, 4.0, 20.0, -12.0, 35.0], atol=1e-4)
     # the engine's rotation is Blender's ZYX Euler matrix
     R = ext().sim.core.frames.rotation_matrix(20.0, -12.0, 35.0)
     np.testing.assert_allclose(R, np.array(b.matrix_world.to_3x3()), atol=1e-6)
     # and back
-    mw = ext().bridge.matrix_from_sample(st, st.paper_object.matrix_world, s)
+    mw = ext().blender.transforms.matrix_from_sample(st, st.paper_object.matrix_world, s)
     np.testing.assert_allclose(mw, np.array(b.matrix_world), atol=1e-6)
 
 
@@ -213,10 +215,12 @@ def test_undo_restores_the_paper_and_redo_brings_the_ink_back(hb):
     undo_step(bpy, "simulated")
     after = pixels(bpy.context.scene.hairy_brush.paper_image)
     assert np.abs(after - before).max() > 0.5
-    pb = ext().playback.playback_for(bpy.context.scene)
+    pb = ext().blender.playback.playback_for(bpy.context.scene)
     call(bpy, "undo")
     np.testing.assert_array_equal(pixels(bpy.context.scene.hairy_brush.paper_image), before)
-    assert ext().playback.playback_for(bpy.context.scene) is pb  # cache kept: same recording
+    assert (
+        ext().blender.playback.playback_for(bpy.context.scene) is pb
+    )  # cache kept: same recording
     call(bpy, "redo")
     np.testing.assert_array_equal(pixels(bpy.context.scene.hairy_brush.paper_image), after)
 
@@ -227,13 +231,13 @@ def test_frame_change_shows_the_artwork_as_at_that_frame(hb):
     keyframe_stroke(bpy, st)
     bpy.ops.hairy_brush.bake_samples()
     sc = bpy.context.scene
-    rec = ext().bridge.recording_from_scene(sc)
+    rec = ext().blender.recordings.recording_from_scene(sc)
     images = {}
     for f in (30, 12, 45, 30):  # forwards, backwards, forwards, back again
         sc.frame_set(f)
         images.setdefault(f, []).append(pixels(st.paper_image)[..., :3])
     for f, imgs in images.items():
-        n = ext().bridge.samples_at_frame(rec, sc, f)
+        n = ext().blender.frames.samples_at_frame(rec, sc, f)
         direct = Simulation(rec).run(n).paper.rgb()
         for got in imgs:
             assert np.abs(got - direct).max() <= 1 / 255 + 1e-6, f
@@ -253,7 +257,7 @@ def test_bake_sequence_writes_one_image_per_frame(hb, tmp_path):
     from sim.image.png import read_png
 
     last = read_png(files[-1])
-    sim = Simulation(ext().bridge.recording_from_scene(bpy.context.scene)).run()
+    sim = Simulation(ext().blender.recordings.recording_from_scene(bpy.context.scene)).run()
     assert np.abs(last.astype(float) / 255 - sim.image()).max() <= 1 / 255 + 1e-6
 
 
@@ -268,11 +272,11 @@ def test_primitive_surfaces_match_the_engine(hb):
     sc = bpy.context.scene
     sc.frame_set(30)
     assert bpy.ops.hairy_brush.build_primitives() == {"FINISHED"}
-    objs = ext().playback.primitive_objects(sc)
-    pb = ext().playback.playback_for(sc)
+    objs = ext().blender.primitives.primitive_objects(sc)
+    pb = ext().blender.playback.playback_for(sc)
     nets, breaks = pb.sim.brush.surface_nets()
     assert len([o for o in objs if not o.hide_viewport]) == len(nets) >= 1
-    to_world = ext().bridge.engine_to_world(st, st.paper_object)
+    to_world = ext().blender.transforms.engine_to_world(st, st.paper_object)
     dg = bpy.context.evaluated_depsgraph_get()
     for obj, net in zip(objs, nets, strict=False):
         assert obj.parent == st.brush_object
@@ -309,10 +313,10 @@ def test_splitting_adds_primitive_objects_on_frame_change(hb):
     sc = bpy.context.scene
     sc.frame_set(1)
     bpy.ops.hairy_brush.build_primitives()
-    assert len(ext().playback.primitive_objects(sc)) == 1
+    assert len(ext().blender.primitives.primitive_objects(sc)) == 1
     sc.frame_set(40)
-    m = ext().playback.playback_for(sc).sim.brush.m
-    shown = [o for o in ext().playback.primitive_objects(sc) if not o.hide_viewport]
+    m = ext().blender.playback.playback_for(sc).sim.brush.m
+    shown = [o for o in ext().blender.primitives.primitive_objects(sc) if not o.hide_viewport]
     assert m > 1 and len(shown) == m
 
 
@@ -405,7 +409,7 @@ def test_clear_errors_for_bad_input(hb):
     st.paper_width_mm, st.px_per_mm = 200.0, 2.0
     setup_scene(bpy, ppm=2.0)
     keyframe_stroke(bpy, st)
-    fcurve = ext().bridge.fcurves(st.brush_object.animation_data)[0]
+    fcurve = ext().blender.keyframes.fcurves(st.brush_object.animation_data)[0]
     fcurve.keyframe_points[1].co.y = float("nan")
     with pytest.raises(RuntimeError, match="not a number on location"):
         bpy.ops.hairy_brush.bake_samples()
@@ -457,8 +461,8 @@ def test_live_stroke_is_kept_in_the_recording_and_replays_identically(hb):
         state = live.handle(ev)
     assert state == "FINISHED"
     paint.keep_stroke(sc, live)
-    ext().bridge.show_paper(st.paper_image, live.sim.paper, live.sim.index)
-    rec = ext().bridge.recording_from_scene(sc)
+    ext().blender.images.show_paper(st.paper_image, live.sim.paper, live.sim.index)
+    rec = ext().blender.recordings.recording_from_scene(sc)
     assert len(rec.samples) == 61
     replay = Simulation(rec).run().paper.rgb()
     np.testing.assert_array_equal(replay, live.sim.paper.rgb())
@@ -473,8 +477,8 @@ def test_live_stroke_is_kept_in_the_recording_and_replays_identically(hb):
         live2.handle(LiveEvent("TIMER", "NOTHING"))
     assert live2.handle(LiveEvent("RET", "PRESS")) == "FINISHED"
     paint.keep_stroke(sc, live2)
-    assert ext().playback.playback_for(sc).sim is live2.sim  # no re-simulation
-    rec2 = ext().bridge.recording_from_scene(sc)
+    assert ext().blender.playback.playback_for(sc).sim is live2.sim  # no re-simulation
+    rec2 = ext().blender.recordings.recording_from_scene(sc)
     assert len(rec2.samples) == 91
     np.testing.assert_array_equal(Simulation(rec2).run().paper.rgb(), live2.sim.paper.rgb())
 
@@ -530,7 +534,7 @@ def test_write_character_presses_from_the_outline_and_shows_the_writing(hb):
     assert (st.paper_width_mm, st.paper_height_mm) == before  # nothing changed on an error
     # a character looked up in the bundled data; the size follows from the brush
     assert bpy.ops.hairy_brush.write_character(character="一", passes=2) == {"FINISHED"}
-    rec = ext().bridge.recording_from_scene(bpy.context.scene)
+    rec = ext().blender.recordings.recording_from_scene(bpy.context.scene)
     assert rec.width_mm == pytest.approx(st.paper_width_mm) and 30 < rec.width_mm < 300
     z = rec.samples[:, 2]
     pressed = z[z < HAIR]
@@ -642,7 +646,7 @@ def test_paint_operator_refreshes_what_changed_moves_the_brush_and_cancels_exact
     st = setup_scene(bpy, ppm=3.0)
     sc = bpy.context.scene
     assert bpy.ops.hairy_brush.build_primitives() == {"FINISHED"}
-    prim = ext().playback.primitive_objects(sc)[0]
+    prim = ext().blender.primitives.primitive_objects(sc)[0]
     sim, _ = paint.start_simulation(sc, (60.0, 100.0))
     op = paint_operator()
     op.start(
@@ -749,9 +753,9 @@ def test_a_refused_import_changes_nothing_and_overrides_survive(hb, tmp_path):
     bad.write_text(json.dumps(d))
     # a seed larger than Blender's Seed holds is kept, and simulated with
     assert bpy.ops.hairy_brush.import_recording(filepath=str(bad)) == {"FINISHED"}
-    assert ext().bridge.recording_from_scene(bpy.context.scene).seed == 3_000_000_000
+    assert ext().blender.recordings.recording_from_scene(bpy.context.scene).seed == 3_000_000_000
     st.seed = 5  # the artist's own seed replaces it
-    assert ext().bridge.recording_from_scene(bpy.context.scene).seed == 5
+    assert ext().blender.recordings.recording_from_scene(bpy.context.scene).seed == 5
     # a recording that does not fit the settings changes nothing
     st.recording = None
     before = (st.paper_width_mm, st.px_per_mm, st.seed)
@@ -788,7 +792,7 @@ def test_write_character_keeps_the_brushs_other_animation(hb):
     assert bpy.ops.hairy_brush.write_character(filepath=str(path), size_mm=100.0, passes=1) == {
         "FINISHED"
     }
-    paths = {fc.data_path for fc in ext().bridge.fcurves(b.animation_data)}
+    paths = {fc.data_path for fc in ext().blender.keyframes.fcurves(b.animation_data)}
     assert {"location", "rotation_euler", "empty_display_size"} <= paths
 
 
@@ -801,7 +805,7 @@ def test_settings_that_are_not_numbers_get_one_message(hb):
         with pytest.raises(RuntimeError, match="Resolution is not a number"):
             op()
     bpy.context.scene.frame_set(20)  # the handler reports, never raises
-    assert "Resolution is not a number" in ext().handlers.last_error
+    assert "Resolution is not a number" in ext().blender.runtime.get().last_error
     st.px_per_mm = 2.0
     st.paper_object.scale = (0.0, 1.0, 1.0)
     with pytest.raises(RuntimeError, match="scaled to nothing"):
@@ -815,28 +819,28 @@ def test_a_broken_recording_is_parsed_once_and_frame_changes_stay_bounded(hb, mo
     good = st.recording.as_string()
     st.recording.from_string("{not json")
     calls = []
-    real = ext().bridge.recording_from_scene
+    real = ext().blender.recordings.recording_from_scene
     monkeypatch.setattr(
-        ext().bridge, "recording_from_scene", lambda sc: calls.append(1) or real(sc)
+        ext().blender.recordings, "recording_from_scene", lambda sc: calls.append(1) or real(sc)
     )
     sc = bpy.context.scene
     for f in (5, 6, 7):
         sc.frame_set(f)
-    assert len(calls) == 1 and "not valid JSON" in ext().handlers.last_error
+    assert len(calls) == 1 and "not valid JSON" in ext().blender.runtime.get().last_error
     st.recording.from_string(good)
     # while the artist works (not rendering), a frame change simulates for a bounded time
-    monkeypatch.setattr(ext().handlers, "exact_frames", lambda: False)
-    monkeypatch.setattr(ext().handlers, "FRAME_BUDGET_S", 0.0)
+    monkeypatch.setattr(ext().blender.handlers, "exact_frames", lambda: False)
+    monkeypatch.setattr(ext().blender.handlers, "FRAME_BUDGET_S", 0.0)
     sc.frame_set(45)
-    pb = ext().playback.playback_for(sc)
-    assert 0 < pb.sim.index < ext().bridge.samples_at_frame(pb.rec, sc, 45)
+    pb = ext().blender.playback.playback_for(sc)
+    assert 0 < pb.sim.index < ext().blender.frames.samples_at_frame(pb.rec, sc, 45)
 
 
 def test_a_paper_larger_than_free_memory_an_invalid_preset_and_a_utf16_file_get_one_message(
     hb, tmp_path, monkeypatch
 ):
     st = bpy.context.scene.hairy_brush
-    monkeypatch.setattr(ext().bridge, "available_memory", lambda: 100 * 2**20)
+    monkeypatch.setattr(ext().blender.checks, "available_memory", lambda: 100 * 2**20)
     with pytest.raises(RuntimeError, match="MB of memory and 100 MB are free"):
         bpy.ops.hairy_brush.setup()
     assert st.paper_object is None  # nothing was made

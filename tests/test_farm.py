@@ -48,21 +48,21 @@ def test_bake_cache_needs_a_saved_file_and_writes_checkpoints_next_to_it(hb, tmp
     assert bpy.ops.hairy_brush.bake_cache() == {"FINISHED"}
     folder = tmp_path / "hairy_brush_cache_shot" / "Scene"
     n = len(json.loads(st.recording.as_string())["samples"])
-    every = ext().playback.CACHE_EVERY
+    every = ext().blender.playback.CACHE_EVERY
     assert len(list(folder.glob("checkpoint_*.npz"))) == n // every + 1
     # a fresh start (as after opening the file) seeks from the nearest checkpoint
-    ext().playback.clear()
+    ext().blender.runtime.get().forget_playbacks()
     sc = bpy.context.scene
-    pb = ext().playback.playback_for(sc)
+    pb = ext().blender.playback.playback_for(sc)
     assert sorted(k for k in pb.timeline.snaps if k % every == 0)[-1] == (n // every) * every
     sc.frame_set(75)
-    rec = ext().bridge.recording_from_scene(sc)
-    want = Simulation(rec).run(ext().bridge.samples_at_frame(rec, sc, 75)).paper.rgb()
+    rec = ext().blender.recordings.recording_from_scene(sc)
+    want = Simulation(rec).run(ext().blender.frames.samples_at_frame(rec, sc, 75)).paper.rgb()
     assert np.abs(pixels(st.paper_image)[..., :3] - want).max() <= 0.5 / 4095 + 1e-6
     # a changed setting makes the cache stale: it is not used
     st.quality.ren = 0.123 if st.quality.ren != 0.123 else 0.321
-    ext().playback.clear()
-    assert len(ext().playback.playback_for(sc).timeline.snaps) == 1
+    ext().blender.runtime.get().forget_playbacks()
+    assert len(ext().blender.playback.playback_for(sc).timeline.snaps) == 1
 
 
 WORKER = textwrap.dedent(
@@ -180,14 +180,14 @@ def test_a_density_relief_leaves_nothing_when_it_fails_and_its_image_is_refreshe
         raise RuntimeError("the re-simulation failed")
 
     with monkeypatch.context() as m:
-        m.setattr(ext().playback, "show", fails)
+        m.setattr(ext().blender.playback, "show", fails)
         with pytest.raises(RuntimeError, match="the re-simulation failed"):
             bpy.ops.hairy_brush.relief(follow="DENSITY")
     assert tag not in img and not [i for i in bpy.data.images if "Ink Density" in i.name]
     assert not [m for m in grid.modifiers if m.type == "DISPLACE"]
     assert bpy.ops.hairy_brush.relief(follow="DENSITY") == {"FINISHED"}
     dens = bpy.data.images[img[tag]]
-    n = int(img[ext().bridge.SHOWN_TAG])
+    n = int(img[ext().blender.images.SHOWN_TAG])
 
     def density():
         a = np.empty(len(dens.pixels), np.float32)
@@ -198,12 +198,12 @@ def test_a_density_relief_leaves_nothing_when_it_fails_and_its_image_is_refreshe
     assert full.max() > 0.2
     marker = np.full(len(dens.pixels), 0.5, np.float32)
     dens.pixels.foreach_set(marker)
-    ext().playback.clear()
-    ext().playback.show(bpy.context.scene, n)  # read by the relief: refreshed
+    ext().blender.runtime.get().forget_playbacks()
+    ext().blender.playback.show(bpy.context.scene, n)  # read by the relief: refreshed
     np.testing.assert_array_equal(density(), full)
     for mod in [m for m in grid.modifiers if m.type == "DISPLACE"]:
         grid.modifiers.remove(mod)
     dens.pixels.foreach_set(marker)
-    ext().playback.clear()
-    ext().playback.show(bpy.context.scene, n)  # no relief reads it: left as it is
+    ext().blender.runtime.get().forget_playbacks()
+    ext().blender.playback.show(bpy.context.scene, n)  # no relief reads it: left as it is
     assert (density() == 0.5).all()

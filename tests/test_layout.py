@@ -167,3 +167,71 @@ def test_modules_hold_one_idea_each():
         and path.relative_to(SIM).as_posix() not in ONE_IDEA
     ]
     assert not long, f"over {MAX_LINES} lines: split by idea, or name it in ONE_IDEA: {long}"
+
+
+# ----------------------------------------------------------------------------- the Blender glue
+GLUE = ROOT / "blender"
+# blender/'s modules in the order they may import each other (blender/__init__.py says the same)
+GLUE_ORDER = (
+    "runtime",
+    "checks",
+    "transforms",
+    "frames",
+    "recordings",
+    "images",
+    "keyframes",
+    "surfaces",
+    "primitives",
+    "playback",
+    "materials",
+    "presets",
+    "scene_setup",
+    "properties",
+    "jobs",
+    "writing",
+    "handlers",
+)
+ADDON_CODE = ("blender", "operators", "panels")
+
+
+def _glue_imports(path):
+    """The add-on modules a module of the glue imports, by their path inside the add-on."""
+    tree = ast.parse(path.read_text(encoding="utf-8"))
+    for node in ast.walk(tree):
+        if isinstance(node, ast.ImportFrom) and node.level:
+            base = path.parent.relative_to(ROOT).parts[: len(path.parent.relative_to(ROOT).parts)
+                                                        - node.level + 1]  # fmt: skip
+            mod = list(base) + (node.module.split(".") if node.module else [])
+            for a in node.names:
+                yield ".".join(mod + [a.name]), node.lineno
+
+
+def test_the_glue_is_one_package_whose_modules_import_only_those_before_them():
+    modules = {p.stem for p in GLUE.glob("*.py")} - {"__init__"}
+    assert modules == set(GLUE_ORDER), (
+        f"blender/ modules not in GLUE_ORDER: {modules ^ set(GLUE_ORDER)}"
+    )
+    loose = {p.name for p in ROOT.glob("*.py")} - {"__init__.py"}
+    assert not loose, f"Blender glue outside blender/: {loose}"
+    bad = []
+    for name in GLUE_ORDER:
+        path = GLUE / f"{name}.py"
+        for mod, line in _glue_imports(path):
+            parts = mod.split(".")
+            if parts[0] in ("operators", "panels"):
+                bad.append(f"blender/{name}.py:{line} imports {mod} (the glue never calls up)")
+            elif parts[0] == "blender" and len(parts) > 1 and parts[1] in GLUE_ORDER:
+                if GLUE_ORDER.index(parts[1]) >= GLUE_ORDER.index(name):
+                    bad.append(f"blender/{name}.py:{line} imports {mod}, which comes after it")
+    assert not bad, "\n".join(bad)
+
+
+def test_no_module_level_state_is_set_with_global_statements():
+    bad = [
+        f"{path.relative_to(ROOT)}:{node.lineno}"
+        for folder in ADDON_CODE
+        for path in sorted((ROOT / folder).rglob("*.py"))
+        for node in ast.walk(ast.parse(path.read_text(encoding="utf-8")))
+        if isinstance(node, ast.Global | ast.Nonlocal)
+    ]
+    assert not bad, "keep runtime state in blender.runtime.Runtime: " + ", ".join(bad)

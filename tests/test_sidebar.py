@@ -36,7 +36,7 @@ def paper_size_m(st):
 
 def brush_z(st):
     bpy.context.view_layer.update()
-    s = ext().bridge.sample_from_matrices(
+    s = ext().blender.transforms.sample_from_matrices(
         st, st.brush_object.matrix_world, st.paper_object.matrix_world
     )
     return float(s[2])
@@ -96,7 +96,7 @@ def test_the_paper_plane_follows_width_height_and_imports(hb, tmp_path):
     assert bpy.ops.hairy_brush.import_recording(filepath=str(path)) == {"FINISHED"}
     assert paper_size_m(st) == pytest.approx((0.064, 0.048), abs=1e-6)
     # the brush at the paper's centre is at the centre of the new size in engine mm
-    s = ext().bridge.sample_from_matrices(
+    s = ext().blender.transforms.sample_from_matrices(
         st, st.brush_object.matrix_world, st.paper_object.matrix_world
     )
     assert s[:2] == pytest.approx([32.0, 24.0], abs=1e-4)
@@ -104,7 +104,7 @@ def test_the_paper_plane_follows_width_height_and_imports(hb, tmp_path):
 
 def test_the_touching_height_is_shown_and_follows_the_brush_preset(hb):
     st = setup_scene(bpy)
-    marker = ext().operators.setup.hair_marker(st.brush_object)
+    marker = ext().blender.scene_setup.hair_marker(st.brush_object)
     assert marker is not None and marker.empty_display_type == "SINGLE_ARROW"
     assert marker.empty_display_size == pytest.approx(HAIR / 1000)
     # the arrow points down from the base: its point is where the hair ends
@@ -115,7 +115,7 @@ def test_the_touching_height_is_shown_and_follows_the_brush_preset(hb):
     keyframe_stroke(bpy, st, press=4.0)
     zs = [
         kp.co.y
-        for fc in ext().bridge.fcurves(st.brush_object.animation_data)
+        for fc in ext().blender.keyframes.fcurves(st.brush_object.animation_data)
         if fc.data_path == "location" and fc.array_index == 2
         for kp in fc.keyframe_points
     ]
@@ -125,7 +125,7 @@ def test_the_touching_height_is_shown_and_follows_the_brush_preset(hb):
     assert marker.empty_display_size == pytest.approx(small / 1000)
     zs_after = [
         kp.co.y
-        for fc in ext().bridge.fcurves(st.brush_object.animation_data)
+        for fc in ext().blender.keyframes.fcurves(st.brush_object.animation_data)
         if fc.data_path == "location" and fc.array_index == 2
         for kp in fc.keyframe_points
     ]
@@ -171,8 +171,8 @@ def test_dip_by_default_lands_at_the_current_frame(hb, capfd):
     sc = bpy.context.scene
     sc.frame_set(25)
     assert bpy.ops.hairy_brush.dip() == {"FINISHED"}
-    rec = ext().bridge.recording_from_scene(sc)
-    want = ext().bridge.first_sample_from_frame(rec, sc, 25)
+    rec = ext().blender.recordings.recording_from_scene(sc)
+    want = ext().blender.frames.first_sample_from_frame(rec, sc, 25)
     assert 0 < want < len(rec.samples)
     assert want in [dp.before_sample for dp in rec.dips]
     # dipping after the last sample is still possible, and says it changes nothing recorded
@@ -229,7 +229,7 @@ def test_one_label_per_setting_with_units_and_plain_quality_names(hb):
         assert p.description.startswith(("Higher", "Lower")), p.identifier
         assert f"'{p.identifier}'" in p.description  # the paper's symbol follows
     assert props["sequence_dir"].subtype == "DIR_PATH"
-    groups = ext().properties.QUALITY_GROUPS
+    groups = ext().blender.presets.QUALITY_GROUPS
     assert [g[0] for g in groups] == ["Brush", "Ink in the Brush", "Paper"]
     grouped = [n for g in groups for n in g[2]]
     assert sorted(grouped) == sorted(p.identifier for p in qprops)
@@ -304,7 +304,7 @@ def test_paper_colour_and_capacity_follow_the_preset_and_reach_the_engine(hb):
     assert st.paper_capacity == pytest.approx(1000.0)
     st.paper_capacity = 0.3
     st.paper_color = (0.9, 0.8, 0.7)
-    spec = ext().bridge.settings_recording(bpy.context.scene).resolve()[2]
+    spec = ext().blender.recordings.settings_recording(bpy.context.scene).resolve()[2]
     assert spec.capacity == pytest.approx(0.3)
     assert spec.color == pytest.approx((0.9, 0.8, 0.7), abs=1e-6)
 
@@ -331,9 +331,9 @@ def test_paper_fibre_follows_the_preset_and_sits_by_ink_capacity(hb):
     props = names(drawn(bpy.types.HAIRY_BRUSH_PT_paper), "prop")
     assert props.index("paper_fibre") == props.index("paper_capacity") + 1
     st.paper_fibre = 0.35
-    assert ext().bridge.settings_recording(bpy.context.scene).resolve()[2].fibre == pytest.approx(
-        0.35
-    )
+    assert ext().blender.recordings.settings_recording(bpy.context.scene).resolve()[
+        2
+    ].fibre == pytest.approx(0.35)
 
 
 def test_a_recordings_paper_fibre_is_imported_rendered_with_and_exported(hb, tmp_path):
@@ -456,14 +456,14 @@ def test_simulate_runs_in_slices_and_esc_puts_the_paper_back(hb):
     assert len(fractions) > 1 and fractions == sorted(fractions)
     level, message = job.finish(bpy.context)
     assert level == "INFO" and "Simulated" in message
-    rec = ext().bridge.recording_from_scene(sc)
+    rec = ext().blender.recordings.recording_from_scene(sc)
     want = Simulation(rec).run().paper.rgb()
     assert np.abs(pixels(st.paper_image)[..., :3] - want).max() <= 0.5 / 4095 + 1e-6
 
 
 def job_operator():
     """The modal job's own methods on a stand-in (no window to run a modal operator in)."""
-    jobs = ext().operators.jobs
+    jobs = ext().blender.jobs
 
     class Runner:
         reports = []
@@ -482,7 +482,7 @@ def test_the_modal_operator_runs_a_job_from_timer_events_and_stops_on_esc(hb):
     bpy.ops.hairy_brush.bake_samples()
     sc = bpy.context.scene
     before = pixels(st.paper_image)
-    jobs, simulate = ext().operators.jobs, ext().operators.simulate
+    jobs, simulate = ext().blender.jobs, ext().operators.simulate
     op = job_operator()
     op.begin_job(bpy.context, simulate.SimulateJob(sc))
     timer = SimpleNamespace(type="TIMER", value="NOTHING")
@@ -501,7 +501,7 @@ def test_the_modal_operator_runs_a_job_from_timer_events_and_stops_on_esc(hb):
     finally:
         jobs.SLICE_S = old
     assert state == {"FINISHED"} and op.reports[-1][0] == {"INFO"}
-    want = Simulation(ext().bridge.recording_from_scene(sc)).run().paper.rgb()
+    want = Simulation(ext().blender.recordings.recording_from_scene(sc)).run().paper.rgb()
     assert np.abs(pixels(st.paper_image)[..., :3] - want).max() <= 0.5 / 4095 + 1e-6
 
 
@@ -522,7 +522,7 @@ def test_write_character_in_a_worker_stops_cleanly_and_finishes(hb):
     st = setup_scene(bpy, ppm=1.0)
     sc = bpy.context.scene
     char = ext().sim.writing.hanzi.find_char(str(ROOT / "data" / "hanzi" / "十.json"))
-    write = ext().operators.write_character
+    write = ext().blender.writing
     before = (st.paper_width_mm, sc.frame_end, st.brush_object.animation_data)
     job = write.WriteJob(sc, char, 100.0, 1)
     assert job.step(0.01) is False  # started in a worker: Blender's thread is free
@@ -543,7 +543,7 @@ def test_write_character_in_a_worker_stops_cleanly_and_finishes(hb):
 def test_fit_in_a_worker_reports_progress_and_sets_the_quality(hb):
     st = setup_scene(bpy, ppm=1.0)
     fit_mod = ext().operators.fit_parameters
-    template = ext().bridge.settings_recording(bpy.context.scene)
+    template = ext().blender.recordings.settings_recording(bpy.context.scene)
     char = ext().sim.writing.hanzi.find_char("一")
     settings = ext().sim.fitting.search.FitSettings(
         divisions=1, rounds=1, iterations=1, max_grid=2, workers=1, seed=0

@@ -71,7 +71,7 @@ def key_around(st, angles_deg, press, z=0.0, first=1, step=2):
         f += step
     sc = bpy.context.scene
     sc.frame_start, sc.frame_end = first, f - step
-    for fc in ext().bridge.fcurves(b.animation_data):
+    for fc in ext().blender.keyframes.fcurves(b.animation_data):
         for kp in fc.keyframe_points:
             kp.interpolation = "LINEAR"
     return f - step
@@ -84,21 +84,21 @@ def presses(n, press=3.0, lead=3):
 
 
 def texels(sc):
-    return ext().playback.playback_for(sc).sim.surface.texels
+    return ext().blender.playback.playback_for(sc).sim.surface.texels
 
 
 # ----------------------------------------------------------------------------- set-up
 def test_setup_makes_the_selected_mesh_the_paper(hb):
     cyl = cylinder()
     st = surface_scene(cyl, ppm=3.0)
-    assert st.paper_object == cyl and ext().bridge.is_surface(st)
-    surface = ext().bridge.mesh_surface(cyl)[0]
+    assert st.paper_object == cyl and ext().blender.surfaces.is_surface(st)
+    surface = ext().blender.surfaces.mesh_surface(cyl)[0]
     side = math.sqrt(surface.area_mm2 / surface.uv_area)
     n = round(side * 3.0)
     assert tuple(st.paper_image.size) == (n, n) and abs(st.paper_width_mm - side) < 1e-3
     # the mesh's material shows the paper image through its active UV map
     mat = cyl.data.materials[0]
-    tex = mat.node_tree.nodes[ext().operators.apply_to_mesh.INK_NODE]
+    tex = mat.node_tree.nodes[ext().blender.materials.INK_NODE]
     assert tex.image == st.paper_image
     uv = next(n for n in mat.node_tree.nodes if n.type == "UVMAP")
     assert uv.uv_map == cyl.data.uv_layers.active.name
@@ -115,7 +115,7 @@ def test_setup_makes_the_selected_mesh_the_paper(hb):
     assert len(cyl.data.vertices) == 96
     # and Set Up again without surface=True: a flat paper plane again, the mesh untouched
     assert bpy.ops.hairy_brush.setup() == {"FINISHED"}
-    assert st.paper_object != cyl and not ext().bridge.is_surface(st)
+    assert st.paper_object != cyl and not ext().blender.surfaces.is_surface(st)
     assert len(st.paper_object.data.vertices) == 4 and len(cyl.data.materials) == 1
     assert st.brush_object.parent == st.paper_object
     assert st.brush_object.matrix_world.translation.z == pytest.approx((HAIR + 5) / 1000)
@@ -199,7 +199,6 @@ def test_a_flat_grid_with_turned_scaled_uvs_writes_the_planes_ink_through_them(h
     # no fibre on either sheet: the fibre field is fixed per pixel of the sheet (a hash of its
     # row and column, like the grain), and the texture's texels are not the plane's pixels
     # (turned, halved), so it would refuse thin ink at other places of the two marks' fringes
-    bridge = ext().bridge
     sc = bpy.context.scene
     st = sc.hairy_brush
     st.px_per_mm, st.paper_fibre = 2.0, 0.0
@@ -232,7 +231,7 @@ def test_a_flat_grid_with_turned_scaled_uvs_writes_the_planes_ink_through_them(h
     stroke(st.brush_object)
     assert bpy.ops.hairy_brush.bake_samples() == {"FINISHED"}
     assert bpy.ops.hairy_brush.simulate() == {"FINISHED"}
-    assert bridge.recording_from_scene(sc).resolve()[2].fibre == 0.0
+    assert ext().blender.recordings.recording_from_scene(sc).resolve()[2].fibre == 0.0
     assert tuple(st.paper_image.size) == (800, 800)  # 400 mm of texture: the UVs are halved
     tp = texels(sc)
     inside = np.abs(tp.xyz[:, :2]).max(axis=1) < 100.0
@@ -271,7 +270,7 @@ def test_a_stroke_across_the_uv_seam_has_no_gap(hb):
     sc = bpy.context.scene
     cyl = cylinder()
     st = surface_scene(cyl)
-    tp = ext().bridge.surface_paper(st, _one_frame_recording(st)).texels
+    tp = ext().blender.surfaces.surface_paper(st, _one_frame_recording(st)).texels
     side = np.abs(tp.normal[:, 2]) < 0.5
     u = (tp.index % tp.W)[side]
     ang = np.degrees(np.arctan2(tp.xyz[side, 0], -tp.xyz[side, 1]))  # 0 at the front
@@ -291,7 +290,7 @@ def test_a_stroke_across_the_uv_seam_has_no_gap(hb):
 
 
 def _one_frame_recording(st):
-    b = ext().bridge
+    b = ext().blender.recordings
     rec = b.new_recording(bpy.context.scene, [[0.0, 0.0, 50.0, 0.0, 0.0, 0.0]])
     rec.extra[b.SURFACE_KEY] = {"frames": [[0.0, 0.0, 0, 0, 0, 1.0, 0, 0, 0, 0, 1.0]]}
     return rec
@@ -378,7 +377,7 @@ def test_undo_save_and_reload_keep_the_surface_and_its_writing(hb, tmp_path):
     bpy.ops.wm.read_homefile(use_empty=True)
     bpy.ops.wm.open_mainfile(filepath=str(path))
     st = bpy.context.scene.hairy_brush
-    assert st.paper_object.name == "Cylinder" and ext().bridge.is_surface(st)
+    assert st.paper_object.name == "Cylinder" and ext().blender.surfaces.is_surface(st)
     assert st.recording.as_string() == text
     np.testing.assert_array_equal(ink(st.paper_image), after)
     st.paper_image.pixels.foreach_set(np.ones(len(st.paper_image.pixels), np.float32))
@@ -422,8 +421,12 @@ def test_live_painting_on_the_surface_follows_the_mesh_and_replays(hb):
     ang = np.degrees(np.arctan2(frames[:, 2], -frames[:, 3]))
     assert ang[-1] > 25.0  # the frames went round the cylinder with the mouse
     assert np.abs(np.hypot(frames[:, 2], frames[:, 3]) - R_MM).max() < 0.5
-    rec = ext().bridge.recording_from_scene(sc)
-    replay = ext().sim.engine.simulation.Simulation(rec, ext().bridge.surface_paper(st, rec)).run()
+    rec = ext().blender.recordings.recording_from_scene(sc)
+    replay = (
+        ext()
+        .sim.engine.simulation.Simulation(rec, ext().blender.surfaces.surface_paper(st, rec))
+        .run()
+    )
     np.testing.assert_array_equal(replay.paper.ink, live.sim.paper.ink)
     assert (replay.paper.ink.mean(axis=2) > 0.3).sum() > 100
 
@@ -453,7 +456,7 @@ def test_a_stroke_along_a_uv_spheres_seam_and_over_its_pole_has_no_gap(hb):
         b.keyframe_insert("rotation_quaternion", frame=f)
     sc.frame_start, sc.frame_end = 1, len(lats)
     assert bpy.ops.hairy_brush.bake_samples() == {"FINISHED"}
-    rec = ext().bridge.recording_from_scene(sc)
+    rec = ext().blender.recordings.recording_from_scene(sc)
     assert np.abs(rec.samples[:, 3:5]).max() < 5.0  # upright on the surface all the way
     assert bpy.ops.hairy_brush.simulate() == {"FINISHED"}
     tp = texels(sc)
@@ -468,7 +471,7 @@ def test_a_stroke_along_a_uv_spheres_seam_and_over_its_pole_has_no_gap(hb):
 def test_a_density_relief_moves_the_surface_in_proportion_to_the_ink_and_follows_frames(hb):
     sc = bpy.context.scene
     cyl, st, relief, r, r0, uv = _carved_cylinder("DENSITY")
-    density = ext().playback.playback_for(sc).sim.paper.ink.mean(axis=2)
+    density = ext().blender.playback.playback_for(sc).sim.paper.ink.mean(axis=2)
     w = density.shape[1]
     px = np.clip((uv * w).astype(int), 1, w - 2)
     win = np.stack(
@@ -510,7 +513,7 @@ def test_write_character_on_a_cylinder_lands_under_the_brush_at_its_size_and_rep
         "FINISHED"
     }
     assert st.paper_width_mm == side and tuple(st.paper_image.size) == size_px  # not resized
-    rec = ext().bridge.recording_from_scene(sc)
+    rec = ext().blender.recordings.recording_from_scene(sc)
     frames = np.asarray(rec.extra["surface"]["frames"])
     assert frames.shape == (len(rec.samples), 11)
     # the frames lie on the cylinder (48 flat sides: radius between R cos(pi/48) and R)
@@ -536,12 +539,12 @@ def test_write_character_on_a_cylinder_lands_under_the_brush_at_its_size_and_rep
     for i in (len(rec.samples) // 3, 2 * len(rec.samples) // 3):
         f = sc.frame_start + i * fps / rec.sample_rate_hz
         sc.frame_set(math.floor(f), subframe=f - math.floor(f))
-        base, rot = ext().bridge.surface_pose(st, b.matrix_world)
+        base, rot = ext().blender.surfaces.surface_pose(st, b.matrix_world)
         want_base, want_rot = ext().sim.surface.pose_from_sample(frames[i], rec.samples[i])
         np.testing.assert_allclose(base, want_base, atol=0.01)
         np.testing.assert_allclose(rot, want_rot, atol=1e-4)
     sc.frame_set(sc.frame_end)  # simulating the stored recording again: the same, bit for bit
-    ext().playback.clear()
+    ext().blender.runtime.get().forget_playbacks()
     assert bpy.ops.hairy_brush.simulate() == {"FINISHED"}
     again = np.empty(len(st.paper_image.pixels), np.float32)
     st.paper_image.pixels.foreach_get(again)
@@ -577,7 +580,7 @@ def test_imitate_picture_on_a_cylinder_is_laid_on_it_too(hb):
     res = bpy.ops.hairy_brush.imitate_image(image="wang", size_mm=30.0, passes=1, detail=96)
     assert res == {"FINISHED"}
     assert st.paper_width_mm == side and tuple(st.paper_image.size) == size_px
-    rec = ext().bridge.recording_from_scene(bpy.context.scene)
+    rec = ext().blender.recordings.recording_from_scene(bpy.context.scene)
     P = np.asarray(rec.extra["surface"]["frames"])[:, 2:5]
     assert np.abs(np.hypot(P[:, 0], P[:, 1]) - R_MM).max() < 0.2  # on the cylinder
     touch = P[rec.samples[:, 2] < HAIR]
@@ -590,16 +593,16 @@ def test_the_kept_surface_paper_is_the_one_a_fresh_session_would_build(hb):
     texture's size: a recording 0.1 mm wider (same pixels) must not reuse the other's."""
     from sim.core.recording import Recording
 
-    b = ext().bridge
+    b = ext().blender.surfaces
     s = b.surf.surface_from_arrays(
         [[0, 0, 0], [10, 0, 0], [0, 10, 0]], [[0, 1, 2]], [[[0, 0], [1, 0], [0, 1]]]
     )
     a = Recording(np.zeros((1, 6)), width_mm=100.0, height_mm=100.0, px_per_mm=3.0)
     c = Recording(np.zeros((1, 6)), width_mm=100.1, height_mm=100.0, px_per_mm=3.0)
     assert (a.width_px, a.height_px) == (c.width_px, c.height_px)
-    b._PAPERS.clear()
+    ext().blender.runtime.get().papers.clear()
     fresh = b.surface_paper_base(s, "d", c).offset
-    b._PAPERS.clear()
+    ext().blender.runtime.get().papers.clear()
     b.surface_paper_base(s, "d", a)
     assert b.surface_paper_base(s, "d", c).offset == fresh
     assert b.surface_paper_base(s, "d", a).offset != fresh
@@ -616,7 +619,7 @@ def test_write_character_on_a_surface_reports_progress_forwards_only(hb):
     b.rotation_mode = "XYZ"
     b.location = (0.0, -(R_MM + HAIR + 5.0) / 1000, 0.0)
     b.rotation_euler = (math.pi / 2, 0.0, 0.0)
-    mod = ext().operators.write_character
+    mod = ext().blender.writing
     char = ext().sim.writing.hanzi.find_char(str(ROOT / "data" / "hanzi" / "十.json"))
     job = mod.WriteJob(bpy.context.scene, char, 30.0, 1)
     seen = []
@@ -637,20 +640,20 @@ def test_frame_changes_read_the_paper_mesh_again_only_after_it_changed(hb, monke
     key_around(st, np.linspace(-20, 20, 11), presses(11))
     assert bpy.ops.hairy_brush.bake_samples() == {"FINISHED"}
     st.sync_frames = True
-    b = ext().bridge
+    b = ext().blender.surfaces
     reads = []
     real = b.mesh_arrays
     monkeypatch.setattr(b, "mesh_arrays", lambda obj: reads.append(obj.name) or real(obj))
     sc.frame_set(sc.frame_start)
-    key = ext().playback.playback_for(sc).key  # (read outside frame changes: counted)
+    key = ext().blender.playback.playback_for(sc).key  # (read outside frame changes: counted)
     reads.clear()
     for f in (sc.frame_start + 3, sc.frame_end, sc.frame_start + 1):
         sc.frame_set(f)
-    assert reads == [] and ext().handlers.last_error == ""
+    assert reads == [] and ext().blender.runtime.get().last_error == ""
     cyl.data.vertices[0].co.z += 0.001  # an edit the depsgraph reports
     bpy.context.view_layer.update()
     sc.frame_set(sc.frame_start + 2)
     assert "Cylinder" in reads
     with b.trusting_digests():
-        assert ext().playback.cache_key(sc) != key  # the new mesh's playback
-    assert ext().handlers.last_error == ""
+        assert ext().blender.playback.cache_key(sc) != key  # the new mesh's playback
+    assert ext().blender.runtime.get().last_error == ""

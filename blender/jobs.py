@@ -17,7 +17,7 @@ import time
 
 import bpy
 
-from .. import bridge
+from . import checks
 
 SLICE_S = 0.08  # work a timer event may do on Blender's own thread
 TIMER_S = 0.05
@@ -126,7 +126,7 @@ def deadline(budget_s: float):
     return lambda: time.perf_counter() > end
 
 
-JOB_ERRORS = (*bridge.USER_ERRORS, ValueError, OSError, MemoryError)
+JOB_ERRORS = (*checks.USER_ERRORS, ValueError, OSError, MemoryError)
 
 
 class JobOperator:

@@ -16,147 +16,32 @@ from bpy.props import (
     StringProperty,
 )
 
-from .sim.core.params import (
+from ..sim.core.params import (
     PAPER_CAPACITY_RANGE,
     QUALITY_DOC,
     QualityParams,
-    geometry_from_preset,
-    ink_from_preset,
     load_preset,
     paper_from_preset,
-    preset_names,
     quality_from_presets,
 )
-from .sim.core.recording import (
+from ..sim.core.recording import (
     DEFAULT_BRUSH,
     DEFAULT_INK,
     DEFAULT_PAPER,
     PAPER_MM_RANGE,
     PX_PER_MM_RANGE,
 )
-
-# what each quality value acts on, its plain name and what it does (the paper's symbol follows)
-QUALITY_GROUPS = (
-    ("Brush", "OUTLINER_OB_EMPTY", ("e", "tre", "nu", "re", "ie")),
-    ("Ink in the Brush", "MOD_FLUIDSIM", ("ren", "eta", "pw")),
-    ("Paper", "TEXTURE", ("sm", "ab", "dry")),
-)
-QUALITY_UI = {
-    "e": (
-        "Springiness",
-        "Higher: bent hair springs back faster and bends further under the same "
-        "pressure; lower: a stiff brush that keeps its shape",
-    ),
-    "tre": (
-        "Split Threshold",
-        "Lower: the hair splits into separate clusters under less "
-        "pressure (cursive strokes with several tips)",
-    ),
-    "nu": (
-        "Belly Lag",
-        "Higher: the brush's belly follows the bent hair more slowly, so the "
-        "stroke's body keeps its shape longer",
-    ),
-    "re": ("Twist", "Higher: moving sideways twists the brush's tip more around the handle"),
-    "ie": ("Flattening", "Higher: moving sideways flattens and widens the brush more"),
-    "ren": (
-        "Flying White",
-        "Higher: fast, pressed strokes skip more pixels and leave dry-brush streaks",
-    ),
-    "eta": (
-        "Ink Sharing Distance",
-        "Higher: hair clusters further apart still share ink inside the brush",
-    ),
-    "pw": (
-        "Ink Sharing",
-        "Higher: more ink flows each step between neighbouring hair clusters "
-        "inside the brush (not bleeding on paper: see the paper's Ink Capacity)",
-    ),
-    "sm": (
-        "Paper Grip",
-        "Higher: the paper pushes back harder on a moving brush and drags the hair more",
-    ),
-    "ab": (
-        "Absorbency",
-        "Higher: the paper drinks the brush's ink faster, so strokes run dry sooner",
-    ),
-    "dry": ("Drying Speed", "Higher: wet ink on the paper dries faster"),
-}
-QUALITY_LABELS = {name: label for name, (label, _tip) in QUALITY_UI.items()}
-PRESET_KINDS_SHOWN = ("brush", "paper", "ink", "quality")
-
-
-def _overwrites(kind: str, p) -> str:
-    """What choosing the preset sets, in the sidebar's words."""
-    names = [QUALITY_LABELS[k] for k in p.data.get("quality", {}) if k in QUALITY_LABELS]
-    if kind == "brush":
-        hair = geometry_from_preset(p).hair_length_mm
-        return f"hair length {hair:g} mm (the touching height) and " + ", ".join(names)
-    if kind == "paper":
-        return "paper colour, Ink Capacity, Fibre and " + ", ".join(names)
-    if kind == "ink":
-        return "Ink Colour, Ink Wetness and Dip Depth"
-    return ", ".join(names)
-
-
-def _preset_items(kind):
-    items = []
-    for i, name in enumerate(preset_names(kind)):
-        p = load_preset(kind, name)
-        tip = f"{p.description} Choosing it sets {_overwrites(kind, p)}".strip()
-        items.append((name, p.label, tip, i))
-    return items
-
-
-# EnumProperty items must stay referenced from Python (Blender keeps no copy of the strings);
-# read once here, so nothing in a draw() reads a preset file
-_ITEMS = {kind: _preset_items(kind) for kind in PRESET_KINDS_SHOWN}
-PRESET_INFO = {(kind, it[0]): (it[1], it[2]) for kind, items in _ITEMS.items() for it in items}
-HAIR_LENGTH_MM = {
-    name: geometry_from_preset(load_preset("brush", name)).hair_length_mm
-    for name, *_ in _ITEMS["brush"]
-}
-
-
-def preset_label(kind: str, name: str) -> str:
-    return PRESET_INFO.get((kind, name), (name, ""))[0]
-
-
-def apply_quality_presets(st, brush: bool = True, paper: bool = True):
-    """Copy the quality values that the chosen brush/paper presets define into the settings."""
-    values = quality_from_presets(
-        load_preset("brush", st.brush_preset) if brush else None,
-        load_preset("paper", st.paper_preset) if paper else None,
-    )
-    for k, v in values.items():
-        setattr(st.quality, k, v)
-
-
-def apply_paper_preset(st):
-    """The paper preset's colour, capacity and fibre into the settings."""
-    spec = paper_from_preset(load_preset("paper", st.paper_preset))
-    st.paper_color = spec.color
-    st.paper_capacity = spec.capacity
-    st.paper_fibre = spec.fibre
-
-
-def apply_ink_preset(st):
-    ink = ink_from_preset(load_preset("ink", st.ink_preset))
-    st.ink_color = ink.color
-    st.dip_wetness = ink.wetness
-    st.dip_depth = ink.depth
+from . import presets, scene_setup
 
 
 def _brush_changed(self, _context):
-    from .operators.setup import follow_hair_length
-
-    apply_quality_presets(self, brush=True, paper=False)
-    follow_hair_length(self)
+    presets.apply_quality_presets(self, brush=True, paper=False)
+    scene_setup.follow_hair_length(self)
 
 
 def _paper_changed(self, _context):
-    apply_quality_presets(self, brush=False, paper=True)
-    apply_paper_preset(self)
+    presets.apply_quality_presets(self, brush=False, paper=True)
+    presets.apply_paper_preset(self)
 
 
 def _seed_changed(self, _context):
@@ -164,13 +49,11 @@ def _seed_changed(self, _context):
 
 
 def _ink_changed(self, _context):
-    apply_ink_preset(self)
+    presets.apply_ink_preset(self)
 
 
 def _paper_size_changed(self, _context):
-    from .operators.setup import resize_paper
-
-    resize_paper(self)
+    scene_setup.resize_paper(self)
 
 
 def _quality_annotations():
@@ -182,7 +65,7 @@ def _quality_annotations():
     )
     ann = {}
     for name in QualityParams.names():
-        label, effect = QUALITY_UI[name]
+        label, effect = presets.QUALITY_UI[name]
         group = QUALITY_DOC[name][1]
         ann[name] = FloatProperty(
             name=label,
@@ -259,7 +142,7 @@ class HAIRY_BRUSH_PG_settings(bpy.types.PropertyGroup):
     )
     brush_preset: EnumProperty(
         name="Brush Preset",
-        items=_ITEMS["brush"],
+        items=presets.ITEMS["brush"],
         default=DEFAULT_BRUSH,
         update=_brush_changed,
         description="The kind of brush: its hair length (where it touches the paper) and its "
@@ -267,14 +150,14 @@ class HAIRY_BRUSH_PG_settings(bpy.types.PropertyGroup):
     )
     paper_preset: EnumProperty(
         name="Paper Preset",
-        items=_ITEMS["paper"],
+        items=presets.ITEMS["paper"],
         default=DEFAULT_PAPER,
         update=_paper_changed,
         description="The kind of paper: its colour, ink capacity, fibre and paper quality values",
     )
     ink_preset: EnumProperty(
         name="Ink Preset",
-        items=_ITEMS["ink"],
+        items=presets.ITEMS["ink"],
         default=DEFAULT_INK,
         update=_ink_changed,
         description="The kind of ink: its colour, wetness and dip depth",
@@ -309,7 +192,7 @@ class HAIRY_BRUSH_PG_settings(bpy.types.PropertyGroup):
     )
     touch_height_mm: FloatProperty(
         name="Touching Height (mm)",
-        default=HAIR_LENGTH_MM[DEFAULT_BRUSH],
+        default=presets.HAIR_LENGTH_MM[DEFAULT_BRUSH],
         min=0.0,
         options={"HIDDEN"},
         description="The hair length of the brush the scene was last set up for: the brush "

@@ -1,32 +1,16 @@
 # SPDX-License-Identifier: GPL-3.0-or-later
 """Application handlers: the paper and the primitive objects follow the current frame; undo and
-redo show the paper as it was at that step; saving packs the paper; loading a file drops the
-playback caches."""
+redo show the paper as it was at that step; saving packs the paper; loading a file clears the
+runtime's caches (``blender.runtime``)."""
 
 from __future__ import annotations
 
-import contextlib
 import time
 
 import bpy
 from bpy.app.handlers import persistent
 
-from . import bridge, playback
-
-_suspend = 0
-last_error = ""
-
-
-@contextlib.contextmanager
-def suspended():
-    """Frame changes made by our own operators (baking samples) must not simulate."""
-    global _suspend
-    _suspend += 1
-    try:
-        yield
-    finally:
-        _suspend -= 1
-
+from . import checks, frames, images, playback, runtime, surfaces
 
 FRAME_BUDGET_S = 0.5  # simulation a frame change may take while the artist works
 CATCH_UP_SLICE_S = 0.1  # then the rest is simulated in slices of this, between UI events
@@ -38,10 +22,10 @@ def exact_frames() -> bool:
 
 
 def _report(scene, message: str):
-    global last_error
-    if message != last_error:
+    rt = runtime.get()
+    if message != rt.last_error:
         print(f"Virtual Hairy Brush: frame {scene.frame_current}: {message}")
-    last_error = message
+    rt.last_error = message
 
 
 def follow_frame(scene) -> bool:
@@ -49,17 +33,21 @@ def follow_frame(scene) -> bool:
     the artist works, a frame change simulates for at most FRAME_BUDGET_S; a longer catch-up
     goes on in slices from a timer (another frame change, or turning Follow Frames off, stops
     it). No exception leaves this function: a handler must not break Blender's frame changes."""
-    global last_error
-    st = bridge.settings(scene)
-    if _suspend or not st.sync_frames or st.recording is None or st.paper_object is None:
+    st = checks.settings(scene)
+    if (
+        runtime.get().suspended
+        or not st.sync_frames
+        or st.recording is None
+        or st.paper_object is None
+    ):
         return False
     frame = scene.frame_current + scene.frame_subframe
     try:
-        with bridge.trusting_digests():  # the mesh is read again only after it changed
+        with surfaces.trusting_digests():  # the mesh is read again only after it changed
             pb = playback.playback_for(scene)
-            target = bridge.samples_at_frame(pb.rec, scene, frame)
+            target = frames.samples_at_frame(pb.rec, scene, frame)
             sim = playback.show(scene, target, should_stop=_deadline(exact_frames()))
-    except bridge.USER_ERRORS as exc:
+    except checks.USER_ERRORS as exc:
         _report(scene, str(exc))
         return False
     except MemoryError:
@@ -68,7 +56,7 @@ def follow_frame(scene) -> bool:
     except Exception as exc:  # a handler must not raise into Blender
         _report(scene, f"unexpected error ({type(exc).__name__}: {exc})")
         return False
-    last_error = ""
+    runtime.get().last_error = ""
     if sim.index < target:
         _catch_up_later(scene.name, frame, target)
     return True
@@ -90,12 +78,12 @@ def _catch_up_later(scene_name: str, frame: float, target: int):
         if scene is None or scene.frame_current + scene.frame_subframe != frame:
             wm.progress_end()
             return None
-        if not bridge.settings(scene).sync_frames:
+        if not checks.settings(scene).sync_frames:
             wm.progress_end()
             return None
         try:
             end = time.perf_counter() + CATCH_UP_SLICE_S
-            with bridge.trusting_digests():
+            with surfaces.trusting_digests():
                 sim = playback.show(scene, target, should_stop=lambda: time.perf_counter() > end)
         except Exception as exc:  # a timer must not raise into Blender
             _report(scene, f"catching up: {exc}")
@@ -122,7 +110,7 @@ def on_depsgraph_update(_scene, depsgraph=None):
     kept digest is computed again at the next frame change."""
     updates = depsgraph.updates if depsgraph is not None else ()
     if any(isinstance(u.id, bpy.types.Mesh) and u.is_updated_geometry for u in updates):
-        bridge.forget_digests()
+        runtime.get().digests.clear()
 
 
 @persistent
@@ -130,18 +118,19 @@ def on_undo_redo(_scene, _data=None):
     # Undo brings back the recording and the image's record of how many samples it showed, but
     # not its pixels: show that many samples of the recording again (the playback is kept while
     # the recording and settings are unchanged, so this costs a seek).
-    bridge.forget_views()
-    bridge.forget_digests()  # the meshes may be back as they were
+    rt = runtime.get()
+    rt.views.clear()  # image buffers may no longer hold what was shown
+    rt.digests.clear()  # the meshes may be back as they were
     for scene in bpy.data.scenes:
-        st = bridge.settings(scene)
+        st = checks.settings(scene)
         img = st.paper_image
-        if img is None or bridge.SHOWN_TAG not in img:
+        if img is None or images.SHOWN_TAG not in img:
             continue
         try:
             if st.recording is None:
-                bridge.show_blank(st)
+                images.show_blank(st)
             else:
-                target = int(img[bridge.SHOWN_TAG])
+                target = int(img[images.SHOWN_TAG])
                 sim = playback.show(scene, target, should_stop=_deadline(exact_frames()))
                 if sim.index < target:  # a long way from a snapshot: the rest from a timer
                     frame = scene.frame_current + scene.frame_subframe
@@ -153,15 +142,13 @@ def on_undo_redo(_scene, _data=None):
 @persistent
 def on_save_pre(_filepath="", _data=None):
     for img in bpy.data.images:
-        if bridge.PAPER_TAG in img and img.is_dirty:
-            bridge.pack_image(img)
+        if images.PAPER_TAG in img and img.is_dirty:
+            images.pack_image(img)
 
 
 @persistent
 def on_load_post(_filepath="", _data=None):
-    playback.clear()
-    bridge.forget_views()
-    bridge.forget_surfaces()  # meshes of another file
+    runtime.get().clear()  # playbacks, image views, meshes of another file
 
 
 _HANDLERS = (
@@ -186,4 +173,3 @@ def unregister():
         lst = getattr(bpy.app.handlers, name)
         while fn in lst:
             lst.remove(fn)
-    playback.clear()

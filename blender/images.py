@@ -1,0 +1,173 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
+"""The paper image datablock: made and sized to the paper, shown from the engine's paper (only
+the tiles that changed), its ink density image for reliefs, and packed into the .blend."""
+
+from __future__ import annotations
+
+import bpy
+import numpy as np
+
+from ..sim.paper import display
+from . import checks, runtime
+
+PAPER_IMAGE = "HairyBrush Paper"
+PAPER_TAG = "hairy_brush_paper"
+SHOWN_TAG = "hairy_brush_shown"  # on the paper image: how many samples it shows
+DENSITY_TAG = "hairy_brush_density"  # on the paper image: its ink density image (relief)
+
+
+def ensure_paper_image(st, color=(1.0, 1.0, 1.0)) -> bpy.types.Image:
+    """The paper image, made (a float image: see sim.display) or resized to the paper."""
+    w, h = checks.check_paper_size(st)
+    img = st.paper_image
+    if img is None:
+        img = bpy.data.images.new(PAPER_IMAGE, w, h, alpha=True, float_buffer=True)
+        img.generated_color = (*display.encode(color, linear=True), 1.0)
+        img[PAPER_TAG] = 1
+        st.paper_image = img
+    elif tuple(img.size) != (w, h):
+        img.scale(w, h)
+    return img
+
+
+def show_paper(img, paper, index: int):
+    """Show ``paper`` in the image: only the tiles changed since the image was last shown from
+    the same paper are converted, then the kept pixels go to Blender in one call. ``index`` (the
+    samples simulated) is kept on the image, so undo can show exactly what was seen."""
+    key = img.as_pointer()
+    views = runtime.get().views  # paper image (as_pointer) -> the pixels it shows
+    view = views.get(key)
+    if view is None or view.linear != img.is_float:
+        view = views[key] = display.PaperView(linear=img.is_float)
+    view.refresh(paper)
+    if tuple(img.size) != (paper.W, paper.H):
+        img.scale(paper.W, paper.H)
+    img.pixels.foreach_set(view.flat())
+    img.update()
+    img[SHOWN_TAG] = int(index)
+    if density_read(img, tag_reliefs(img)):
+        show_density(img, paper.ink)
+
+
+def tag_reliefs(img) -> set:
+    """Objects whose Displace modifier reads the paper image (or its density image) are
+    evaluated again: new pixels alone do not move a relief's vertices. Returns the names of
+    those of the two images that a relief reads."""
+    images = {img.name, img.get(DENSITY_TAG)}
+    read = set()
+    for obj in bpy.data.objects:
+        for mod in obj.modifiers if obj.type == "MESH" else ():
+            tex = getattr(mod, "texture", None) if mod.type == "DISPLACE" else None
+            if tex is not None and getattr(tex, "image", None) is not None:
+                if tex.image.name in images:
+                    obj.update_tag()
+                    read.add(tex.image.name)
+    return read
+
+
+def density_read(img, read: set) -> bool:
+    """Whether the paper image's density image is among the images reliefs read (``read``, from
+    tag_reliefs): only then is it refreshed (a whole second image)."""
+    name = img.get(DENSITY_TAG)
+    return isinstance(name, str) and name in read
+
+
+def density_image(img, create: bool = False):
+    """The paper image's ink density image (a relief that follows the density reads it;
+    None when there is none and ``create`` is False)."""
+    name = img.get(DENSITY_TAG)
+    dens = bpy.data.images.get(name) if isinstance(name, str) else None
+    if dens is None and create:
+        w, h = img.size
+        dens = bpy.data.images.new(f"{img.name} Ink Density", w, h, float_buffer=True)
+        dens.colorspace_settings.name = "Non-Color"  # read as it is: the density
+        dens[PAPER_TAG] = 1  # packed on save with the paper
+        img[DENSITY_TAG] = dens.name
+    return dens
+
+
+def density_of(ink) -> np.ndarray:
+    """(H, W) the grey density an image shows of the engine's ``Paper.ink``."""
+    return np.clip(ink.mean(axis=2, dtype=np.float32), 0.0, 1.0)
+
+
+def show_density(img, ink=None):
+    """Fill the paper image's density image: the mean of the ink's density (the engine's
+    ``Paper.ink``, bottom row first; None: the blank paper), grey. Costs a whole image, so
+    only a paper with a density relief has one."""
+    dens = density_image(img)
+    if dens is None:
+        return
+    w, h = img.size
+    if ink is None:
+        write_density(dens, np.zeros((h, w), np.float32))
+    else:
+        write_density(dens, density_of(ink))
+
+
+def write_density(dens, density):
+    """A density (H, W), bottom row first, into the density image, grey."""
+    h, w = density.shape
+    if tuple(dens.size) != (w, h):
+        dens.scale(w, h)
+    rgba = np.ones((h, w, 4), np.float32)
+    rgba[..., :3] = density[..., None]
+    dens.pixels.foreach_set(rgba.ravel())
+    dens.update()
+
+
+def density_from_image(st, img) -> np.ndarray:
+    """The ink density (H, W) the paper image shows: 1 - visible / the paper's colour, the
+    channels' mean (the inverse of ``Paper.rgb``, to the image's precision)."""
+    paper = np.maximum(np.asarray(blank_color(st), np.float32), 1e-6)
+    return np.clip(1.0 - image_rgb(img) / paper, 0.0, 1.0).mean(axis=2)
+
+
+def show_blank(st):
+    """The paper image as the blank paper of the scene's paper preset."""
+    color = blank_color(st)
+    img = ensure_paper_image(st, color)
+    w, h = checks.paper_pixels(st)
+    blank = np.empty((h, w, 3), np.float32)
+    blank[:] = color
+    write_image(img, blank)
+    img[SHOWN_TAG] = 0
+    if density_read(img, tag_reliefs(img)):
+        show_density(img)
+    return img
+
+
+def blank_color(st) -> tuple:
+    """The blank paper's colour as the engine will simulate it."""
+    return tuple(float(c) for c in st.paper_color)
+
+
+def write_image(img, rgb_bottom_up: np.ndarray):
+    """Engine RGB (H, W, 3), bottom row first (Blender's order) -> image pixels."""
+    runtime.get().views.pop(img.as_pointer(), None)
+    h, w, _ = rgb_bottom_up.shape
+    if tuple(img.size) != (w, h):
+        img.scale(w, h)
+    rgba = np.empty((h, w, 4), np.float32)
+    rgba[..., :3] = display.encode(rgb_bottom_up, linear=img.is_float)
+    rgba[..., 3] = 1.0
+    img.pixels.foreach_set(rgba.ravel())
+    img.update()
+
+
+def image_rgb(img) -> np.ndarray:
+    """The image's visible colour (H, W, 3), bottom row first, as the engine's ``Paper.rgb``."""
+    a = np.empty(len(img.pixels), np.float32)
+    img.pixels.foreach_get(a)
+    rgb = a.reshape(img.size[1], img.size[0], 4)[..., :3]
+    return display.linear_to_srgb(rgb).astype(np.float32) if img.is_float else rgb
+
+
+def pack_image(img):
+    """Keep the pixels inside the .blend (nothing in side files the user can lose): float
+    images as OpenEXR (lossless), byte images as PNG. Done when the file is saved."""
+    ext, fmt = (".exr", "OPEN_EXR") if img.is_float else (".png", "PNG")
+    if not img.filepath_raw or not img.filepath_raw.endswith(ext):
+        img.filepath_raw = f"//{img.name}{ext}"
+    img.file_format = fmt
+    img.pack()

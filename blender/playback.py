@@ -1,0 +1,119 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
+"""The artwork at any frame: one engine Simulation per scene, moved to the sample a frame asks
+for. A move restores the nearest snapshot at or before the target (backwards or forwards) and
+steps on from there, so frame N always gives exactly the image of simulating straight to N.
+Also the NURBS surface objects that show the writing primitives (Sec. 2, 6)."""
+
+from __future__ import annotations
+
+import hashlib
+import json
+from pathlib import Path
+
+import bpy
+
+from ..sim.engine.checkpoints import cache_key_of, load_checkpoints
+from ..sim.engine.simulation import Simulation
+from ..sim.engine.timeline import Timeline
+from . import checks, frames, images, primitives, recordings, runtime, surfaces
+
+MAX_SNAPSHOT_EVERY = 64  # samples
+
+
+class Playback:
+    """The scene's simulation on a Timeline (delta snapshots, see sim.timeline): a snapshot
+    every frame's worth of samples, so a step of one frame back or forth re-simulates at most
+    one frame."""
+
+    def __init__(self, rec, key: str, samples_per_frame: float = 5.0, surface=None):
+        self.key = key
+        self.rec = rec
+        every = int(min(max(round(samples_per_frame), 1), MAX_SNAPSHOT_EVERY))
+        sim = Simulation(rec, surface=surface)  # surface: the mesh's SurfacePaper, or flat
+        self.timeline = Timeline(sim, every, checks.SNAPSHOT_BUDGET_BYTES)
+
+    @property
+    def sim(self) -> Simulation:
+        return self.timeline.sim
+
+    def seek(self, index: int, progress=None, should_stop=None) -> Simulation:
+        return self.timeline.seek(index, progress, should_stop)
+
+
+def cache_key(scene) -> str:
+    """Identifies the stored recording text and every setting that renders it; cheap, so a
+    frame change does not re-parse and re-validate an unchanged recording."""
+    st = checks.settings(scene)
+    text = st.recording.as_string() if st.recording is not None else ""
+    h = hashlib.sha1(text.encode("utf-8"), usedforsecurity=False)
+    h.update(json.dumps(recordings.scene_overrides(st), sort_keys=True).encode("utf-8"))
+    h.update(repr((scene.frame_start, scene.render.fps, scene.render.fps_base)).encode())
+    h.update(surfaces.surface_digest(st).encode())  # writing on a mesh: the mesh as it is
+    return h.hexdigest()
+
+
+CACHE_EVERY = 256  # samples between the farm cache's checkpoints (see operators/bake_cache)
+
+
+def cache_folder(scene):
+    """Where the farm cache of ``scene`` lives, next to the saved .blend (None: not saved)."""
+    if not bpy.data.filepath:
+        return None
+    blend = Path(bpy.data.filepath)
+    safe = "".join(c if c.isalnum() or c in "-_." else "_" for c in scene.name)
+    return blend.parent / f"hairy_brush_cache_{blend.stem}" / safe
+
+
+def _load_cache(pb: Playback, scene):
+    """A fresh playback starts from the farm cache's checkpoints when they are current."""
+    folder = cache_folder(scene)
+    if folder is not None and cache_key_of(folder) == pb.key:
+        load_checkpoints(pb.timeline, folder)
+
+
+def playback_for(scene) -> Playback:
+    """The scene's Playback, rebuilt only when the recording or a setting changed; a recording
+    that failed to load fails again at once until it or a setting changes."""
+    key = cache_key(scene)
+    rt = runtime.get()
+    pb = rt.playbacks.get(scene.name)
+    failed = rt.failed.get(scene.name)
+    if failed is not None and failed[0] == key:
+        raise checks.UserError(failed[1])
+    if pb is None or pb.key != key:
+        try:
+            rec = recordings.recording_from_scene(scene)
+            surface = surfaces.surface_paper(checks.settings(scene), rec)
+        except checks.USER_ERRORS as exc:
+            rt.failed[scene.name] = (key, str(exc))
+            raise
+        per = frames.timeline(rec, scene)[1]  # frames per sample
+        pb = Playback(rec, key, samples_per_frame=1.0 / per, surface=surface)
+        _load_cache(pb, scene)
+        rt.playbacks[scene.name] = pb
+    return pb
+
+
+def adopt(scene, sim: Simulation):
+    """After a live stroke was stored: the scene's Playback goes on from the live simulation
+    (same samples, same state) instead of simulating the whole recording again."""
+    pb = runtime.get().playbacks.get(scene.name)
+    if pb is None or pb.sim is not sim:
+        return
+    pb.key, pb.rec = cache_key(scene), sim.rec
+
+
+def show(scene, index: int, progress=None, should_stop=None) -> Simulation:
+    """Put the paper image (and the primitive objects, if built) at sample ``index``; only what
+    changed since the image was last shown is converted (see images.show_paper)."""
+    st = checks.settings(scene)
+    sim = playback_for(scene).seek(index, progress, should_stop)
+    images.show_paper(images.ensure_paper_image(st), sim.paper, sim.index)
+    if primitives.primitive_objects(scene):
+        primitives.sync_primitives(scene, sim, create=False)
+    return sim
+
+
+def show_frame(scene, frame: float) -> Simulation:
+    pb = playback_for(scene)
+    return show(scene, frames.samples_at_frame(pb.rec, scene, frame))

@@ -1,0 +1,176 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
+"""The recording kept in the .blend (a text datablock of JSON): read with the scene's current
+settings, stored one sample a line, made from samples, and its settings shown in the sidebar
+after an import."""
+
+from __future__ import annotations
+
+import json
+
+import bpy
+import numpy as np
+
+from ..sim.core.jsonio import MAX_JSON_BYTES, parse_json
+from ..sim.core.params import QualityParams
+from ..sim.core.recording import Dip, Recording, RecordingError, from_dict
+from . import checks
+
+RECORDING_TEXT = "HairyBrush Recording"
+PAINTED_KEY = "painted_samples"  # in a recording's "blender" extra: samples painted live
+SAMPLES_TAG = "hairy_brush_samples"  # on a recording text: its samples and dips when stored
+DIPS_TAG = "hairy_brush_dips"
+SURFACE_KEY = "surface"  # a recording's section of surface frames (see sim.surface)
+
+
+def scene_overrides(st) -> dict:
+    """The scene's settings as recording fields: they decide how a recording is rendered."""
+    checks.check_paper_size(st)
+    paper = {
+        "width_mm": float(st.paper_width_mm),
+        "height_mm": float(st.paper_height_mm),
+        "px_per_mm": float(st.px_per_mm),
+        "preset": st.paper_preset,
+    }
+    paper["color"] = [float(c) for c in st.paper_color]
+    paper["capacity"] = float(st.paper_capacity)
+    paper["fibre"] = float(st.paper_fibre)
+    return {
+        "paper": paper,
+        "brush": {"preset": st.brush_preset},
+        "ink": {"preset": st.ink_preset},
+        "quality": st.quality.as_dict(),
+        "seed": scene_seed(st),
+    }
+
+
+def read_recording_dict(st) -> dict:
+    text = st.recording
+    if text is None:
+        raise checks.UserError("No recording yet: bake the brush's animation, paint, or import one")
+    body = text.as_string()
+    if len(body) > MAX_JSON_BYTES:
+        raise checks.UserError(
+            f"Recording text '{text.name}' is too large ({len(body)} characters)"
+        )
+    return parse_json(body, f"Recording text '{text.name}'", checks.UserError)
+
+
+def recording_from_scene(scene) -> Recording:
+    """The stored recording, rendered with the scene's current settings (another preset, size
+    or resolution re-renders the same strokes)."""
+    st = checks.settings(scene)
+    d = read_recording_dict(st)
+    if isinstance(d, dict):
+        over = scene_overrides(st)
+        if isinstance(d.get("brush"), dict):  # the recording's own geometry overrides stay
+            over["brush"] = {**d["brush"], **over["brush"]}
+        d.update(over)
+    try:
+        return from_dict(d)
+    except RecordingError as exc:
+        raise checks.UserError(f"Recording '{st.recording.name}': {exc}") from None
+
+
+def store_recording(st, rec: Recording) -> bpy.types.Text:
+    text = st.recording
+    if text is None:
+        text = bpy.data.texts.new(RECORDING_TEXT)
+        st.recording = text
+    text.from_string(recording_text(rec))
+    # counted here, so the sidebar shows them without reading the text
+    text[SAMPLES_TAG] = len(rec.samples)
+    text[DIPS_TAG] = len(rec.dips)
+    return text
+
+
+def recording_text(rec: Recording) -> str:
+    """The recording's JSON with one sample (and one surface frame) a line: Blender's text
+    editing is quadratic in a line's length, linear in the number of lines."""
+    d = rec.to_dict()
+    samples = d.pop("samples")
+    section = d.pop(SURFACE_KEY, None)
+    head = json.dumps(d, separators=(",", ":"))
+
+    def lines(rows):
+        return ",\n".join(json.dumps(row, separators=(",", ":")) for row in rows)
+
+    tail = '"samples":[\n' + lines(samples) + "\n]"
+    if isinstance(section, dict) and isinstance(section.get("frames"), list):
+        rest = {k: v for k, v in section.items() if k != "frames"}
+        open_ = json.dumps(rest, separators=(",", ":"))[:-1] + ("," if rest else "")
+        tail += f',"{SURFACE_KEY}":' + open_ + '"frames":[\n' + lines(section["frames"]) + "\n]}"
+    elif section is not None:
+        tail += f',"{SURFACE_KEY}":' + json.dumps(section, separators=(",", ":"))
+    return head[:-1] + ("," if d else "") + tail + "}"
+
+
+def scene_seed(st) -> int:
+    """The seed the scene simulates with: Seed, or an imported recording's larger one."""
+    text = st.seed_of_recording
+    return int(text) if text.isdigit() else int(st.seed)
+
+
+def copy_settings_from_recording(st, rec: Recording):
+    """After an import: show the recording's own settings in the sidebar. Everything is checked
+    against what the settings can hold first, so a refused recording changes nothing."""
+    values = {
+        "paper_width_mm": rec.width_mm,
+        "paper_height_mm": rec.height_mm,
+        "px_per_mm": rec.px_per_mm,
+        "seed": rec.seed % (checks.MAX_INT_PROPERTY + 1),
+        "sample_rate_hz": rec.sample_rate_hz,
+        "brush_preset": rec.preset_name("brush"),
+        "paper_preset": rec.preset_name("paper"),
+        "ink_preset": rec.preset_name("ink"),
+    }
+    q, _geom, _paper, _ink = rec.resolve()
+    _check_fits(st, "paper_capacity", _paper.capacity)
+    _check_fits(st, "paper_fibre", _paper.fibre)
+    quality = {name: getattr(q, name) for name in QualityParams.names()}
+    for name, value in values.items():
+        _check_fits(st, name, value)
+    for name, value in quality.items():
+        _check_fits(st.quality, name, value)
+    for name, value in values.items():
+        setattr(st, name, value)
+    for name, value in quality.items():
+        setattr(st.quality, name, value)
+    st.paper_color, st.paper_capacity = _paper.color, _paper.capacity
+    st.paper_fibre = _paper.fibre
+    st.seed_of_recording = str(rec.seed) if rec.seed > checks.MAX_INT_PROPERTY else ""
+
+
+def _check_fits(group, name: str, value):
+    """UserError unless ``value`` fits the property (its range, or its enum's items)."""
+    prop = group.bl_rna.properties[name]
+    if prop.type == "ENUM":
+        if value not in {item.identifier for item in prop.enum_items}:
+            kind = prop.name.lower().removesuffix(" preset")
+            raise checks.UserError(f"'{value}' is not a {kind} preset of this extension")
+    elif not prop.hard_min <= value <= prop.hard_max:
+        raise checks.UserError(
+            f"{prop.name} {value} is outside what the setting holds "
+            f"({prop.hard_min:g} to {prop.hard_max:g})"
+        )
+
+
+def new_recording(scene, samples, dips=None) -> Recording:
+    """A validated recording of ``samples`` at the scene's sample rate and settings, timed from
+    the scene's first frame; raises UserError (bad settings) or RecordingError (bad samples)."""
+    st = checks.settings(scene)
+    rec = Recording(np.asarray(samples, dtype=float), sample_rate_hz=float(st.sample_rate_hz))
+    rec.dips = list(dips) if dips is not None else [current_dip(st, 0)]
+    rec.extra["blender"] = {"frame_start": scene.frame_start}
+    d = rec.to_dict()
+    d.update(scene_overrides(st))
+    return from_dict(d)
+
+
+def settings_recording(scene) -> Recording:
+    """A one-sample recording that carries only the scene's settings (brush, paper, ink,
+    quality, rate, seed): the template from which the engine writes or fits."""
+    return new_recording(scene, [[0.0, 0.0, 100.0, 0.0, 0.0, 0.0]])
+
+
+def current_dip(st, before_sample: int) -> Dip:
+    return Dip(before_sample, float(st.dip_depth), tuple(st.ink_color), float(st.dip_wetness))

@@ -1,0 +1,103 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
+"""Writing from stroke data into the scene (Write Character, Imitate Picture): the engine writes
+in a worker (calibration, practice passes); at the end the paper is sized, the brush empty
+keyframed, the recording stored and the writing shown. On a surface paper (issue 17) the writing
+is laid on the surface around the point under the brush empty (``surfaces.SurfaceWriting``)."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from ..sim.writing.response import calibrate
+from ..sim.writing.writer import auto_size_mm, write_character
+from . import checks, images, jobs, keyframes, recordings, runtime, surfaces
+
+WRITE_SHARE = 0.6  # of the progress bar on a surface: the flat writing (then laying it)
+
+
+def _share(progress, lo: float, hi: float):
+    """progress(fraction, *details) reported on the part [lo, hi] of the bar."""
+    return lambda f, *details: progress(lo + (hi - lo) * f, *details)
+
+
+class WriteJob(jobs.WorkerJob):
+    """The writing itself (calibration, practice passes) in a worker; ``finish`` sizes the
+    paper, keyframes the brush, stores the recording and shows the writing. On a surface the
+    worker also lays the writing on it and simulates it there."""
+
+    title = "Writing character"
+    on_surface = None  # surfaces.SurfaceWriting when the paper is a surface (set by ``step``)
+
+    def step(self, budget_s: float) -> bool:
+        if self._thread is None and not self.finished:  # first, on Blender's thread
+            st = checks.settings(self.scene)
+            self.on_surface = (
+                surfaces.SurfaceWriting(self.scene) if surfaces.is_surface(st) else None
+            )
+        return super().step(budget_s)
+
+    def __init__(self, scene, char: dict, size_mm: float, passes: int):
+        st = checks.settings(scene)
+        self.scene, self.char = scene, char
+        self.template = recordings.settings_recording(scene)
+        self.ppm = float(st.px_per_mm)
+        if size_mm:
+            self._check(size_mm)
+        super().__init__(lambda progress: self._write(size_mm, passes, progress))
+
+    def _check(self, size_mm: float) -> float:
+        """The size as the settings will hold it (single precision), checked for memory."""
+        size = float(np.float32(size_mm))
+        w = max(1, round(size * self.ppm))
+        checks.check_paper_pixels(w, w)
+        return size
+
+    def _write(self, size_mm: float, passes: int, progress):
+        if not size_mm:  # the size follows from the brush's response
+            progress(0.0, "calibrating the brush")
+            size_mm = auto_size_mm(self.char, calibrate(self.template))
+        size = self._check(size_mm)
+        flat = progress if self.on_surface is None else _share(progress, 0.0, WRITE_SHARE)
+        rec, _, sim = write_character(
+            self.char,
+            0,
+            self.template,
+            size_mm=size,
+            passes=passes,
+            progress=flat,
+            px_per_mm=self.ppm,
+        )
+        if self.on_surface is not None:
+            del sim  # the flat paper, before the surface's is simulated
+            rec, sim = self.on_surface.lay(rec, size, _share(progress, WRITE_SHARE, 1.0))
+        return size, rec, sim
+
+    def describe(self, details) -> str:
+        return details[0] if details else "practising the strokes"
+
+    def finish(self, context):
+        size, rec, sim = self.result
+        scene = self.scene
+        st = checks.settings(scene)
+        if self.on_surface is None:
+            st.paper_width_mm = st.paper_height_mm = size  # the paper plane follows
+            rec = recordings.new_recording(scene, rec.samples, dips=rec.dips)
+            last = keyframes.keyframe_samples(
+                scene, st, rec.samples, rec.sample_rate_hz, scene.frame_start
+            )
+        else:  # laid on the surface (the texture keeps its size)
+            mats = self.on_surface.matrices(st, rec)
+            last = keyframes.keyframe_matrices(
+                scene, st, mats, rec.sample_rate_hz, scene.frame_start
+            )
+            surfaces.keep_surface_paper(self.on_surface.digest, self.on_surface.paper)
+        scene.frame_end = math.ceil(last)
+        recordings.store_recording(st, rec)
+        runtime.get().forget_playbacks()
+        images.show_paper(images.ensure_paper_image(st), sim.paper, len(rec.samples))
+        return "INFO", (
+            f"{len(self.char['medians'])} strokes, {len(rec.samples)} samples, "
+            f"{len(rec.dips)} dips, {size:.0f} mm"
+        )
