@@ -9,7 +9,6 @@ a stopped job leaves the scene as it was."""
 
 from __future__ import annotations
 
-import ctypes
 import math
 import sys
 import threading
@@ -22,10 +21,11 @@ from . import checks
 SLICE_S = 0.08  # work a timer event may do on Blender's own thread
 TIMER_S = 0.05
 WORKER_SWITCH_S = 0.0005  # while a worker runs, Blender's drawing waits at most this for Python
+CANCEL_WAIT_S = 1.0  # Esc waits at most this for a worker to reach its next progress call
 
 
 class JobCancelled(Exception):
-    """Raised inside a worker to stop it."""
+    """Raised inside a worker by its own progress callback once the job was cancelled."""
 
 
 class Job:
@@ -54,8 +54,9 @@ class Job:
 class WorkerJob(Job):
     """Engine work that offers no slices of its own (writing a character, fitting) runs in a
     worker thread: plain Python and numpy, never bpy. Its ``progress`` callback reports how
-    far it is; ``cancel`` stops it at once (an exception raised in the worker) and discards
-    its result. Run to the end (a script), it runs on the caller's thread, as before."""
+    far it is and is where the worker stops: ``cancel`` sets a flag that the next call of
+    ``progress`` (between the engine's steps) answers by ending the work; its result is
+    discarded. Run to the end (a script), it runs on the caller's thread, as before."""
 
     def __init__(self, work):
         self._work = work  # work(progress) -> result; progress(fraction, *details)
@@ -77,7 +78,9 @@ class WorkerJob(Job):
 
     def _run(self):
         try:
-            self.result = self._work(self._progress)
+            result = self._work(self._progress)
+            if not self._stop.is_set():  # a result that came after Esc is not kept
+                self.result = result
         except JobCancelled:
             pass
         except BaseException as exc:  # handed to Blender's thread by step()
@@ -102,13 +105,12 @@ class WorkerJob(Job):
         return True
 
     def cancel(self):
+        """Stop cooperatively: the worker ends at its next progress call (waited for here at
+        most CANCEL_WAIT_S; a worker still in a long step ends on its own, unseen)."""
         self._stop.set()
         t = self._thread
         if t is not None and t.is_alive():
-            ctypes.pythonapi.PyThreadState_SetAsyncExc(
-                ctypes.c_ulong(t.ident), ctypes.py_object(JobCancelled)
-            )
-            t.join(10.0)
+            t.join(CANCEL_WAIT_S)
         self.result = None
         self._restore_switch()
 

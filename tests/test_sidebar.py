@@ -527,8 +527,9 @@ def test_write_character_in_a_worker_stops_cleanly_and_finishes(hb):
     job = write.WriteJob(sc, char, 100.0, 1)
     assert job.step(0.01) is False  # started in a worker: Blender's thread is free
     time.sleep(0.2)
-    job.cancel()
-    assert not job._thread.is_alive() and job.result is None
+    job.cancel()  # a flag the worker reads at its next progress call
+    job._thread.join(60.0)
+    assert not job._thread.is_alive() and job.result is None and job.error is None
     assert (st.paper_width_mm, sc.frame_end, st.brush_object.animation_data) == before
     assert st.recording is None
     job = write.WriteJob(sc, char, 100.0, 1)
