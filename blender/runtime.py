@@ -62,6 +62,15 @@ class Runtime:
             self.suspended -= 1
 
 
+def cache_dir() -> str:
+    """The extension's folder for what it can measure again (the brush's calibrated response):
+    in Blender's user folder of this extension, not in the user's home (call it on Blender's
+    thread)."""
+    import bpy
+
+    return bpy.utils.extension_path_user(__package__.rpartition(".")[0], path="cache", create=True)
+
+
 def get() -> Runtime:
     """The add-on's runtime state (the add-on must be registered)."""
     rt = Runtime.current

@@ -10,10 +10,12 @@ import math
 
 import numpy as np
 
+from ..sim.picture.imitate import read_picture
 from ..sim.writing.response import calibrate
 from ..sim.writing.writer import auto_size_mm, write_character
 from . import checks, images, jobs, keyframes, recordings, runtime, surfaces
 
+READ_SHARE = 0.05  # of the progress bar when imitating a picture: reading it
 WRITE_SHARE = 0.6  # of the progress bar on a surface: the flat writing (then laying it)
 
 
@@ -39,13 +41,18 @@ class WriteJob(jobs.WorkerJob):
         return super().step(budget_s)
 
     def __init__(self, scene, char: dict, size_mm: float, passes: int):
+        self._begin(scene, char, size_mm)
+        super().__init__(lambda progress: self._write(size_mm, passes, progress))
+
+    def _begin(self, scene, char: dict | None, size_mm: float):
+        """What the worker needs from Blender, read on Blender's thread."""
         st = checks.settings(scene)
         self.scene, self.char = scene, char
         self.template = recordings.settings_recording(scene)
         self.ppm = float(st.px_per_mm)
+        self.cache_dir = runtime.cache_dir()
         if size_mm:
             self._check(size_mm)
-        super().__init__(lambda progress: self._write(size_mm, passes, progress))
 
     def _check(self, size_mm: float) -> float:
         """The size as the settings will hold it (single precision), checked for memory."""
@@ -55,9 +62,10 @@ class WriteJob(jobs.WorkerJob):
         return size
 
     def _write(self, size_mm: float, passes: int, progress):
+        progress(0.0, "calibrating the brush")
+        response = calibrate(self.template, cache_dir=self.cache_dir)
         if not size_mm:  # the size follows from the brush's response
-            progress(0.0, "calibrating the brush")
-            size_mm = auto_size_mm(self.char, calibrate(self.template))
+            size_mm = auto_size_mm(self.char, response)
         size = self._check(size_mm)
         flat = progress if self.on_surface is None else _share(progress, 0.0, WRITE_SHARE)
         rec, _, sim = write_character(
@@ -65,6 +73,7 @@ class WriteJob(jobs.WorkerJob):
             0,
             self.template,
             size_mm=size,
+            response=response,
             passes=passes,
             progress=flat,
             px_per_mm=self.ppm,
@@ -101,3 +110,36 @@ class WriteJob(jobs.WorkerJob):
             f"{len(self.char['medians'])} strokes, {len(rec.samples)} samples, "
             f"{len(rec.dips)} dips, {size:.0f} mm"
         )
+
+
+class ImitateJob(WriteJob):
+    """Read the picture, then write its strokes as WriteJob does, in one worker."""
+
+    title = "Imitating picture"
+
+    def __init__(
+        self, scene, picture, name: str, size_mm: float, passes: int, detail: int, piece=False
+    ):
+        self._begin(scene, None, size_mm)
+        self.name, self.strokes = name, 0
+        self.picture = picture  # let go once read: a large picture is not kept while writing
+        jobs.WorkerJob.__init__(
+            self, lambda progress: self._imitate(detail, size_mm, passes, progress, piece)
+        )
+
+    def _imitate(self, detail: int, size_mm: float, passes: int, progress, piece):
+        progress(0.0, "reading the picture")
+        picture, self.picture = self.picture, None
+        im = read_picture(picture, detail, self.name, piece=piece)
+        del picture
+        self.char, self.strokes = im.char, len(im.strokes)
+
+        def writing(frac, *details):
+            progress(READ_SHARE + (1.0 - READ_SHARE) * frac, *details)
+
+        writing(0.0, f"{self.strokes} strokes read")
+        return self._write(size_mm, passes, writing)
+
+    def finish(self, context):
+        level, message = super().finish(context)
+        return level, f"{self.name}: {message}"

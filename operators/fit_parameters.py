@@ -13,11 +13,13 @@ import numpy as np
 from ..blender import checks, recordings
 from ..blender.jobs import JobOperator, WorkerJob
 from ..sim.core.params import QualityParams
-from ..sim.fitting.samples import TrainingSample, character_samples
+from ..sim.fitting.samples import TRAINING_SIZE_PX, TrainingSample, character_samples
 from ..sim.fitting.search import FitSettings, fit
 from ..sim.writing.hanzi import find_char
 from . import polls
 from .add_settings_preset import PRESET_SUBDIR, HAIRY_BRUSH_OT_add_settings_preset
+
+_DEFAULTS = FitSettings()  # the fit's defaults have one home (sim.fitting.search)
 
 
 def write_user_preset(st, name: str) -> str:
@@ -108,7 +110,7 @@ class HAIRY_BRUSH_OT_fit_parameters(JobOperator, bpy.types.Operator):
     )
     size_px: bpy.props.IntProperty(
         name="Training Size (px)",
-        default=64,
+        default=TRAINING_SIZE_PX,
         min=16,
         max=512,
         description="Larger: each training character is written bigger - a closer fit, but "
@@ -116,7 +118,7 @@ class HAIRY_BRUSH_OT_fit_parameters(JobOperator, bpy.types.Operator):
     )
     divisions: bpy.props.IntProperty(
         name="Divisions",
-        default=2,
+        default=_DEFAULTS.divisions,
         min=1,
         max=4,
         description="More: a finer grid of starting points over the values' range (d "
@@ -124,7 +126,7 @@ class HAIRY_BRUSH_OT_fit_parameters(JobOperator, bpy.types.Operator):
     )
     rounds: bpy.props.IntProperty(
         name="Rounds",
-        default=2,
+        default=_DEFAULTS.rounds,
         min=1,
         max=6,
         description="More: the search range shrinks around the best point more times, for "
@@ -132,14 +134,14 @@ class HAIRY_BRUSH_OT_fit_parameters(JobOperator, bpy.types.Operator):
     )
     iterations: bpy.props.IntProperty(
         name="Descent Steps",
-        default=3,
+        default=_DEFAULTS.iterations,
         min=1,
         max=20,
         description="More: each descent from a starting point goes further downhill",
     )
     max_grid: bpy.props.IntProperty(
         name="Grid Points",
-        default=16,
+        default=_DEFAULTS.max_grid,
         min=1,
         max=729,
         description="At most this many grid points are tried a round (drawn at random when "

@@ -11,15 +11,13 @@ import bpy
 import numpy as np
 from bpy_extras.io_utils import ImportHelper
 
-from ..blender import checks, recordings
-from ..blender.jobs import JobOperator, WorkerJob
-from ..blender.writing import WriteJob
+from ..blender import checks
+from ..blender.jobs import JobOperator
+from ..blender.writing import ImitateJob
 from ..sim.image.png import SIGNATURE
-from ..sim.picture.imitate import MAX_DETAIL, PASSES, read_picture
+from ..sim.picture.imitate import MAX_DETAIL, PASSES
 from ..sim.picture.ink import MAX_PICTURE_PIXELS, PictureError, load_picture
 from . import polls
-
-READ_SHARE = 0.05  # of the progress bar: reading the picture
 
 
 def image_grey(image: bpy.types.Image) -> np.ndarray:
@@ -60,44 +58,6 @@ def file_picture(path: str) -> np.ndarray:
         return image_grey(img)
     finally:
         bpy.data.images.remove(img)
-
-
-class ImitateJob(WriteJob):
-    """Read the picture, then write its strokes as WriteJob does, in one worker."""
-
-    title = "Imitating picture"
-
-    def __init__(
-        self, scene, picture, name: str, size_mm: float, passes: int, detail: int, piece=False
-    ):
-        st = checks.settings(scene)
-        self.scene, self.char, self.name = scene, None, name
-        self.template = recordings.settings_recording(scene)
-        self.ppm = float(st.px_per_mm)
-        self.strokes = 0
-        self.picture = picture  # let go once read: a large picture is not kept while writing
-        if size_mm:
-            self._check(size_mm)
-        WorkerJob.__init__(
-            self, lambda progress: self._imitate(detail, size_mm, passes, progress, piece)
-        )
-
-    def _imitate(self, detail: int, size_mm: float, passes: int, progress, piece):
-        progress(0.0, "reading the picture")
-        picture, self.picture = self.picture, None
-        im = read_picture(picture, detail, self.name, piece=piece)
-        del picture
-        self.char, self.strokes = im.char, len(im.strokes)
-
-        def writing(frac, *details):
-            progress(READ_SHARE + (1.0 - READ_SHARE) * frac, *details)
-
-        writing(0.0, f"{self.strokes} strokes read")
-        return self._write(size_mm, passes, writing)
-
-    def finish(self, context):
-        level, message = super().finish(context)
-        return level, f"{self.name}: {message}"
 
 
 class HAIRY_BRUSH_OT_imitate_image(JobOperator, bpy.types.Operator, ImportHelper):

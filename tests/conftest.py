@@ -14,6 +14,9 @@ sys.path.insert(0, str(ROOT))
 # Blender reads its user folders once, at `import bpy`: give the test session its own, so the
 # extension is installed into a temporary Blender user folder, as a user would install it.
 os.environ.setdefault("BLENDER_USER_RESOURCES", tempfile.mkdtemp(prefix="hairy-brush-user-"))
+# and the command line's cache (the brush's calibrated response) goes to a temporary folder too,
+# never into the user's home
+os.environ["HAIRY_BRUSH_CACHE"] = tempfile.mkdtemp(prefix="hairy-brush-cache-")
 
 from sim.brush.primitive import HairyBrush  # noqa: E402
 from sim.core.params import BrushGeometry, QualityParams  # noqa: E402

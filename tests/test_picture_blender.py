@@ -119,13 +119,14 @@ def test_imitate_an_image_datablock_and_bad_pictures(hb, tmp_path):
 def test_imitate_in_a_worker_stops_cleanly_and_finishes(hb):
     st = setup_scene()
     sc = bpy.context.scene
-    mod = ext().operators.imitate_image
+    mod = ext().blender.writing
     before = (st.paper_width_mm, sc.frame_end, st.brush_object.animation_data)
     job = mod.ImitateJob(sc, picture(96), "wang", 80.0, 1, 96)
     assert job.step(0.01) is False  # started in a worker: Blender's thread is free
     time.sleep(0.2)
-    job.cancel()
-    assert not job._thread.is_alive() and job.result is None
+    job.cancel()  # a flag the worker reads at its next progress call
+    job._thread.join(60.0)
+    assert not job._thread.is_alive() and job.result is None and job.error is None
     assert (st.paper_width_mm, sc.frame_end, st.brush_object.animation_data) == before
     job = mod.ImitateJob(sc, picture(96), "wang", 80.0, 1, 96)
     fractions = []

@@ -7,7 +7,7 @@ from __future__ import annotations
 import os
 import time
 
-from .shared import _chars, _template
+from .shared import _chars, _response, _template
 
 
 def cmd_iou(args) -> int:
@@ -23,7 +23,7 @@ def cmd_iou(args) -> int:
 
     chars = _chars(args.chars, args.data)
     template = _template(args)
-    rows, resp, per = [], None, {}
+    rows, resp, per = [], _response(template), {}
     for spec, ch in zip(args.chars, chars, strict=True):
         t0 = time.perf_counter()
         font = rasterise(ch, args.size)

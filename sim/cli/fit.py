@@ -9,7 +9,7 @@ import sys
 import time
 
 from ..core.params import ParameterError, short_repr
-from .shared import _chars, _progress, _template, _whole, _writable
+from .shared import _chars, _progress, _response, _template, _whole, _writable
 
 
 def cmd_fit(args) -> int:
@@ -52,7 +52,12 @@ def cmd_fit(args) -> int:
         image_sample(rec, png) for png, rec in zip(args.image or [], image_recs, strict=True)
     ]
     if chars:
-        samples = character_samples(chars, args.size, template, names=args.chars) + samples
+        samples = (
+            character_samples(
+                chars, args.size, template, names=args.chars, response=_response(template)
+            )
+            + samples
+        )
     t0 = time.perf_counter()
 
     def progress(frac, stage, rnd, best):
@@ -88,24 +93,27 @@ def _bound(text: str) -> tuple:
 
 def _add_fit(sub, size, common):
     """The ``fit`` command's options."""
-    from ..fitting.search import SETTING_RANGES
+    from ..fitting.samples import TRAINING_SIZE_PX
+    from ..fitting.search import SETTING_RANGES, FitSettings
 
     f = sub.add_parser("fit", help="fit the quality parameters (Sec. 7.2, Eq. 28)")
     f.add_argument("--chars", nargs="*", default=[], help="training characters (stroke data)")
     f.add_argument("--image", nargs="*", help="training images (PNG) ...")
     f.add_argument("--image-recording", nargs="*", help="... and their recordings")
     f.add_argument("-o", "--output", required=True, help="preset JSON to write")
-    f.add_argument("--size", type=size, default=96, help="training image size")
+    f.add_argument("--size", type=size, default=TRAINING_SIZE_PX, help="training image size")
     f.add_argument("--seed-preset", default=None, help="brush preset name or quality JSON")
-    for name, default, help_ in (
-        ("divisions", 1, None),
-        ("rounds", 2, None),
-        ("iterations", 6, None),
-        ("workers", 0, "processes (0: all cores)"),
-        ("max_grid", 64, None),
+    defaults = FitSettings()  # the one home of the fit's defaults
+    for name, help_ in (
+        ("divisions", None),
+        ("rounds", None),
+        ("iterations", None),
+        ("workers", "processes (0: all cores)"),
+        ("max_grid", None),
     ):
         opt = "--" + name.replace("_", "-")
-        f.add_argument(opt, type=_whole(*SETTING_RANGES[name]), default=default, help=help_)
+        kind = _whole(*SETTING_RANGES[name])
+        f.add_argument(opt, type=kind, default=getattr(defaults, name), help=help_)
     f.add_argument("--stages", type=_stages, default=("qp1", "qp2"))
     f.add_argument(
         "--bound",

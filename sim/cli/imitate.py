@@ -5,7 +5,7 @@ from __future__ import annotations
 
 import time
 
-from .shared import _progress, _template, _writable
+from .shared import _progress, _response, _template, _writable
 
 
 def _progress_after_reading(frac: float, *_details) -> None:
@@ -29,9 +29,11 @@ def cmd_imitate(args) -> int:
         if path:
             _writable(path)
     t0 = time.perf_counter()
+    template = _template(args)
     rec, _, sim, im = imitate(
         args.image,
-        _template(args),
+        template,
+        response=_response(template),
         n_px=args.size,
         size_mm=args.size_mm,
         passes=args.passes,

@@ -49,6 +49,29 @@ def _template(args):
     return rec
 
 
+def cache_dir() -> str:
+    """Where the command line keeps what it can measure again (the brush's calibrated
+    response): $HAIRY_BRUSH_CACHE, else the platform's cache folder ($XDG_CACHE_HOME or
+    ~/.cache on Linux, ~/Library/Caches on macOS, %LOCALAPPDATA% on Windows)/hairy_brush."""
+    if os.environ.get("HAIRY_BRUSH_CACHE"):
+        return os.environ["HAIRY_BRUSH_CACHE"]
+    home = os.path.expanduser("~")
+    if sys.platform == "win32":
+        root = os.environ.get("LOCALAPPDATA") or os.path.join(home, "AppData", "Local")
+    elif sys.platform == "darwin":
+        root = os.path.join(home, "Library", "Caches")
+    else:
+        root = os.environ.get("XDG_CACHE_HOME") or os.path.join(home, ".cache")
+    return os.path.join(root, "hairy_brush")
+
+
+def _response(template):
+    """The brush's calibrated response for the template, kept in ``cache_dir()``."""
+    from ..writing.response import calibrate
+
+    return calibrate(template, cache_dir=cache_dir())
+
+
 def _chars(specs, data):
     from ..writing.hanzi import find_char
 

@@ -8,7 +8,7 @@ import os
 import time
 
 from ..core.params import ParameterError
-from .shared import _chars, _progress, _template, _writable
+from .shared import _chars, _progress, _response, _template, _writable
 
 
 def cmd_write(args) -> int:
@@ -20,11 +20,13 @@ def cmd_write(args) -> int:
         _writable(args.recording)
     (char,) = _chars([args.char], args.data)
     t0 = time.perf_counter()
+    template = _template(args)
     rec, resp, sim = write_character(
         char,
         args.size,
-        _template(args),
+        template,
         size_mm=args.size_mm,
+        response=_response(template),
         passes=args.passes,
         progress=None if args.quiet else _progress,
     )
@@ -52,7 +54,10 @@ def cmd_write_set(args) -> int:
         raise ParameterError(f"--out-dir {args.out_dir}: no such folder")
     chars = _chars(args.chars, args.data)
     template = _template(args)
-    tasks = [(c, f"{k:03d}", args.size, template, args.passes) for k, c in enumerate(chars)]
+    response = _response(template)
+    tasks = [
+        (c, f"{k:03d}", args.size, template, args.passes, response) for k, c in enumerate(chars)
+    ]
     t0 = time.perf_counter()
     workers = args.workers or os.cpu_count() or 1
     done = None if args.quiet else (lambda n, total: _progress(n / total))
@@ -69,6 +74,6 @@ def write_task(task):
     recording dict) - returned, not saved, as a cluster's workers may not share our disk."""
     from ..writing.writer import write_character
 
-    char, name, size, template, passes = task
-    rec, _resp, sim = write_character(char, size, template, passes=passes)
+    char, name, size, template, passes, response = task
+    rec, _resp, sim = write_character(char, size, template, response=response, passes=passes)
     return name, sim.image8(), rec.to_dict()

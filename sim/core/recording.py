@@ -51,12 +51,12 @@ ANGLE_LIMIT_DEG = 89.0
 SAMPLE_DECIMALS = 5
 
 
-def quantise(samples) -> np.ndarray:
-    """Samples exactly as a saved recording holds them (each value rounded to SAMPLE_DECIMALS by
-    Python's correctly rounded ``round``), so that whatever simulated them live or while
-    writing replays bit for bit from the file."""
+def quantise(samples, decimals: int = SAMPLE_DECIMALS) -> np.ndarray:
+    """Samples (or a surface's frames) exactly as a saved recording holds them: each value
+    rounded to ``decimals`` by Python's correctly rounded ``round``, so that whatever simulated
+    them live or while writing replays bit for bit from the file."""
     a = np.asarray(samples, dtype=float)
-    return np.array([round(float(v), SAMPLE_DECIMALS) for v in a.ravel()]).reshape(a.shape)
+    return np.array([round(float(v), decimals) for v in a.ravel()]).reshape(a.shape)
 
 
 class RecordingError(ValueError):

@@ -12,6 +12,8 @@ import numpy as np
 from ..core.params import ParameterError
 from ..core.recording import Recording
 
+TRAINING_SIZE_PX = 96  # a training character's image size, unless chosen (CLI and Blender)
+
 
 @dataclass
 class TrainingSample:
@@ -48,14 +50,15 @@ def ink_image(mask, paper_rgb, ink_rgb) -> np.ndarray:
     ).astype(np.float32)
 
 
-def character_samples(chars: list[dict], n_px: int, template: Recording, names=None, passes=1):
+def character_samples(
+    chars: list[dict], n_px: int, template: Recording, names=None, passes=1, response=None
+):
     """Training samples from stroke data: the outline is the boundary, the median the path. The
     recording is what the writer (``sim.writing``) makes with the template's settings; the
     target is the font's character in the template's ink on its paper."""
     from ..writing.writer import font_mask, write_character
 
     out = []
-    response = None
     for k, ch in enumerate(chars):
         rec, response, sim = write_character(ch, n_px, template, response=response, passes=passes)
         target = ink_image(font_mask(ch, n_px), sim.paper.color, sim.ink.color)

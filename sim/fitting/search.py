@@ -37,16 +37,17 @@ from .target import _init_worker, target_function
 
 @dataclass
 class FitSettings:
-    divisions: int = 2  # d: edge divisions of the cube (grid of (d + 1)^k points)
+    # the defaults of every fit: the command line's options and Blender's Fit Parameters read them
+    divisions: int = 1  # d: edge divisions of the cube (grid of (d + 1)^k points)
     starts: int = 0  # descents per round (0: one per worker)
-    rounds: int = 3  # cube shrinks
-    iterations: int = 4  # steepest-descent steps per descent
+    rounds: int = 2  # cube shrinks
+    iterations: int = 6  # steepest-descent steps per descent
     step: float = 0.05  # finite-difference step (Delta x_i), as a share of the cube's edge
     line_steps: int = 6  # line search: lambda_max, lambda_max / 2, ... this many values
     error_bound: float = 1e-3  # stop when a round improves the target by less than this
     grad_bound: float = 1e-3  # epsilon of step 2: stop a descent when |y| is smaller
     workers: int = 0  # processes (0: all cores)
-    max_grid: int = 40  # at most this many grid points are evaluated per round
+    max_grid: int = 64  # at most this many grid points are evaluated per round
     seed: int = 0  # draws the grid subset
     stages: tuple = ("qp1", "qp2")
     only: tuple = ()  # fit just these parameters (the others keep the seed's values)

@@ -8,6 +8,8 @@ from __future__ import annotations
 import numpy as np
 
 from ..image import morph as M
+from ..writing.hanzi import MAX_MEDIAN_POINTS as DATA_MEDIAN_POINTS
+from ..writing.hanzi import MAX_OUTLINE_POINTS as DATA_OUTLINE_POINTS
 from ..writing.hanzi import MAX_STROKES
 from ..writing.outline import EM, TOP, discs
 from .ink import Ink, PictureError
@@ -17,8 +19,10 @@ from .strokes import Stroke, find_strokes
 TUBE = (1.0, 0.5)  # a stroke's own ink: within its half-width of its median, plus pixels
 MEDIAN_EPS = 2.0  # px at 512: the median simplified this closely
 OUTLINE_EPS = 0.6  # px: the outline's polygons simplified this closely
-MAX_OUTLINE_POINTS = 1500  # per stroke (sim.hanzi takes up to 2000)
-MAX_MEDIAN_POINTS = 200  # per stroke (sim.hanzi takes up to 256)
+# a stroke read from a picture is simplified to within 3/4 of what stroke data may hold (its
+# curves are flattened again when the data is read: a margin for that)
+OUTLINE_POINT_BUDGET = DATA_OUTLINE_POINTS * 3 // 4
+MEDIAN_POINT_BUDGET = DATA_MEDIAN_POINTS * 3 // 4
 BLOT_CURL = np.radians(35.0)  # a median's end that turns more than this inside its blot
 
 
@@ -125,7 +129,7 @@ def outline_svg(region: np.ndarray, n: int) -> str:
     eps = OUTLINE_EPS
     while True:
         simple = [q for q in (simplify(p, eps) for p in polys) if len(q) >= 3]
-        if sum(len(q) for q in simple) <= MAX_OUTLINE_POINTS or eps > 8:
+        if sum(len(q) for q in simple) <= OUTLINE_POINT_BUDGET or eps > 8:
             return _svg(simple, n)
         eps *= 1.6
 
@@ -158,7 +162,7 @@ def _median(s: Stroke, n: int) -> list:
     eps = MEDIAN_EPS * n / 512
     line = _straight_start(s.pts, s.radius)
     pts = simplify(line, eps, closed=False)
-    while len(pts) > MAX_MEDIAN_POINTS:
+    while len(pts) > MEDIAN_POINT_BUDGET:
         eps *= 1.5
         pts = simplify(line, eps, closed=False)
     return [[round(float(x), 1), round(float(y), 1)] for x, y in _to_data(pts, n)]

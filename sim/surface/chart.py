@@ -11,11 +11,13 @@ import math
 import numpy as np
 
 from ..core.frames import angles_from_matrix, rotation_matrix
+from ..core.recording import SAMPLE_DECIMALS
+from ..core.recording import quantise as quantise_values
 from .mesh import Surface, SurfaceError
 from .query import Hit, TriangleGrid, closest_point, normal_at, ray_hit
 
 FRAME_WIDTH = 11  # a frame: chart cx, cy; point P; tangent T; normal N (mm, unit vectors)
-FRAME_DECIMALS = 5  # as a recording's samples (sim.recording.SAMPLE_DECIMALS)
+FRAME_DECIMALS = SAMPLE_DECIMALS  # frames are stored as a recording's samples are
 
 
 # ------------------------------------------------------------------------------ frames
@@ -32,9 +34,8 @@ def transport(tangent, normal) -> np.ndarray:
 
 
 def quantise(a) -> np.ndarray:
-    """Frames exactly as a saved recording holds them (see sim.recording.quantise)."""
-    a = np.asarray(a, dtype=float)
-    return np.array([round(float(v), FRAME_DECIMALS) for v in a.ravel()]).reshape(a.shape)
+    """Frames exactly as a saved recording holds them (sim.core.recording.quantise)."""
+    return quantise_values(a, FRAME_DECIMALS)
 
 
 def frame_parts(frame):

@@ -84,25 +84,32 @@ def _cache_key(template: Recording, *args) -> str:
     return h.hexdigest()[:32]
 
 
-def _cache_file(key: str):
+def _cache_file(key: str, cache_dir):
     from pathlib import Path
 
-    root = os.environ.get("XDG_CACHE_HOME") or os.path.join(os.path.expanduser("~"), ".cache")
-    return Path(root) / "hairy_brush" / f"response-{key}.json"
+    return Path(cache_dir) / f"response-{key}.json"
 
 
 def calibrate(
-    template: Recording, speed_mm_s: float = 60.0, presses: int = 11, ppm: float = CAL_PPM
+    template: Recording,
+    speed_mm_s: float = 60.0,
+    presses: int = 11,
+    ppm: float = CAL_PPM,
+    cache_dir=None,
 ) -> Response:
-    """The brush's response (``_calibrate``), cached per settings in the process and on disk
-    (``~/.cache/hairy_brush``; the key includes the engine's source, so a changed model is
-    measured again). The simulation is deterministic, so a cached response is the same one."""
+    """The brush's response (``_calibrate``), cached per settings in the process and, given a
+    ``cache_dir`` (the command line's is the platform's cache folder, Blender's the extension's
+    user folder), on disk; the key includes the engine's source, so a changed model is measured
+    again. The simulation is deterministic, so a cached response is the same one."""
     import json
 
     key = _cache_key(template, speed_mm_s, presses, ppm)
     if key in _CACHE:
         return _CACHE[key]
-    path = _cache_file(key)
+    if cache_dir is None:
+        _CACHE[key] = _calibrate(template, speed_mm_s, presses, ppm)
+        return _CACHE[key]
+    path = _cache_file(key, cache_dir)
     try:
         d = json.loads(path.read_text())
         resp = Response(*(np.array(d[k], dtype=float) for k in ("press", "width", "lag")), d["v"])
