@@ -2,6 +2,7 @@
 """Invariants under random strokes and random quality parameters (hypothesis)."""
 
 import numpy as np
+import pytest
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
@@ -47,6 +48,7 @@ stroke_args = dict(
 )
 
 
+@pytest.mark.slow
 @settings(**SETTINGS)
 @given(**stroke_args)
 def test_wetness_colour_in_range_and_hair_never_through_the_paper(
@@ -87,6 +89,7 @@ def test_split_conserves_hair_area(stress, tre, m0):
     assert b.cc.shape == (b.m, b.n, 3)
 
 
+@pytest.mark.slow
 @settings(max_examples=5, deadline=None)
 @given(**stroke_args)
 def test_replay_is_deterministic(q, x1, y1, press, speed, wet, tilt, seed):

@@ -8,7 +8,7 @@ import ast
 import subprocess
 import sys
 
-from conftest import ROOT
+from tests.paths import ROOT
 
 SIM = ROOT / "sim"
 

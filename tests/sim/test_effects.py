@@ -45,6 +45,7 @@ def line(**kw):
     return stroke([[10, 20], [100, 20]], hair_length_mm=kw.pop("hair", L), **kw)
 
 
+@pytest.mark.slow
 def test_gray_levels_follow_the_ink():
     marks = []
     for col in ((0.03, 0.03, 0.03), (0.35, 0.35, 0.35), (0.7, 0.7, 0.7)):
@@ -70,6 +71,7 @@ def test_coloured_ink_keeps_its_hue():
     assert inked.sum() > 500 and r > 0.6 and g < 0.3 and b < 0.25
 
 
+@pytest.mark.slow
 def test_flying_white_when_the_brush_runs_dry():
     """A fast, pressed, dry stroke leaves unlinked streaks inside its outline; a wet one not."""
 
@@ -93,6 +95,7 @@ def test_flying_white_when_the_brush_runs_dry():
     assert holes(0.3, 160) > 3 * holes(0.95, 40)
 
 
+@pytest.mark.slow
 def test_saturation_bleeds_on_raw_xuan_not_on_smooth_paper():
     s = line(press_mm=9, speed_mm_s=25)
     cover = {}
@@ -160,6 +163,7 @@ def test_jumping_with_snapshots_equals_running_straight_through():
     assert sim.brush.m == straight.brush.m
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("rate", [60.0, 240.0])
 def test_sample_rate_does_not_change_the_stroke_much(rate):
     ref = simulate(line(press_mm=9), paper="smooth", ppm=4.0)

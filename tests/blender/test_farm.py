@@ -12,11 +12,14 @@ import textwrap
 
 import numpy as np
 import pytest
-from conftest import ADDON, ROOT
+
+from tests.paths import ADDON, ROOT
 
 bpy = pytest.importorskip("bpy")
 
-from test_extension import (  # noqa: E402
+from sim.engine.simulation import Simulation  # noqa: E402
+from sim.paper.display import linear_to_srgb  # noqa: E402
+from tests.blender.helpers import (  # noqa: E402
     ext,
     keyframe_stroke,
     mesh_without_uv,
@@ -24,9 +27,6 @@ from test_extension import (  # noqa: E402
     select_only,
     setup_scene,
 )
-
-from sim.engine.simulation import Simulation  # noqa: E402
-from sim.paper.display import linear_to_srgb  # noqa: E402
 
 
 def farm_scene(tmp_path):
@@ -38,6 +38,7 @@ def farm_scene(tmp_path):
     return st, path
 
 
+@pytest.mark.slow
 def test_bake_cache_needs_a_saved_file_and_writes_checkpoints_next_to_it(hb, tmp_path):
     st = setup_scene(bpy)
     keyframe_stroke(bpy, st)
@@ -83,6 +84,7 @@ WORKER = textwrap.dedent(
 )
 
 
+@pytest.mark.slow
 def test_frames_rendered_in_shuffled_order_by_separate_processes_equal_sequential(hb, tmp_path):
     st, path = farm_scene(tmp_path)
     assert bpy.ops.hairy_brush.bake_cache() == {"FINISHED"}
@@ -165,6 +167,7 @@ def test_relief_needs_a_uv_map(hb):
         bpy.ops.hairy_brush.relief()
 
 
+@pytest.mark.slow
 def test_a_density_relief_leaves_nothing_when_it_fails_and_its_image_is_refreshed_only_while_read(
     hb, monkeypatch
 ):

@@ -10,8 +10,8 @@ import pytest
 
 from sim.brush.mark import compute_marks
 from sim.engine.simulation import Simulation
-from tests.builders import character, long_stroke, simulation, stepped
-from tests.reference_mark import reference_marks
+from tests.sim.builders import character, long_stroke, simulation, stepped
+from tests.sim.reference_mark import reference_marks
 
 
 def _states(primitives, ppm, every=37):
@@ -46,12 +46,14 @@ def _assert_marks_equal_reference(sims, ppm):
     return checked, pixels
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("primitives, ppm, every", [(1, 10.24, 23), (16, 6.0, 37), (4, 20.48, 29)])
 def test_fast_marks_equal_reference(primitives, ppm, every):
     checked, pixels = _assert_marks_equal_reference(_states(primitives, ppm, every), ppm)
     assert checked >= 5 and pixels > 1000
 
 
+@pytest.mark.slow
 def test_fast_marks_equal_reference_on_a_written_character():
     """The demo character (wolf brush, pressed and split): many pixels lie between several
     pairs of section planes, of which only the first and the last slab count."""
@@ -60,6 +62,7 @@ def test_fast_marks_equal_reference_on_a_written_character():
     assert checked > 20 and sim.brush.splits > 0
 
 
+@pytest.mark.slow
 def test_fast_marks_equal_reference_with_a_texture_function_that_varies():
     """Eq. 22 with the texture function (radiation and vector modes) changing from key point to
     key point, not one ink's everywhere: the fast marks' ink still equals the reference."""
@@ -80,6 +83,7 @@ def test_fast_marks_equal_reference_with_a_texture_function_that_varies():
     assert checked >= 5 and pixels > 1000
 
 
+@pytest.mark.slow
 def test_marks_evaluated_in_bands_are_the_same_marks(monkeypatch):
     """Many large marks are evaluated in bands of scanlines (bounded memory); a band may cut a
     mark in two. The marks are the same, bit for bit."""
@@ -106,6 +110,7 @@ def test_marks_evaluated_in_bands_are_the_same_marks(monkeypatch):
     assert compared > 10 * 300
 
 
+@pytest.mark.slow
 def test_a_span_that_cuts_the_solid_short_is_scanned_again(monkeypatch):
     """With no margin past cur_u, the solid often reaches the end of a span (where the surface
     grazes the paper); those marks are scanned again over the whole cut, so they still equal
@@ -127,11 +132,12 @@ def test_a_span_that_cuts_the_solid_short_is_scanned_again(monkeypatch):
     assert checked >= 5 and calls["again"] > 0
 
 
+@pytest.mark.slow
 def test_batched_deposit_equals_one_mark_after_another():
     """Overlapping primitives visit a pixel several times in one step; the batched deposit
     takes the visits in the marks' order and gives the plain loop's paper bit for bit."""
     from sim.paper.paper import Paper
-    from tests.reference_paper import reference_deposit
+    from tests.sim.reference_paper import reference_deposit
 
     s = long_stroke()[:260]
     a = simulation(s, 1200, 6.0, 16)
@@ -172,7 +178,7 @@ def test_box_sum_saturation_equals_neighbour_by_neighbour():
     """Eq. 25 by 3 x 3 box sums gives the plain neighbour-by-neighbour spreading (to float32
     rounding) and keeps the water."""
     from sim.paper.paper import Paper
-    from tests.reference_paper import reference_saturate
+    from tests.sim.reference_paper import reference_saturate
 
     rng = np.random.default_rng(5)
     w = rng.random((60, 70), dtype=np.float32) * 1.6
@@ -188,6 +194,7 @@ def test_box_sum_saturation_equals_neighbour_by_neighbour():
     assert a_w.sum(dtype=np.float64) == pytest.approx(w.sum(dtype=np.float64), rel=1e-5)
 
 
+@pytest.mark.slow
 def test_run_fills_marks_for_several_samples_at_once_and_equals_step_by_step():
     """``run`` lets the brush run ahead of the paper and fills several samples' marks in one
     pass; the paper is the same, bit for bit, as one sample at a time (a written character with

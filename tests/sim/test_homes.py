@@ -9,13 +9,14 @@ import subprocess
 import sys
 
 import numpy as np
-from conftest import ROOT
+import pytest
 
 from sim.cli.main import _parser
 from sim.core.recording import Recording
 from sim.fitting.samples import TRAINING_SIZE_PX
 from sim.fitting.search import FitSettings
 from sim.writing import response as resp
+from tests.paths import ROOT
 
 
 def test_the_command_lines_fit_defaults_are_fitsettings():
@@ -30,6 +31,7 @@ def _template():
     return Recording(np.zeros((1, 6)), brush={"preset": "wolf_stiff"}, paper_preset="smooth")
 
 
+@pytest.mark.slow
 def test_the_response_is_kept_on_disk_only_in_the_folder_handed_in(tmp_path, monkeypatch):
     home = tmp_path / "home"
     monkeypatch.setenv("HOME", str(home))
@@ -49,6 +51,7 @@ def test_the_response_is_kept_on_disk_only_in_the_folder_handed_in(tmp_path, mon
         np.testing.assert_array_equal(getattr(kept, name), getattr(again, name))
 
 
+@pytest.mark.slow
 def test_the_command_line_keeps_its_cache_in_hairy_brush_cache(tmp_path):
     env = {**os.environ, "HAIRY_BRUSH_CACHE": str(tmp_path / "cache"), "HOME": str(tmp_path)}
     env.pop("XDG_CACHE_HOME", None)

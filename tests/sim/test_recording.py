@@ -6,10 +6,10 @@ import sys
 
 import numpy as np
 import pytest
-from conftest import ROOT
 
 from sim.core.params import PRESET_DIR, ParameterError, QualityParams, load_preset, preset_names
 from sim.core.recording import RecordingError, from_dict, load, loads
+from tests.paths import ROOT
 
 GOOD = {
     "format": "hairy-brush-recording",

@@ -3,14 +3,11 @@
 
 from __future__ import annotations
 
-from pathlib import Path
-
 from sim.cli.bench import long_stroke, workload
 from sim.core.recording import Recording, from_dict
 from sim.engine.simulation import Simulation
 from sim.writing.hanzi import character_recording
-
-ROOT = Path(__file__).resolve().parent.parent
+from tests.paths import ROOT  # noqa: E402
 
 __all__ = ["character", "long_stroke", "simulation", "stepped"]
 

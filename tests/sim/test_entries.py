@@ -114,6 +114,7 @@ def _band(mask, p, d, reach):
     return hi - lo + 1
 
 
+@pytest.mark.slow
 def test_a_written_hook_ends_in_a_point_and_its_foot_stays_in_the_outline(response):
     ch = find_char("永")
     n = 256

@@ -12,11 +12,11 @@ import time
 import zlib
 
 import pytest
-from conftest import ROOT
 
 from sim.cli.main import main
 from sim.core.recording import MAX_DIPS, RecordingError, from_dict, loads
 from sim.image.png import PNGError, read_png
+from tests.paths import ROOT
 
 REC = {
     "format": "hairy-brush-recording",

@@ -6,21 +6,18 @@ so the writing replays; bad pictures reported in one message (real bpy)."""
 from __future__ import annotations
 
 import json
-import sys
 import time
 
 import numpy as np
 import pytest
-from conftest import ADDON, ROOT
+
+from tests.blender.helpers import ext
+from tests.paths import ROOT
 
 bpy = pytest.importorskip("bpy")
 
 from sim.image.png import write_png  # noqa: E402
 from sim.writing.outline import rasterise  # noqa: E402
-
-
-def ext():
-    return sys.modules[ADDON]
 
 
 def setup_scene(ppm=1.0):
@@ -35,6 +32,7 @@ def picture(n=128) -> np.ndarray:
     return np.where(rasterise(char, n), 0.05, 0.95)
 
 
+@pytest.mark.slow
 def test_imitate_a_jpeg_through_blender(hb, tmp_path):
     setup_scene()
     img = bpy.data.images.new("pic", 128, 128)
@@ -52,6 +50,7 @@ def test_imitate_a_jpeg_through_blender(hb, tmp_path):
     assert "wang.jpg" not in bpy.data.images  # the picture was read, not kept
 
 
+@pytest.mark.slow
 def test_imitate_a_png_keyframes_the_brush_and_replays(hb, tmp_path):
     st = setup_scene()
     path = tmp_path / "wang.png"
@@ -66,6 +65,7 @@ def test_imitate_a_png_keyframes_the_brush_and_replays(hb, tmp_path):
     np.testing.assert_allclose(baked[: len(written)], written, atol=2e-3)
 
 
+@pytest.mark.slow
 def test_imitate_a_piece_of_two_characters(hb, tmp_path):
     # two columns, 王 on the left and 口 on the right: with Several Characters each is read in
     # its own square, the right column first (read as one character, 王 comes first)
@@ -116,6 +116,7 @@ def test_imitate_an_image_datablock_and_bad_pictures(hb, tmp_path):
     assert st.recording.as_string() == before  # user work is never lost
 
 
+@pytest.mark.slow
 def test_imitate_in_a_worker_stops_cleanly_and_finishes(hb):
     st = setup_scene()
     sc = bpy.context.scene

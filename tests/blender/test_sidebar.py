@@ -12,7 +12,8 @@ from types import SimpleNamespace
 
 import numpy as np
 import pytest
-from test_extension import (
+
+from tests.blender.helpers import (
     HAIR,
     ext,
     keyframe_stroke,
@@ -516,8 +517,9 @@ def test_bake_sequence_runs_in_slices(hb, tmp_path):
     assert len(job.written) == 10
 
 
+@pytest.mark.slow
 def test_write_character_in_a_worker_stops_cleanly_and_finishes(hb):
-    from conftest import ROOT
+    from tests.paths import ROOT
 
     st = setup_scene(bpy, ppm=1.0)
     sc = bpy.context.scene
@@ -541,6 +543,7 @@ def test_write_character_in_a_worker_stops_cleanly_and_finishes(hb):
     assert st.recording is not None and st.brush_object.animation_data.action is not None
 
 
+@pytest.mark.slow
 def test_fit_in_a_worker_reports_progress_and_sets_the_quality(hb):
     st = setup_scene(bpy, ppm=1.0)
     fit_mod = ext().operators.fit_parameters

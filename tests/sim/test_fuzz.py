@@ -17,7 +17,6 @@ from pathlib import Path
 
 import numpy as np
 import pytest
-from conftest import ROOT
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
@@ -37,6 +36,7 @@ from sim.writing.outline import baseline_masks, rasterise
 from sim.writing.planner import plan
 from sim.writing.response import Response
 from sim.writing.writer import auto_size_mm
+from tests.paths import ROOT
 
 # FUZZ_EXAMPLES=5000 runs a longer campaign with the same tests
 EXAMPLES = int(os.environ.get("FUZZ_EXAMPLES", "150"))
@@ -175,6 +175,7 @@ def drawn_char(draw):
     return {"strokes": outlines, "medians": [draw(POINTS) for _ in range(n)]}
 
 
+@pytest.mark.slow
 @FUZZ
 @given(
     doc=mutated(CHAR, JSON | COORD | SVG | st.lists(st.lists(COORD, max_size=3), max_size=4))
@@ -235,6 +236,7 @@ PRESETS = {
 FROM_PRESET = {"brush": geometry_from_preset, "paper": paper_from_preset, "ink": ink_from_preset}
 
 
+@pytest.mark.slow
 @FUZZ
 @given(kind=st.sampled_from(sorted(PRESETS)), data=st.data())
 def test_presets_load_or_raise_parameter_error(kind, data):
@@ -402,6 +404,7 @@ VALUES = (
 )
 
 
+@pytest.mark.slow
 @settings(max_examples=2 * EXAMPLES, deadline=None)
 @given(opt=st.sampled_from(sorted(OPTIONS)), value=VALUES)
 def test_options_parse_in_range_or_exit_2(opt, value):

@@ -5,7 +5,6 @@ the writer, and the fit of the quality parameters (Sec. 7.2, Eq. 28). No Blender
 import json
 import subprocess
 import sys
-from pathlib import Path
 
 import numpy as np
 import pytest
@@ -29,8 +28,7 @@ from sim.writing.planner import ENTRY_TOUCH, _entry_ramp, plan
 from sim.writing.response import calibrate
 from sim.writing.strokes import stroke
 from sim.writing.writer import coverage_mask, write_character
-
-ROOT = Path(__file__).resolve().parent.parent
+from tests.paths import ROOT  # noqa: E402
 
 
 def _template(**kw):
@@ -94,6 +92,7 @@ def test_find_char_from_file_folder_and_graphics_txt(tmp_path):
 
 
 # ------------------------------------------------------------------------------ the writer
+@pytest.mark.slow
 def test_calibrated_response_is_measured_not_assumed(response):
     # the widest band is several times the lightest touch's, and another brush responds
     # differently (nothing here is a constant)
@@ -107,6 +106,7 @@ def test_calibrated_response_is_measured_not_assumed(response):
     assert response.press_for(w[k]) == pytest.approx(response.press_mm[k], rel=1e-6)
 
 
+@pytest.mark.slow
 def test_press_follows_the_outline_width(response):
     ch = find_char("永")
     rec, _, sim = write_character(ch, 128, _template(), response=response, passes=1)
@@ -139,6 +139,7 @@ def test_press_follows_the_outline_width(response):
     assert rec.width_px == rec.height_px == 128
 
 
+@pytest.mark.slow
 def test_written_recording_replays_bit_for_bit(response, tmp_path):
     ch = find_char("十")
     rec, _, sim = write_character(ch, 96, _template(seed=3), response=response, passes=3)
@@ -147,6 +148,7 @@ def test_written_recording_replays_bit_for_bit(response, tmp_path):
     assert again.image().tobytes() == sim.image().tobytes()
 
 
+@pytest.mark.slow
 def test_practice_passes_bring_the_ink_to_the_outline(response):
     ch = find_char("一")
     font = rasterise(ch, 128)
@@ -179,6 +181,7 @@ def _line_samples(known, n=2):
     return out
 
 
+@pytest.mark.slow
 def test_eq28_is_zero_at_the_truth_and_positive_elsewhere():
     known = {"e": 0.3, "tre": 0.8, **{k: 0.0 for k in QP2}}
     samples = _line_samples(known)
@@ -186,6 +189,7 @@ def test_eq28_is_zero_at_the_truth_and_positive_elsewhere():
     assert target_function({**known, "e": 0.9}, samples) > 0.002
 
 
+@pytest.mark.slow
 def test_fit_recovers_known_parameters_and_is_deterministic():
     # e and ie both shape these strokes (Eq. 12, 16); their valley runs diagonally, and the
     # exact truth (target 0: the very same random draws) sits in a narrow pit of it
@@ -220,6 +224,7 @@ def _sim(*args, cwd=ROOT):
     )
 
 
+@pytest.mark.slow
 def test_cli_write_saves_image_and_a_recording_that_renders_the_same(tmp_path):
     r = _sim(
         "write",
@@ -242,6 +247,7 @@ def test_cli_write_saves_image_and_a_recording_that_renders_the_same(tmp_path):
     assert r.returncode != 0 and "no data" in r.stderr
 
 
+@pytest.mark.slow
 def test_cli_iou_and_fit(tmp_path):
     r = _sim("iou", "一", "--size", "96", "--passes", "1")
     assert r.returncode == 0, r.stderr

@@ -5,11 +5,11 @@ on the surface, live painting on it, relief, undo/save/reload and the messages (
 from __future__ import annotations
 
 import math
-import sys
 
 import numpy as np
 import pytest
-from conftest import ADDON
+
+from tests.blender.helpers import ext
 
 bpy = pytest.importorskip("bpy")
 
@@ -19,10 +19,6 @@ from sim.paper.display import linear_to_srgb  # noqa: E402
 
 HAIR = load_preset("brush", DEFAULT_BRUSH).data["geometry"]["hair_length_mm"]  # the default's
 R_MM = 40.0  # the cylinder's radius
-
-
-def ext():
-    return sys.modules[ADDON]
 
 
 def ink(img) -> np.ndarray:
@@ -195,6 +191,7 @@ def test_meshes_that_cannot_be_paper_and_a_brush_that_never_touches_get_clear_me
 
 
 # ----------------------------------------------------------------------------- the ink
+@pytest.mark.slow
 def test_a_flat_grid_with_turned_scaled_uvs_writes_the_planes_ink_through_them(hb):
     # no fibre on either sheet: the fibre field is fixed per pixel of the sheet (a hash of its
     # row and column, like the grain), and the texture's texels are not the plane's pixels
@@ -244,6 +241,7 @@ def test_a_flat_grid_with_turned_scaled_uvs_writes_the_planes_ink_through_them(h
     assert np.abs(on_plane - on_grid).mean() < 0.02
 
 
+@pytest.mark.slow
 def test_a_straight_stroke_along_a_cylinder_inks_only_under_its_path_with_constant_width(hb):
     sc = bpy.context.scene
     st = surface_scene(cylinder(vertices=64))
@@ -266,6 +264,7 @@ def test_a_straight_stroke_along_a_cylinder_inks_only_under_its_path_with_consta
     assert min(widths) > 2.0 and max(widths) - min(widths) < 0.6
 
 
+@pytest.mark.slow
 def test_a_stroke_across_the_uv_seam_has_no_gap(hb):
     sc = bpy.context.scene
     cyl = cylinder()
@@ -318,6 +317,7 @@ def _carved_cylinder(follow: str):
     return cyl, st, relief, r, r0, uv
 
 
+@pytest.mark.slow
 def test_relief_carves_the_surface_under_the_ink_by_the_depth(hb):
     # the image value (the density relief, the default, is tested below)
     cyl, st, relief, r, r0, uv = _carved_cylinder("VALUE")
@@ -352,6 +352,7 @@ def _radii_and_uvs(obj):
     return np.hypot(co[:, 0], co[:, 1]) * 1000, uv
 
 
+@pytest.mark.slow
 def test_undo_save_and_reload_keep_the_surface_and_its_writing(hb, tmp_path):
     sc = bpy.context.scene
     cyl = cylinder()
@@ -431,6 +432,7 @@ def test_live_painting_on_the_surface_follows_the_mesh_and_replays(hb):
     assert (replay.paper.ink.mean(axis=2) > 0.3).sum() > 100
 
 
+@pytest.mark.slow
 def test_a_stroke_along_a_uv_spheres_seam_and_over_its_pole_has_no_gap(hb):
     from mathutils import Matrix
 
@@ -468,6 +470,7 @@ def test_a_stroke_along_a_uv_spheres_seam_and_over_its_pole_has_no_gap(hb):
     assert (u < 0.05).any() and (u > 0.95).any()  # on both sides of the seam
 
 
+@pytest.mark.slow
 def test_a_density_relief_moves_the_surface_in_proportion_to_the_ink_and_follows_frames(hb):
     sc = bpy.context.scene
     cyl, st, relief, r, r0, uv = _carved_cylinder("DENSITY")
@@ -490,12 +493,13 @@ def test_a_density_relief_moves_the_surface_in_proportion_to_the_ink_and_follows
 
 
 # ----------------------------------------------------------------------------- Write Character
+@pytest.mark.slow
 def test_write_character_on_a_cylinder_lands_under_the_brush_at_its_size_and_replays(hb):
     """Write Character on a surface paper: the writing is laid on the cylinder around the point
     under the brush empty, at the size asked for (the texture keeps its size), the brush is
     keyframed over the surface, and a re-simulation of the stored recording shows the same
     image bit for bit."""
-    from conftest import ROOT
+    from tests.paths import ROOT
 
     sc = bpy.context.scene
     cyl = cylinder()
@@ -560,13 +564,13 @@ def test_write_character_on_a_cylinder_lands_under_the_brush_at_its_size_and_rep
     )
 
 
+@pytest.mark.slow
 def test_imitate_picture_on_a_cylinder_is_laid_on_it_too(hb):
     """Imitate Picture writes through the same job: on a surface paper it is laid on it."""
     import json
 
-    from conftest import ROOT
-
     from sim.writing.outline import rasterise
+    from tests.paths import ROOT
 
     cyl = cylinder()
     st = surface_scene(cyl, ppm=2.0)
@@ -608,10 +612,11 @@ def test_the_kept_surface_paper_is_the_one_a_fresh_session_would_build(hb):
     assert b.surface_paper_base(s, "d", a).offset != fresh
 
 
+@pytest.mark.slow
 def test_write_character_on_a_surface_reports_progress_forwards_only(hb):
     """The flat writing takes the first part of the bar and laying/simulating on the surface
     the rest: the bar never runs backwards and ends at most full."""
-    from conftest import ROOT
+    from tests.paths import ROOT
 
     cyl = cylinder()
     st = surface_scene(cyl, ppm=2.0)

@@ -8,7 +8,6 @@ import json
 import subprocess
 import sys
 import zlib
-from pathlib import Path
 
 import numpy as np
 import pytest
@@ -26,8 +25,8 @@ from sim.picture.strokes import Stroke
 from sim.writing.hanzi import find_char
 from sim.writing.outline import fill, iou, rasterise, stroke_polygons, to_image
 from sim.writing.writer import coverage_mask, write_character
+from tests.paths import ROOT  # noqa: E402
 
-ROOT = Path(__file__).resolve().parent.parent
 UNSEEN = ROOT / "tests" / "data" / "unseen"
 CHARS = "木王生左口禾"
 
@@ -205,6 +204,7 @@ def test_a_crossing_decides_the_order_whatever_else_is_touched_first():
     assert _must_precede(flat, up)
 
 
+@pytest.mark.slow
 def test_small_writing_in_a_large_picture_is_framed():
     big = np.full((600, 900), 0.9)
     big[400:520, 650:770] = picture("木", 120)  # a small character near a corner
@@ -217,6 +217,7 @@ def test_small_writing_in_a_large_picture_is_framed():
     assert iou(full.ink.mask, rasterise(unseen("木"), 256)) > 0.99
 
 
+@pytest.mark.slow
 def test_unseen_characters_strokes_order_and_direction():
     per = {}
     for c in CHARS:
@@ -243,6 +244,7 @@ def test_side_by_side_parts_are_written_left_to_right():
     assert min(float(s.pts[:, 1].min()) for s in im.strokes[3:]) < im.strokes[2].pts[0, 1]
 
 
+@pytest.mark.slow
 def test_unseen_pictures_are_written_by_the_brush():
     ious = []
     for c in ("王", "木"):
@@ -260,6 +262,7 @@ def test_unseen_pictures_are_written_by_the_brush():
     assert got > score(texture_stats(font)) + 0.1
 
 
+@pytest.mark.slow
 def test_a_scan_like_picture_is_read_and_imitated():
     sys.path.insert(0, str(ROOT))
     from scripts.picture_scan import age, written
@@ -355,6 +358,7 @@ def test_other_formats_through_pillow_when_it_is_there(tmp_path):
         read_picture(tmp_path / "cut.jpg", 128)
 
 
+@pytest.mark.slow
 def test_cli_imitate_writes_a_recording_that_replays(tmp_path):
     src = tmp_path / "wang.png"
     write_png(src, picture("王", 160))
@@ -375,6 +379,7 @@ def test_cli_imitate_writes_a_recording_that_replays(tmp_path):
     assert again.read_bytes() == out.read_bytes()
 
 
+@pytest.mark.slow
 def test_the_picture_is_read_at_most_max_detail_and_written_at_the_size_asked(
     tmp_path, monkeypatch, capsys
 ):
@@ -399,6 +404,7 @@ def test_the_picture_is_read_at_most_max_detail_and_written_at_the_size_asked(
     assert float(iou_line.split("IoU with the picture's ink ")[1].split(",")[0]) > 0.7, iou_line
 
 
+@pytest.mark.slow
 def test_a_piece_is_read_in_columns_right_to_left():
     # two columns: 木 over 王 on the right, 口 over 禾 on the left; read 木 王 口 禾, each
     # character in its own square of the sheet with its strokes as read alone, in its order

@@ -6,12 +6,12 @@ import pytest
 
 pytest.importorskip("distributed")
 
-from test_imitate import _line_samples  # noqa: E402
-
 from sim.core.params import QP2, ParameterError  # noqa: E402
 from sim.fitting.search import FitSettings, fit  # noqa: E402
+from tests.sim.test_imitate import _line_samples  # noqa: E402
 
 
+@pytest.mark.slow
 def test_a_fit_on_a_local_dask_cluster_equals_the_local_fit():
     known = {"e": 0.3, "ie": 0.6, **{k: 0.0 for k in QP2}}
     samples = _line_samples(known)
@@ -25,6 +25,7 @@ def test_a_fit_on_a_local_dask_cluster_equals_the_local_fit():
     assert dask.history == local.history
 
 
+@pytest.mark.slow
 def test_an_unreachable_scheduler_is_one_clear_error(monkeypatch):
     import sim.fitting.cluster
 
@@ -35,6 +36,7 @@ def test_an_unreachable_scheduler_is_one_clear_error(monkeypatch):
         fit(samples, None, settings)
 
 
+@pytest.mark.slow
 def test_the_batch_writer_gives_the_same_files_on_a_dask_cluster(tmp_path):
     from sim.cli.main import main
 

@@ -3,6 +3,7 @@
 outcomes (not on timings)."""
 
 import numpy as np
+import pytest
 
 import sim.paper.paper
 from sim.core.recording import Dip, Recording
@@ -114,6 +115,7 @@ def test_fibre_makes_a_fibrous_edge_and_keeps_the_body():
     assert core.all() and body.mean() > 0.98
 
 
+@pytest.mark.slow
 def test_a_dry_brush_frays_more_at_the_fringe_and_keeps_its_body():
     # the fibre refuses thin ink at the fringe only: a dry brush's fringe loses more pixels to
     # it than a loaded one's, and its body (under the full hair) keeps every pixel it had
@@ -128,6 +130,7 @@ def test_a_dry_brush_frays_more_at_the_fringe_and_keeps_its_body():
     assert lost[0.3] > 1.2 * lost[0.9] > 0
 
 
+@pytest.mark.slow
 def test_fit_keeps_a_parameter_inside_its_bound():
     # the truth (e = 0.3) and the seed (0.7) lie below the bound e in [0.75, 0.8]: the bounded
     # fit stays inside it, the unbounded one does not go there; a bad bound is one message

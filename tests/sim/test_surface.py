@@ -321,6 +321,7 @@ def test_work_per_sample_is_the_texels_near_the_mark():
     assert 0 < sp.tiles.built.mean() < 0.02
 
 
+@pytest.mark.slow
 def test_texels_built_in_any_order_give_the_same_ink_bit_for_bit():
     """The texel points are built a tile at a time where the marks reach: building them all
     first, or other tiles in a shuffled order first, changes nothing in the points or the ink."""

@@ -136,6 +136,7 @@ def long_recording(ppm=4.0):
     )
 
 
+@pytest.mark.slow
 def test_seeks_in_any_order_equal_simulating_straight_there():
     rec = long_recording()
     n = len(rec.samples)
@@ -167,6 +168,7 @@ def test_a_backward_seek_rewrites_only_tiles_that_changed_since():
     assert 0 < rewritten < ntiles / 4, (rewritten, ntiles, TILE)
 
 
+@pytest.mark.slow
 def test_snapshots_stop_at_the_budget_and_seeks_stay_exact():
     rec = long_recording()
     n = len(rec.samples)
@@ -178,6 +180,7 @@ def test_snapshots_stop_at_the_budget_and_seeks_stay_exact():
     np.testing.assert_array_equal(sim.paper.ink, want.paper.ink)
 
 
+@pytest.mark.slow
 def test_checkpoints_on_disk_let_a_fresh_process_seek_anywhere_exactly(tmp_path):
     from sim.engine.checkpoints import cache_key_of, load_checkpoints, save_checkpoints
 
