@@ -17,8 +17,7 @@ def _progress_after_reading(frac: float, *_details) -> None:
 
 def cmd_imitate(args) -> int:
     """Read a picture of writing, write it with the brush, report how close the ink is."""
-    import json
-
+    from ..core.files import write_json_atomic
     from ..fitting.texture import score, texture_stats
     from ..image.png import write_png
     from ..picture.imitate import imitate, ink_on
@@ -44,8 +43,7 @@ def cmd_imitate(args) -> int:
     if args.recording:
         rec.save(args.recording)
     if args.char_data:
-        with open(args.char_data, "w", encoding="utf-8") as f:
-            json.dump(im.char, f, separators=(",", ":"))
+        write_json_atomic(args.char_data, im.char)
     if not args.quiet:
         ink = ink_on(im.ink.mask, args.size)  # read at most MAX_DETAIL a side
         print(

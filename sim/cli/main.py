@@ -7,6 +7,7 @@ from __future__ import annotations
 import argparse
 import sys
 
+from ..core.files import WriteError
 from ..core.params import MAX_PAPER_SIDE_PX, ParameterError
 from ..core.recording import (
     DEFAULT_BRUSH,
@@ -104,5 +105,12 @@ def main(argv=None) -> int:
         print(f"error: {exc}", file=sys.stderr)
         return 2
     except OSError as exc:
-        print(f"error: {exc}", file=sys.stderr)
+        print(f"error: {os_message(exc)}", file=sys.stderr)
         return 2
+
+
+def os_message(exc: OSError) -> str:
+    """A system error in plain words: what failed on which file, no error numbers."""
+    if isinstance(exc, WriteError) or not exc.strerror:
+        return str(exc)
+    return f"{exc.filename}: {exc.strerror}" if exc.filename else exc.strerror

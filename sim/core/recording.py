@@ -8,13 +8,13 @@ malformed reaches the engine.
 
 from __future__ import annotations
 
-import json
 import math
 from dataclasses import dataclass, field, fields, replace
 from pathlib import Path
 
 import numpy as np
 
+from .files import write_json_atomic
 from .jsonio import decode_text, parse_json, read_json
 from .params import (
     MAX_PAPER_PIXELS,
@@ -159,7 +159,9 @@ class Recording:
         return d
 
     def save(self, path) -> None:
-        Path(path).write_text(json.dumps(self.to_dict(), separators=(",", ":")), encoding="utf-8")
+        """Write the recording as compact JSON, whole or not at all (a failure keeps the old
+        file; see ``files.write_atomic``)."""
+        write_json_atomic(path, self.to_dict())
 
 
 # ------------------------------------------------------------------------- validation

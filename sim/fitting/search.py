@@ -28,6 +28,7 @@ from pathlib import Path
 
 import numpy as np
 
+from ..core.files import write_atomic
 from ..core.jsonio import read_json
 from ..core.params import QP1, QP2, ParameterError, QualityParams, number_within, short_repr
 from ..core.recording import MAX_SEED
@@ -368,5 +369,5 @@ def load_quality(path) -> dict:
 def save_preset(result: FitResult, path, name: str | None = None) -> Path:
     p = Path(path)
     p.parent.mkdir(parents=True, exist_ok=True)
-    p.write_text(json.dumps(result.to_preset(name or p.stem), indent=2) + "\n", encoding="utf-8")
+    write_atomic(p, json.dumps(result.to_preset(name or p.stem), indent=2) + "\n")
     return p

@@ -1,0 +1,148 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
+"""Fault injection (issue 30), shared by tests/sim/test_faults.py, tests/blender/test_faults.py
+and scripts/fault_campaign.py: ``python -m sim`` in a child process under a memory limit
+(``ulimit -v``), a file-size limit (``ulimit -f``, a full disk as the writer sees it), killed at
+the moment it writes past a given size (SIGXFSZ with its default action, which Python ignores
+unless told), or killed at any moment (SIGKILL); and what must hold afterwards: no traceback, no
+hang, and every file that was there before still whole."""
+
+from __future__ import annotations
+
+import os
+import resource
+import signal
+import subprocess
+import sys
+import time
+from dataclasses import dataclass
+from pathlib import Path
+
+from tests.paths import ROOT
+
+# runs the command line with SIGXFSZ's default action (terminate) back: with a file-size limit,
+# the kernel kills the process at the very write that passes the limit
+KILLED_AT_WRITE = (
+    "import signal, sys; signal.signal(signal.SIGXFSZ, signal.SIG_DFL); "
+    "from sim.cli.main import main; sys.exit(main(sys.argv[1:]))"
+)
+
+
+@dataclass
+class Run:
+    """How a child ended: its exit code (negative: the signal that killed it), its stderr,
+    its wall time and whether it had to be stopped for running too long."""
+
+    code: int | None
+    err: str
+    seconds: float
+    hung: bool = False
+
+    @property
+    def traceback(self) -> bool:
+        return "Traceback (most recent call last)" in self.err
+
+    @property
+    def message(self) -> str:
+        """The last line the command printed on stderr (its one error line, if any)."""
+        lines = [ln for ln in self.err.replace("\r", "\n").splitlines() if ln.strip()]
+        return lines[-1] if lines else ""
+
+
+def limits(memory: int | None = None, file_size: int | None = None):
+    """A preexec_fn setting ``ulimit -v`` (bytes of address space) and ``ulimit -f`` (bytes a
+    file may grow to) in the child."""
+
+    def apply():
+        if memory is not None:
+            resource.setrlimit(resource.RLIMIT_AS, (memory, memory))
+        if file_size is not None:
+            resource.setrlimit(resource.RLIMIT_FSIZE, (file_size, file_size))
+
+    return apply
+
+
+def child_env(**extra) -> dict:
+    env = {k: v for k, v in os.environ.items() if not k.startswith("PYTEST")}
+    env.update({k: str(v) for k, v in extra.items()})
+    return env
+
+
+def run_sim(
+    argv,
+    *,
+    seconds: float = 120.0,
+    memory: int | None = None,
+    file_size: int | None = None,
+    killed_at_write: bool = False,
+    kill_after: float | None = None,
+    env: dict | None = None,
+) -> Run:
+    """``python -m sim argv`` in a child under the given limits. ``killed_at_write``: the child
+    dies (SIGXFSZ) at the write that passes ``file_size``. ``kill_after``: SIGKILL after that
+    many seconds. A child still running after ``seconds`` is killed and counted as hung."""
+    code = ["-c", KILLED_AT_WRITE] if killed_at_write else ["-m", "sim"]
+    t0 = time.perf_counter()
+    p = subprocess.Popen(
+        [sys.executable, *code, *map(str, argv)],
+        cwd=ROOT,
+        stdout=subprocess.DEVNULL,
+        stderr=subprocess.PIPE,
+        text=True,
+        env=env or child_env(),
+        preexec_fn=limits(memory, file_size),
+    )
+    hung = False
+    try:
+        if kill_after is not None:
+            try:
+                p.wait(timeout=kill_after)
+            except subprocess.TimeoutExpired:
+                p.send_signal(signal.SIGKILL)
+        _, err = p.communicate(timeout=seconds)
+    except subprocess.TimeoutExpired:
+        p.kill()
+        _, err = p.communicate()
+        hung = True
+    return Run(p.returncode, err, time.perf_counter() - t0, hung)
+
+
+def snapshot(folder: Path) -> dict:
+    """{name: bytes} of the files in ``folder`` (not recursive)."""
+    return {p.name: p.read_bytes() for p in sorted(Path(folder).iterdir()) if p.is_file()}
+
+
+def lost_files(before: dict, folder: Path) -> list[str]:
+    """Files of ``before`` that are gone or are neither their old bytes nor a whole new file
+    of their kind (a PNG read back by the engine's reader, a JSON document that parses)."""
+    lost = []
+    for name, data in before.items():
+        p = Path(folder) / name
+        if not p.is_file():
+            lost.append(f"{name}: gone")
+        elif p.read_bytes() != data and not whole(p):
+            lost.append(f"{name}: damaged ({p.stat().st_size} bytes)")
+    return lost
+
+
+def whole(path: Path) -> bool:
+    """Whether the file is a complete PNG or JSON document."""
+    import json
+
+    from sim.image.png import PNGError, read_png
+
+    if path.suffix == ".png":
+        try:
+            read_png(path)
+            return True
+        except PNGError:
+            return False
+    try:
+        json.loads(path.read_text(encoding="utf-8"))
+        return True
+    except (ValueError, UnicodeDecodeError):
+        return False
+
+
+def leftovers(folder: Path) -> list[str]:
+    """Temporary files a write left (only a kill may leave one)."""
+    return sorted(p.name for p in Path(folder).iterdir() if p.name.endswith(".tmp"))
