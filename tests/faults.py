@@ -8,6 +8,8 @@ hang, and every file that was there before still whole."""
 
 from __future__ import annotations
 
+import contextlib
+import errno
 import os
 import resource
 import signal
@@ -104,6 +106,33 @@ def run_sim(
         _, err = p.communicate()
         hung = True
     return Run(p.returncode, err, time.perf_counter() - t0, hung)
+
+
+_FULL = []  # name fragments whose opening for writing fails while a disk_full_at is active
+
+
+def _full_disk_hook(event, args):
+    """The audit event "open" is (path, mode, flags): mode for open(), None for os.open."""
+    if event != "open" or not _FULL or not isinstance(args[0], (str, bytes, os.PathLike)):
+        return
+    path, mode, flags = args
+    writing = any(c in mode for c in "wax+") if mode else bool(flags & (os.O_WRONLY | os.O_RDWR))
+    if writing and any(fragment in os.path.basename(os.fsdecode(path)) for fragment in _FULL):
+        raise OSError(errno.ENOSPC, "No space left on device", os.fsdecode(path))
+
+
+@contextlib.contextmanager
+def disk_full_at(fragment: str):
+    """In this process, opening a file whose name holds ``fragment`` for writing fails as on a
+    full disk (ENOSPC), however the code opens it (an audit hook sees every open)."""
+    if not getattr(sys, "_hairy_brush_full_disk_hook", False):
+        sys.addaudithook(_full_disk_hook)
+        sys._hairy_brush_full_disk_hook = True
+    _FULL.append(fragment)
+    try:
+        yield
+    finally:
+        _FULL.remove(fragment)
 
 
 def snapshot(folder: Path) -> dict:

@@ -8,14 +8,16 @@ from __future__ import annotations
 
 import json
 import os
+import shutil
 
 import numpy as np
 import pytest
 
 from sim.core.files import WriteError, write_atomic
 from sim.core.recording import from_dict
+from sim.engine.checkpoints import CacheError, load_checkpoints, save_checkpoints
 from sim.image.png import write_png
-from tests.faults import leftovers, lost_files, run_sim, snapshot
+from tests.faults import disk_full_at, leftovers, lost_files, run_sim, snapshot
 
 REC = {
     "format": "hairy-brush-recording",
@@ -132,3 +134,95 @@ def test_write_set_on_a_full_disk_keeps_the_previous_files(tmp_path):
     assert run.code == 2 and "cannot write" in run.message and not run.traceback, run.err
     assert json.loads((out / "000.json").read_bytes()) == json.loads(before["000.json"])
     assert not leftovers(out)
+
+
+# ------------------------------------------------------------------ 2. the farm cache
+def timeline_of(samples, every=2):
+    from sim.engine.simulation import Simulation
+    from sim.engine.timeline import Timeline
+
+    return Timeline(Simulation(from_dict({**REC, "samples": samples})), every=every)
+
+
+STROKE_A = [[10, 20, 34, 0, 0, 0]] + [[10 + 2 * i, 20, 24, 0, 0, 0] for i in range(20)]
+STROKE_B = [[10, 30, 34, 0, 0, 0]] + [[10 + 2 * i, 30 - i / 2, 23, 0, 0, 0] for i in range(20)]
+
+
+def baked(samples, folder, key):
+    tl = timeline_of(samples)
+    tl.seek(len(samples))
+    save_checkpoints(tl, folder, key)
+    return tl
+
+
+def same_paper(a, b) -> bool:
+    return all(np.array_equal(getattr(a.paper, k), getattr(b.paper, k)) for k in ("ink", "wet"))
+
+
+def test_a_cache_is_used_only_for_its_key_and_every_file_is_checked(tmp_path):
+    folder = tmp_path / "cache"
+    made = baked(STROKE_A, folder, "A")
+    fresh = timeline_of(STROKE_A)
+    assert load_checkpoints(fresh, folder, "A") == len(made.snaps) > 5
+    assert same_paper(fresh.seek(15), timeline_of(STROKE_A).seek(15))
+    for key, damage, says in [
+        ("B", None, "another recording or other settings"),
+        ("A", lambda p: p.write_bytes(p.read_bytes()[: p.stat().st_size // 2]), "not the size"),
+        ("A", lambda p: p.write_bytes(b"\0" * p.stat().st_size), "is damaged"),
+        ("A", lambda p: p.unlink(), "missing"),
+    ]:
+        damaged = tmp_path / f"damaged-{says[:8]}"
+        shutil.copytree(folder, damaged)
+        if damage is not None:
+            damage(sorted(damaged.glob("checkpoint_*.npz"))[3])
+        fresh = timeline_of(STROKE_A)
+        with pytest.raises(CacheError, match=says):
+            load_checkpoints(fresh, damaged, key)
+        assert list(fresh.snaps) == [0]  # nothing was taken from it
+
+
+def test_a_checkpoint_from_another_bake_is_refused(tmp_path):
+    baked(STROKE_A, tmp_path / "a", "A")
+    baked(STROKE_B, tmp_path / "b", "B")
+    name = sorted((tmp_path / "a").glob("checkpoint_*.npz"))[2].name
+    (tmp_path / "a" / name).write_bytes((tmp_path / "b" / name).read_bytes())
+    m = json.loads((tmp_path / "a" / "manifest.json").read_text())
+    for entry in m["files"]:  # even with the manifest's sizes made to match
+        entry["bytes"] = (tmp_path / "a" / entry["name"]).stat().st_size
+    (tmp_path / "a" / "manifest.json").write_text(json.dumps(m))
+    with pytest.raises(CacheError, match=f"{name} belongs to another cache"):
+        load_checkpoints(timeline_of(STROKE_A), tmp_path / "a", "A")
+
+
+@pytest.mark.parametrize("fail_at", ["checkpoint_00000006", "manifest", "swap"])
+def test_a_bake_that_fails_keeps_the_previous_cache_whole(tmp_path, monkeypatch, fail_at):
+    """Issue 30's lie: bake A, bake B failing (disk full) - the folder is A's cache, whole, or
+    B's, never B's files under A's manifest."""
+    from sim.engine import checkpoints
+
+    folder = tmp_path / "cache"
+    baked(STROKE_A, folder, "A")
+    before = snapshot(folder)
+    if fail_at == "swap":  # the old cache moved aside, then the new one cannot take its place
+        real, calls = os.rename, []
+
+        def rename(a, b):
+            calls.append(b)
+            return full_disk() if len(calls) == 2 else real(a, b)
+
+        monkeypatch.setattr(checkpoints.os, "rename", rename)
+    with disk_full_at(fail_at), pytest.raises(OSError, match="No space left on device"):
+        baked(STROKE_B, folder, "B")
+    monkeypatch.undo()
+    assert snapshot(folder) == before
+    assert [p.name for p in tmp_path.iterdir()] == ["cache"]  # no half-made folder left
+    with pytest.raises(CacheError):
+        load_checkpoints(timeline_of(STROKE_B), folder, "B")
+    fresh = timeline_of(STROKE_A)
+    load_checkpoints(fresh, folder, "A")
+    for target in (7, 12, 20):
+        assert same_paper(fresh.seek(target), timeline_of(STROKE_A).seek(target))
+
+
+def full_disk():
+    raise OSError(28, "No space left on device")
