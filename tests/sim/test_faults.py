@@ -17,7 +17,7 @@ from sim.core.files import WriteError, write_atomic
 from sim.core.recording import from_dict
 from sim.engine.checkpoints import CacheError, load_checkpoints, save_checkpoints
 from sim.image.png import write_png
-from tests.faults import disk_full_at, leftovers, lost_files, run_sim, snapshot
+from tests.faults import child_env, disk_full_at, leftovers, lost_files, run_sim, snapshot
 
 REC = {
     "format": "hairy-brush-recording",
@@ -226,3 +226,84 @@ def test_a_bake_that_fails_keeps_the_previous_cache_whole(tmp_path, monkeypatch,
 
 def full_disk():
     raise OSError(28, "No space left on device")
+
+
+# ------------------------------------------------------------------ 3. the calibration cache
+def response_file(template, cache_dir):
+    from sim.writing import response
+
+    key = response._cache_key(template, 60.0, 11, response.CAL_PPM)
+    return response._cache_file(key, cache_dir)
+
+
+def a_good_response(template) -> dict:
+    """What calibrate writes: the calibration's 11 depths, non-decreasing widths, lags."""
+    from sim.writing.response import CAL_DEPTHS
+
+    hair = template.resolve()[1].hair_length_mm
+    press = np.linspace(*CAL_DEPTHS, 11) * hair
+    return {
+        "press": press.tolist(),
+        "width": np.linspace(0.1, 6.5, 11).tolist(),
+        "lag": (0.2 + 0.23 * press).tolist(),
+        "v": 60.0,
+    }
+
+
+def poisons(good: dict):
+    yield "short press list", {**good, "press": good["press"][:4]}
+    yield "string v", {**good, "v": "60"}
+    yield "boolean v", {**good, "v": True}
+    yield "NaN widths", {**good, "width": [float("nan")] * 11}
+    yield "infinite lag", {**good, "lag": [float("inf")] + good["lag"][1:]}
+    yield "empty arrays", {"press": [], "width": [], "lag": [], "v": 60.0}
+    yield "widths shrinking", {**good, "width": good["width"][::-1]}
+    yield "negative width", {**good, "width": [-1.0] + good["width"][1:]}
+    yield "another brush's presses", {**good, "press": [p * 1.5 for p in good["press"]]}
+    yield "nested widths", {**good, "width": [[w] for w in good["width"]]}
+    yield "huge number", {**good, "lag": [10**400] + good["lag"][1:]}
+    yield "missing field", {k: v for k, v in good.items() if k != "lag"}
+    yield "a list", [good]
+    yield "not JSON", "{press: [1, 2"
+    yield "binary", b"\x89PNG\r\n\x1a\n\x00\x00"
+    yield "deep", "[" * 100_000 + "]" * 100_000
+
+
+def test_a_poisoned_calibration_cache_is_measured_again(tmp_path, monkeypatch):
+    from sim.writing import response
+
+    template = from_dict(REC)
+    path = response_file(template, tmp_path)
+    good = a_good_response(template)
+    measured = response.Response(*(np.array(good[k]) for k in ("press", "width", "lag")), 60.0)
+    calls = []
+    monkeypatch.setattr(response, "_calibrate", lambda *a: calls.append(a) or measured)
+    path.write_text(json.dumps(good))
+    monkeypatch.setattr(response, "_CACHE", {})
+    np.testing.assert_array_equal(
+        response.calibrate(template, cache_dir=tmp_path).width_mm, good["width"]
+    )
+    assert calls == []  # a sound file is used as it is
+    for name, bad in poisons(good):
+        monkeypatch.setattr(response, "_CACHE", {})
+        data = bad if isinstance(bad, bytes) else (bad if isinstance(bad, str) else json.dumps(bad))
+        path.write_bytes(data if isinstance(data, bytes) else data.encode())
+        got = response.calibrate(template, cache_dir=tmp_path)
+        assert got is measured and len(calls) == 1, name  # measured again, once
+        assert json.loads(path.read_text()) == good, name  # and the file made sound
+        calls.clear()
+
+
+@pytest.mark.slow
+def test_sim_write_with_a_poisoned_calibration_cache_writes(tmp_path):
+    cache = tmp_path / "cache"
+    argv = ["write", "一", "--size", "64", "--passes", "1", "-q", "-o", tmp_path / "o.png"]
+    env = child_env(HAIRY_BRUSH_CACHE=cache)
+    assert run_sim(argv, env=env).code == 0
+    (path,) = cache.glob("response-*.json")
+    good = json.loads(path.read_text())
+    assert good["v"] == 60.0
+    path.write_text(json.dumps({**good, "press": good["press"][:3]}))  # a short press list
+    run = run_sim(argv, env=env)
+    assert run.code == 0 and not run.traceback, run.err
+    assert json.loads(path.read_text()) == good
