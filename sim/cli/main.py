@@ -20,6 +20,7 @@ from ..core.recording import (
 from .evaluate import cmd_iou
 from .fit import _add_fit
 from .imitate import _add_imitate
+from .memory import EXIT_CODE, NotEnoughMemory, out_of_memory, reserve_workspace
 from .render import cmd_render
 from .shared import _real, _whole
 from .write import cmd_write, cmd_write_set
@@ -97,10 +98,18 @@ def _parser() -> argparse.ArgumentParser:
 
 
 def main(argv=None) -> int:
-    """Run a command; any bad input ends in one 'error:' line and exit code 2."""
+    """Run a command; any bad input ends in one 'error:' line and exit code 2, too little
+    memory in one line saying how much was needed and exit code 3."""
     args = _parser().parse_args(argv)
     try:
+        reserve_workspace()
         return args.func(args)
+    except NotEnoughMemory as exc:
+        print(f"error: {exc}", file=sys.stderr)
+        return EXIT_CODE
+    except MemoryError as exc:
+        print(f"error: {out_of_memory(exc)}", file=sys.stderr)
+        return EXIT_CODE
     except (RecordingError, ParameterError, ValueError) as exc:
         print(f"error: {exc}", file=sys.stderr)
         return 2

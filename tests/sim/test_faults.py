@@ -307,3 +307,79 @@ def test_sim_write_with_a_poisoned_calibration_cache_writes(tmp_path):
     run = run_sim(argv, env=env)
     assert run.code == 0 and not run.traceback, run.err
     assert json.loads(path.read_text()) == good
+
+
+# ------------------------------------------------------------------ 4. low memory
+MB = 2**20
+
+
+def test_the_sweep_needs_no_blas_workspace(monkeypatch):
+    """The sweep's interpolation matrix comes from the engine's own elimination, not LAPACK
+    (whose OpenBLAS workspace spins for ever under a memory limit)."""
+    from sim.core import nurbs
+
+    def no_lapack(*_a, **_kw):
+        raise AssertionError("LAPACK called")
+
+    monkeypatch.setattr(np.linalg, "inv", no_lapack)
+    monkeypatch.setattr(np.linalg, "solve", no_lapack)
+    layout = nurbs.SweepLayout()
+    collocation = nurbs.bspline_basis(layout.knots_s, 3, layout.station_u)
+    np.testing.assert_allclose(layout.interp @ collocation, np.eye(layout.stations), atol=1e-13)
+
+
+@pytest.mark.parametrize(
+    "argv, memory, says",
+    [
+        (["render", "examples/strokes.json"], 100 * MB, "not enough memory to start"),
+        (["render", "examples/strokes.json", "--px-per-mm", "16"], 200 * MB, "2560 x 2880 px"),
+        (["write", "一", "--size", "64", "--passes", "1"], 100 * MB, "not enough memory"),
+    ],
+)
+def test_too_little_memory_ends_in_one_line_saying_how_much(tmp_path, argv, memory, says):
+    run = run_sim([*argv, "-q", "-o", tmp_path / "o.png"], memory=memory, seconds=60)
+    assert not run.hung and not run.traceback, run.err  # it used to spin at 100% CPU for ever
+    assert run.code == 3 and says in run.message and "MB" in run.message, run.err
+    assert not (tmp_path / "o.png").exists()
+
+
+@pytest.mark.slow
+def test_memory_running_out_anywhere_in_a_render_is_one_message(tmp_path):
+    """Limits from too little to enough: each run ends in the image or one line, never a
+    traceback or a hang, and the previous image stays whole."""
+    out = tmp_path / "o.png"
+    write_png(out, np.zeros((4, 4, 3)))
+    before = out.read_bytes()
+    codes = []
+    for memory in range(140 * MB, 260 * MB, 20 * MB):
+        argv = ["render", "examples/strokes.json", "--px-per-mm", "8", "-q", "-o", out]
+        run = run_sim(argv, memory=memory, seconds=90)
+        assert not run.hung and not run.traceback, (memory, run.err)
+        assert run.code in (0, 3) and (run.code == 0 or "memory" in run.message), run.err
+        codes.append(run.code)
+        if run.code:
+            assert out.read_bytes() == before
+    assert 3 in codes and 0 in codes
+
+
+def test_a_memory_error_anywhere_is_one_line_with_the_size_needed(monkeypatch, capsys):
+    from sim.cli import main as cli
+
+    def huge(_args):
+        return np.ones((2**62,), dtype=np.uint8)  # numpy's MemoryError, with the size
+
+    monkeypatch.setattr(cli, "cmd_render", huge)
+    monkeypatch.setattr(cli, "_parser", lambda: _one_command(lambda a: cli.cmd_render(a)))
+    assert cli.main(["x"]) == 3
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and err.startswith("error: not enough memory (")
+    assert f"({2**62 / MB:.0f} MB more were needed at once)" in err
+
+
+def _one_command(func):
+    import argparse
+
+    ap = argparse.ArgumentParser()
+    ap.add_argument("x")
+    ap.set_defaults(func=func)
+    return ap
