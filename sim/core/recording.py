@@ -46,6 +46,9 @@ MAX_DIPS = 10_000  # a dip before every stroke of a long artwork, with room to s
 MAX_SEED = 2**64 - 1  # PCG64 takes any non-negative integer; a recording keeps 64 bits
 Z_LIMIT_MM = 1000.0
 ANGLE_LIMIT_DEG = 89.0
+# the rotation about the handle may wind on (a twisting stroke baked from keyframes); a bound
+# keeps its radians exact enough for cos/sin (issue 30: r = 1e308 became inf, then NaN ink)
+ROTATION_LIMIT_DEG = 1_000_000.0  # about 2,800 turns
 
 
 SAMPLE_DECIMALS = 5
@@ -330,6 +333,11 @@ def _samples(d: dict, paper_side_mm: float) -> np.ndarray:
         i = int(np.argmax(np.any(np.abs(arr[:, 3:5]) > ANGLE_LIMIT_DEG, axis=1)))
         raise RecordingError(
             f"'samples[{i}]': deflections d, q must lie within +-{ANGLE_LIMIT_DEG} deg"
+        )
+    if np.any(np.abs(arr[:, 5]) > ROTATION_LIMIT_DEG):
+        i = int(np.argmax(np.abs(arr[:, 5]) > ROTATION_LIMIT_DEG))
+        raise RecordingError(
+            f"'samples[{i}][5]' (rotation r) must lie within +-{ROTATION_LIMIT_DEG:,.0f} deg"
         )
     return arr
 

@@ -14,7 +14,7 @@ import numpy as np
 import pytest
 
 from sim.core.files import WriteError, write_atomic
-from sim.core.recording import from_dict
+from sim.core.recording import RecordingError, from_dict
 from sim.engine.checkpoints import CacheError, load_checkpoints, save_checkpoints
 from sim.image.png import write_png
 from tests.faults import child_env, disk_full_at, leftovers, lost_files, run_sim, snapshot
@@ -383,3 +383,25 @@ def _one_command(func):
     ap.add_argument("x")
     ap.set_defaults(func=func)
     return ap
+
+
+# ------------------------------------------------------------------ 6. a huge rotation
+@pytest.mark.parametrize("r", [1e308, -1e7, 1_000_000.5])
+def test_a_huge_rotation_is_refused_by_name(tmp_path, r):
+    samples = [row[:5] + [r if i == 2 else 0] for i, row in enumerate(REC["samples"])]
+    with pytest.raises(RecordingError, match=r"'samples\[2\]\[5\]' \(rotation r\)"):
+        from_dict({**REC, "samples": samples})
+    p = tmp_path / "r.json"
+    p.write_text(json.dumps({**REC, "samples": samples}))
+    run = run_sim(["render", p, "-q", "-o", tmp_path / "o.png"], seconds=60)
+    assert run.code == 2 and "(rotation r)" in run.message and not run.traceback, run.err
+
+
+def test_a_rotation_that_winds_on_renders_as_its_remainder():
+    from sim.engine.simulation import Simulation
+
+    turns = [row[:5] + [row[5] + 360.0 * 2000] for row in REC["samples"]]
+    wound = Simulation(from_dict({**REC, "samples": turns})).run()
+    plain = Simulation(from_dict(REC)).run()
+    assert np.isfinite(wound.paper.ink).all()
+    assert np.abs(wound.paper.ink - plain.paper.ink).max() < 1e-3
