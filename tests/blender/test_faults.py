@@ -86,3 +86,19 @@ def test_a_stale_cache_is_named_in_the_warning(hb, tmp_path):
     manifest = json.loads((folder / "manifest.json").read_text())
     assert all(isinstance(f["bytes"], int) for f in manifest["files"])
     assert math.isfinite(st.quality.ren)
+
+
+# ------------------------------------------------------------------ 7. refused before the work
+def test_a_bake_of_too_many_samples_is_refused_before_stepping_the_frames(hb, monkeypatch):
+    import time
+
+    st = setup_scene(bpy)
+    keyframe_stroke(bpy, st)
+    sc = bpy.context.scene
+    sc.frame_end = 400_010  # 2,000,046 samples at 120 Hz and 24 fps
+    stepped = []
+    monkeypatch.setattr(ext().operators.bake_samples, "_at_frames", lambda *a: stepped.append(a))
+    t0 = time.perf_counter()
+    with pytest.raises(RuntimeError, match="2,000,046 samples, more than a recording holds"):
+        bpy.ops.hairy_brush.bake_samples()
+    assert time.perf_counter() - t0 < 5.0 and stepped == [] and st.recording is None
