@@ -15,6 +15,7 @@ import pytest
 from sim.engine.simulation import Simulation
 from tests.blender.helpers import ext, keyframe_stroke, pixels, setup_scene
 from tests.faults import disk_full_at
+from tests.paths import ROOT
 
 bpy = pytest.importorskip("bpy")
 
@@ -102,3 +103,72 @@ def test_a_bake_of_too_many_samples_is_refused_before_stepping_the_frames(hb, mo
     with pytest.raises(RuntimeError, match="2,000,046 samples, more than a recording holds"):
         bpy.ops.hairy_brush.bake_samples()
     assert time.perf_counter() - t0 < 5.0 and stepped == [] and st.recording is None
+
+
+# ------------------------------------------------------------------ 5. NaN settings
+def location_keys(st) -> np.ndarray:
+    fcurves = ext().blender.keyframes.fcurves(st.brush_object.animation_data)
+    return np.array(
+        [kp.co[1] for fc in fcurves if fc.data_path == "location" for kp in fc.keyframe_points]
+    )
+
+
+def test_a_nan_touching_height_moves_nothing_when_a_brush_preset_is_applied(hb):
+    st = setup_scene(bpy)
+    keyframe_stroke(bpy, st)
+    keys, where = location_keys(st), tuple(st.brush_object.location)
+    st.touch_height_mm = float("nan")  # as a damaged .blend can hold it
+    for name in ("goat_soft", "goat_soft"):  # another preset, then the same one again
+        assert bpy.ops.hairy_brush.apply_preset(kind="brush", name=name) == {"FINISHED"}
+        assert np.isfinite(location_keys(st)).all() and np.array_equal(location_keys(st), keys)
+        assert tuple(st.brush_object.location) == where
+        assert math.isfinite(st.touch_height_mm)
+        st.touch_height_mm = float("nan")
+
+
+def test_a_nan_setting_is_refused_by_name_where_it_is_used(hb):
+    st = setup_scene(bpy)
+    keyframe_stroke(bpy, st)
+    assert bpy.ops.hairy_brush.bake_samples() == {"FINISHED"}
+    paint = ext().operators.paint
+    sc = bpy.context.scene
+    for name, label in [("paint_angle_step", "Angle Step"), ("paper_capacity", "Ink Capacity")]:
+        good = getattr(st, name)
+        st[name] = float("nan")
+        with pytest.raises(ext().blender.checks.UserError, match=f"{label} is not a number"):
+            paint.start_simulation(sc, (60.0, 100.0))
+        setattr(st, name, good)
+    st.paper_color[1] = float("nan")
+    with pytest.raises(RuntimeError, match="Paper Colour is not a number"):
+        bpy.ops.hairy_brush.simulate()
+
+
+def test_a_preset_is_written_from_data_and_a_nan_setting_is_refused(hb):
+    st = setup_scene(bpy)
+    st.quality.e = 0.123
+    st.dip_depth = float("nan")
+    with pytest.raises(RuntimeError, match="Preset not saved: Dip depth is not a number"):
+        bpy.ops.hairy_brush.add_settings_preset(name="Broken")
+    assert not bpy.utils.preset_find("Broken", "hairy_brush/settings", display_name=True)
+    st.dip_depth = 0.5
+    assert bpy.ops.hairy_brush.add_settings_preset(name="Sound") == {"FINISHED"}
+    path = bpy.utils.preset_find("Sound", "hairy_brush/settings", display_name=True)
+    text = open(path, encoding="utf-8").read()
+    assert "nan" not in text and "st.quality.e = 0.12" in text
+    st.quality.e, st.dip_depth = 0.9, 0.9
+    bpy.ops.script.execute_preset(filepath=path, menu_idname="HAIRY_BRUSH_MT_settings_presets")
+    assert math.isclose(st.quality.e, 0.123, abs_tol=1e-6) and st.dip_depth == 0.5
+    literal = ext().operators.add_settings_preset.preset_literal
+    with pytest.raises(ValueError):
+        literal((0.1, float("nan"), 0.2))
+    assert eval(literal((0.1, 1e16, 2))) == (0.1, 1e16, 2)  # noqa: S307 - our own literal
+    assert eval(literal('a "name"\n')) == 'a "name"\n'  # noqa: S307
+
+
+# ------------------------------------------------------------------ 8. messages
+def test_a_nan_character_size_is_named(hb, tmp_path):
+    setup_scene(bpy)
+    path = ROOT / "data" / "hanzi" / "一.json"
+    with pytest.raises(RuntimeError, match="Size \\(mm\\) is not a number") as err:
+        bpy.ops.hairy_brush.write_character(filepath=str(path), size_mm=float("nan"))
+    assert "convert" not in str(err.value)
