@@ -5,7 +5,7 @@ from __future__ import annotations
 
 import time
 
-from .shared import _progress, _response, _template, _writable
+from .shared import _named, _progress, _response, _template, _writable
 
 
 def _progress_after_reading(frac: float, *_details) -> None:
@@ -60,16 +60,22 @@ def _add_imitate(sub, size, common):
     from ..picture.imitate import MAX_DETAIL, PASSES
 
     im = sub.add_parser("imitate", help="read a picture of writing and write it with the brush")
-    im.add_argument("image", help="dark writing on a light ground: PNG (JPEG etc. with Pillow)")
-    im.add_argument("-o", "--output", required=True)
+    im.add_argument(
+        "image", type=_named, help="dark writing on a light ground: PNG (JPEG etc. with Pillow)"
+    )
+    im.add_argument("-o", "--output", type=_named, required=True)
     im.add_argument(
         "--size",
         type=size,
         default=512,
         help=f"image size N (the em box) written; the picture is read at N, at most {MAX_DETAIL}",
     )
-    im.add_argument("--recording", default=None, help="also save the recording it made")
-    im.add_argument("--char-data", default=None, help="also save the strokes read (JSON)")
+    im.add_argument(
+        "--recording", type=_named, default=None, help="also save the recording it made"
+    )
+    im.add_argument(
+        "--char-data", type=_named, default=None, help="also save the strokes read (JSON)"
+    )
     im.add_argument(
         "--piece",
         action="store_true",

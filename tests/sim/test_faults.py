@@ -405,3 +405,31 @@ def test_a_rotation_that_winds_on_renders_as_its_remainder():
     plain = Simulation(from_dict(REC)).run()
     assert np.isfinite(wound.paper.ink).all()
     assert np.abs(wound.paper.ink - plain.paper.ink).max() < 1e-3
+
+
+# ------------------------------------------------------------------ 8. messages
+@pytest.mark.parametrize(
+    "argv, says",
+    [
+        (["render", "REC", "-o", ""], "argument -o/--output: is empty"),
+        (["render", "", "-o", "OUT"], "argument recording: is empty"),
+        (["write", "一", "--quality", "", "-o", "OUT"], "argument --quality: is empty"),
+        (["write", "一", "--data", " ", "-o", "OUT"], "argument --data: is empty"),
+        (["write-set", "一", "--out-dir", ""], "argument --out-dir: is empty"),
+        (["imitate", "", "-o", "OUT"], "argument image: is empty"),
+        (["write", "一", "--size-mm", "nan", "-o", "OUT"], "argument --size-mm: must lie in"),
+        (["render", "REC", "-o", "NOWHERE/o.png"], "no such folder"),
+    ],
+)
+def test_messages_name_the_option_and_leak_nothing(tmp_path, capsys, argv, says):
+    from sim.cli.main import main
+
+    rec, _ = rendered(tmp_path)
+    subst = {"REC": rec, "OUT": tmp_path / "o.png", "NOWHERE/o.png": tmp_path / "no" / "o.png"}
+    try:
+        code = main([str(subst.get(a, a)) for a in argv])
+    except SystemExit as exc:
+        code = exc.code
+    err = capsys.readouterr().err
+    assert code == 2 and says in err, err
+    assert "Errno" not in err and "Traceback" not in err and "''" not in err
