@@ -14,8 +14,8 @@ import pytest
 
 from sim.engine.simulation import Simulation
 from tests.blender.helpers import ext, keyframe_stroke, pixels, setup_scene
-from tests.faults import disk_full_at
-from tests.paths import ROOT
+from tests.faults import disk_full_at, leftovers, lost_files, snapshot
+from tests.paths import ADDON, ROOT
 
 bpy = pytest.importorskip("bpy")
 
@@ -39,6 +39,73 @@ def shown_equals_simulated(st, frame) -> bool:
 def fresh_playback():
     ext().blender.runtime.get().forget_playbacks()
     return ext().blender.playback.playback_for(bpy.context.scene)
+
+
+# ------------------------------------------------------------------ 1. files written whole
+def test_an_export_on_a_full_disk_keeps_the_earlier_export(hb, tmp_path):
+    st = setup_scene(bpy)
+    keyframe_stroke(bpy, st)
+    assert bpy.ops.hairy_brush.bake_samples() == {"FINISHED"}
+    out = tmp_path / "take.json"
+    assert bpy.ops.hairy_brush.export_recording(filepath=str(out)) == {"FINISHED"}
+    before = out.read_bytes()
+    st.quality.ren = 0.5 if st.quality.ren != 0.5 else 0.4
+    with disk_full_at("take"), pytest.raises(RuntimeError, match="cannot write .*No space"):
+        bpy.ops.hairy_brush.export_recording(filepath=str(out))
+    assert out.read_bytes() == before and not leftovers(tmp_path)
+
+
+def test_an_image_sequence_on_a_full_disk_keeps_every_earlier_frame(hb, tmp_path):
+    st = setup_scene(bpy)
+    keyframe_stroke(bpy, st, frames=(1, 2, 5, 6))
+    assert bpy.ops.hairy_brush.bake_samples() == {"FINISHED"}
+    st.sequence_dir = str(tmp_path / "frames")
+    assert bpy.ops.hairy_brush.bake_sequence() == {"FINISHED"}
+    before = snapshot(tmp_path / "frames")
+    assert len(before) == 6
+    st.quality.ren = 0.5 if st.quality.ren != 0.5 else 0.4
+    with disk_full_at("paper_0004"), pytest.raises(RuntimeError, match="cannot write"):
+        bpy.ops.hairy_brush.bake_sequence()
+    assert lost_files(before, tmp_path / "frames") == []
+    assert not leftovers(tmp_path / "frames")
+
+
+KILLED_EXPORT = """
+import resource, signal, sys
+import bpy  # first: it puts addon_utils on the path
+import addon_utils
+signal.signal(signal.SIGXFSZ, signal.SIG_DFL)  # Python ignores it: the kernel's kill back
+addon_utils.enable({addon!r}, default_set=True)
+st = bpy.context.scene.hairy_brush
+st.px_per_mm = 2.0
+bpy.ops.hairy_brush.setup()
+b = st.brush_object
+for f, x, z in ((1, -0.05, 0.03), (8, -0.05, 0.005), (200, 0.05, 0.005), (210, 0.06, 0.03)):
+    b.location = (x, 0.0, z)
+    b.keyframe_insert("location", frame=f)
+bpy.context.scene.frame_end = 210
+bpy.ops.hairy_brush.bake_samples()
+bpy.ops.hairy_brush.export_recording(filepath={out!r})
+size = len(open({out!r}, "rb").read())
+resource.setrlimit(resource.RLIMIT_FSIZE, (size // 2, size // 2))
+st.quality.ren = 0.5 if st.quality.ren != 0.5 else 0.4
+print("exporting again", flush=True)
+bpy.ops.hairy_brush.export_recording(filepath={out!r})
+"""
+
+
+@pytest.mark.slow
+def test_blender_killed_while_it_exports_keeps_the_earlier_export(hb, tmp_path):
+    import subprocess
+    import sys
+
+    out = tmp_path / "take.json"
+    script = KILLED_EXPORT.format(addon=ADDON, out=str(out))
+    r = subprocess.run(
+        [sys.executable, "-c", script], capture_output=True, text=True, timeout=300, cwd=ROOT
+    )
+    assert r.returncode == -25 and "exporting again" in r.stdout, r.stderr  # SIGXFSZ
+    assert json.loads(out.read_text())["samples"]  # the first export, whole
 
 
 # ------------------------------------------------------------------ 2. the farm cache
