@@ -15,6 +15,7 @@ import resource
 import signal
 import subprocess
 import sys
+import tempfile
 import time
 from dataclasses import dataclass
 from pathlib import Path
@@ -32,12 +33,14 @@ KILLED_AT_WRITE = (
 @dataclass
 class Run:
     """How a child ended: its exit code (negative: the signal that killed it), its stderr,
-    its wall time and whether it had to be stopped for running too long."""
+    its wall time, whether it had to be stopped for running too long, and whether processes it
+    started were still running after it ended (a pool's workers left waiting for ever)."""
 
     code: int | None
     err: str
     seconds: float
     hung: bool = False
+    left_running: bool = False
 
     @property
     def traceback(self) -> bool:
@@ -80,32 +83,67 @@ def run_sim(
     env: dict | None = None,
 ) -> Run:
     """``python -m sim argv`` in a child under the given limits. ``killed_at_write``: the child
-    dies (SIGXFSZ) at the write that passes ``file_size``. ``kill_after``: SIGKILL after that
-    many seconds. A child still running after ``seconds`` is killed and counted as hung."""
+    dies (SIGXFSZ) at the write that passes ``file_size``. ``kill_after``: SIGKILL to the child
+    (not to processes it started) after that many seconds. A child still running after
+    ``seconds`` is killed and counted as hung; its own process group is then checked for
+    processes left running, and they are killed."""
     code = ["-c", KILLED_AT_WRITE] if killed_at_write else ["-m", "sim"]
     t0 = time.perf_counter()
-    p = subprocess.Popen(
-        [sys.executable, *code, *map(str, argv)],
-        cwd=ROOT,
-        stdout=subprocess.DEVNULL,
-        stderr=subprocess.PIPE,
-        text=True,
-        env=env or child_env(),
-        preexec_fn=limits(memory, file_size),
-    )
-    hung = False
-    try:
+    with tempfile.TemporaryFile() as err:
+        p = subprocess.Popen(
+            [sys.executable, *code, *map(str, argv)],
+            cwd=ROOT,
+            stdout=subprocess.DEVNULL,
+            stderr=err,
+            env=env or child_env(),
+            preexec_fn=limits(memory, file_size),
+            start_new_session=True,  # its own process group: what it leaves can be found
+        )
+        hung = False
         if kill_after is not None:
             try:
                 p.wait(timeout=kill_after)
             except subprocess.TimeoutExpired:
                 p.send_signal(signal.SIGKILL)
-        _, err = p.communicate(timeout=seconds)
-    except subprocess.TimeoutExpired:
-        p.kill()
-        _, err = p.communicate()
-        hung = True
-    return Run(p.returncode, err, time.perf_counter() - t0, hung)
+        try:
+            p.wait(timeout=seconds)
+        except subprocess.TimeoutExpired:
+            hung = True
+            p.kill()
+            p.wait()
+        left = _group_left(p.pid)
+        err.seek(0)
+        text = err.read().decode("utf-8", "replace")
+    return Run(p.returncode, text, time.perf_counter() - t0, hung, left)
+
+
+def group_members(pgid: int) -> list[int]:
+    """The processes of the process group ``pgid`` (Linux: read from /proc)."""
+    members = []
+    for stat in Path("/proc").glob("[0-9]*/stat"):
+        with contextlib.suppress(OSError, ValueError, IndexError):
+            fields = stat.read_text().rsplit(")", 1)[1].split()
+            if int(fields[2]) == pgid and fields[0] != "Z":  # state, ppid, pgrp
+                members.append(int(stat.parent.name))
+    return members
+
+
+def _group_left(pgid: int, grace: float = 3.0) -> bool:
+    """Whether processes of the group ``pgid`` are still there ``grace`` seconds after its
+    leader ended; they are killed."""
+    end = time.perf_counter() + grace
+    while True:
+        try:
+            os.killpg(pgid, 0)
+        except ProcessLookupError:
+            return False
+        except PermissionError:
+            return False
+        if time.perf_counter() > end:
+            with contextlib.suppress(ProcessLookupError):
+                os.killpg(pgid, signal.SIGKILL)
+            return True
+        time.sleep(0.05)
 
 
 _FULL = []  # name fragments whose opening for writing fails while a disk_full_at is active

@@ -32,6 +32,7 @@ from ..core.files import write_atomic
 from ..core.jsonio import read_json
 from ..core.params import QP1, QP2, ParameterError, QualityParams, number_within, short_repr
 from ..core.recording import MAX_SEED
+from .cluster import exit_with_parent
 from .samples import TrainingSample
 from .target import _init_worker, target_function
 
@@ -208,7 +209,9 @@ class _Pool:
         self.samples = samples
         self.ex = None
         if workers > 1:
-            self.ex = ProcessPoolExecutor(workers, initializer=_init_worker, initargs=(samples,))
+            self.ex = ProcessPoolExecutor(
+                workers, initializer=_init_pool_worker, initargs=(os.getpid(), samples)
+            )
         _init_worker(samples)
 
     def map(self, fn, tasks):
@@ -350,6 +353,12 @@ def fit(
     finally:
         pool.close()
     return FitResult(current, final, start_target, evaluations, history)
+
+
+def _init_pool_worker(parent: int, samples) -> None:
+    """A local pool's worker: it ends with its parent, and holds the training samples."""
+    exit_with_parent(parent)
+    _init_worker(samples)
 
 
 def load_quality(path) -> dict:

@@ -17,7 +17,16 @@ from sim.core.files import WriteError, write_atomic
 from sim.core.recording import RecordingError, from_dict
 from sim.engine.checkpoints import CacheError, load_checkpoints, save_checkpoints
 from sim.image.png import write_png
-from tests.faults import child_env, disk_full_at, leftovers, lost_files, run_sim, snapshot
+from tests.faults import (
+    child_env,
+    disk_full_at,
+    group_members,
+    leftovers,
+    lost_files,
+    run_sim,
+    snapshot,
+)
+from tests.paths import ROOT
 
 REC = {
     "format": "hairy-brush-recording",
@@ -433,3 +442,32 @@ def test_messages_name_the_option_and_leak_nothing(tmp_path, capsys, argv, says)
     err = capsys.readouterr().err
     assert code == 2 and says in err, err
     assert "Errno" not in err and "Traceback" not in err and "''" not in err
+
+
+# ------------------------------------------------------------------ a killed command's workers
+@pytest.mark.slow
+def test_a_killed_command_leaves_no_pool_worker_waiting_for_ever():
+    """write-set and fit run their work in a process pool; killed (SIGKILL, nothing told the
+    pool), the parent used to leave its workers waiting for tasks for ever."""
+    import subprocess
+    import sys
+    import time
+
+    script = (
+        "import time; from sim.fitting.cluster import map_tasks; map_tasks(time.sleep, [60], 1)"
+    )
+    p = subprocess.Popen([sys.executable, "-c", script], cwd=ROOT, start_new_session=True)
+    try:
+        end = time.perf_counter() + 30
+        while len(group_members(p.pid)) < 2 and time.perf_counter() < end:
+            time.sleep(0.1)
+        assert len(group_members(p.pid)) == 2  # the command and its pool's worker
+        p.kill()
+        p.wait()
+        end = time.perf_counter() + 5
+        while group_members(p.pid) and time.perf_counter() < end:
+            time.sleep(0.1)
+        assert group_members(p.pid) == []
+    finally:
+        for pid in group_members(p.pid):
+            os.kill(pid, 9)
