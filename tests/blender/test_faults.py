@@ -144,6 +144,7 @@ def test_a_bake_that_fails_at_its_manifest_cannot_make_the_cache_lie(hb, tmp_pat
     assert [p.name for p in folder.parent.iterdir()] == ["Scene"]  # no half-made folder
 
 
+@pytest.mark.slow
 def test_a_stale_cache_is_named_in_the_warning(hb, tmp_path):
     st, folder = farm_scene(tmp_path)
     assert bpy.ops.hairy_brush.bake_cache() == {"FINISHED"}
