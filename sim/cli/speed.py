@@ -38,6 +38,7 @@ GOALS = {
     "samples_per_s_1p_2048": "goal 2,000",
     "samples_per_s_16p_4096": "goal 240",
     "a4_600dpi_peak_mb": "under 2,048 MB",
+    "a4_600dpi_blender_peak_mb": "under 2,048 MB",
 }
 LABELS = {
     "write_cpu_s": "write a held-out character, 512 px (CPU s)",
@@ -45,7 +46,26 @@ LABELS = {
     "samples_per_s_1p_2048": "engine, 1 primitive on 2048 px (samples/s)",
     "samples_per_s_16p_4096": "engine, 16 primitives on 4096 px (samples/s)",
     "a4_600dpi_peak_mb": "render an A4 sheet at 600 dpi (peak MB)",
+    "a4_600dpi_blender_peak_mb": "the same in Blender: import, simulate (peak MB)",
 }
+# Blender (the bpy module) with the version's add-on loaded from its checkout, an A4 recording
+# imported at 600 dpi and simulated into the paper image: the artist's path, in one process
+BLENDER_A4 = """
+import importlib.util, sys
+import bpy
+root, rec, ppm = sys.argv[1], sys.argv[2], float(sys.argv[3])
+spec = importlib.util.spec_from_file_location(
+    "hairy_brush", root + "/__init__.py", submodule_search_locations=[root])
+mod = importlib.util.module_from_spec(spec)
+sys.modules["hairy_brush"] = mod
+spec.loader.exec_module(mod)
+mod.register()
+bpy.context.scene.hairy_brush.sync_frames = False
+assert bpy.ops.hairy_brush.setup() == {"FINISHED"}
+assert bpy.ops.hairy_brush.import_recording(filepath=rec) == {"FINISHED"}
+bpy.context.scene.hairy_brush.px_per_mm = ppm
+assert bpy.ops.hairy_brush.simulate() == {"FINISHED"}
+"""
 
 
 @dataclass
@@ -62,6 +82,7 @@ class Version:
         env["HAIRY_BRUSH_CACHE"] = str(self.cache)
         env["XDG_CACHE_HOME"] = str(self.cache)  # versions from before $HAIRY_BRUSH_CACHE
         env["PYTHONPATH"] = str(self.root)
+        env["BLENDER_USER_RESOURCES"] = str(self.cache / "blender_user")  # not the user's own
         return env
 
     def has_command(self, name: str) -> bool:
@@ -140,6 +161,9 @@ def run_once(version: Version, k: int, tmp: Path, work: tuple[Path, list[str]], 
     render = py + ["render", str(a4), "--px-per-mm", f"{A4_PX_PER_MM:.6f}", "-q"]
     peak = measured(render + ["-o", str(out / "a4.png")], version)[2]
     version.runs.setdefault("a4_600dpi_peak_mb", []).append(peak)
+    blender = [sys.executable, "-c", BLENDER_A4, str(version.root), str(a4), str(A4_PX_PER_MM)]
+    peak = measured(blender, version)[2]
+    version.runs.setdefault("a4_600dpi_blender_peak_mb", []).append(peak)
 
 
 def _figure(values) -> str:
