@@ -7,7 +7,7 @@ from __future__ import annotations
 
 import bpy
 
-from ..blender import checks, recordings, surfaces, transforms
+from ..blender import checks, primitives, recordings, surfaces, transforms
 from ..blender.presets import HAIR_LENGTH_MM, QUALITY_GROUPS, preset_label
 
 
@@ -134,6 +134,9 @@ class HAIRY_BRUSH_PT_animation(_Panel, bpy.types.Panel):
         layout.operator("hairy_brush.simulate", icon="BRUSH_DATA")
         layout.prop(st, "sync_frames")
         layout.operator("hairy_brush.build_primitives", icon="SURFACE_NSURFACE")
+        coll = primitives.primitive_collection()
+        if coll is not None:  # a viewport aid, hidden from final renders unless asked
+            layout.prop(coll, "hide_render", text="Primitives in Renders", invert_checkbox=True)
         col = layout.column(align=True)
         col.prop(st, "sequence_dir")
         col.operator("hairy_brush.bake_sequence", icon="RENDER_ANIMATION")
