@@ -6,6 +6,7 @@ after an import."""
 from __future__ import annotations
 
 import json
+from dataclasses import replace
 
 import bpy
 import numpy as np
@@ -19,6 +20,7 @@ RECORDING_TEXT = "HairyBrush Recording"
 PAINTED_KEY = "painted_samples"  # in a recording's "blender" extra: samples painted live
 SAMPLES_TAG = "hairy_brush_samples"  # on a recording text: its samples and dips when stored
 DIPS_TAG = "hairy_brush_dips"
+OWN_COLOR_TAG = "hairy_brush_own_colour_dips"  # and how many dips keep their own colour
 SURFACE_KEY = "surface"  # a recording's section of surface frames (see sim.surface)
 
 
@@ -37,7 +39,8 @@ def scene_overrides(st) -> dict:
     return {
         "paper": paper,
         "brush": {"preset": st.brush_preset},
-        "ink": {"preset": st.ink_preset},
+        # Ink Colour: what every dip that follows the ink loads (see sim.core.recording.Dip)
+        "ink": {"preset": st.ink_preset, "color": [float(c) for c in st.ink_color]},
         "quality": st.quality.as_dict(),
         "seed": scene_seed(st),
     }
@@ -80,6 +83,7 @@ def store_recording(st, rec: Recording) -> bpy.types.Text:
     # counted here, so the sidebar shows them without reading the text
     text[SAMPLES_TAG] = len(rec.samples)
     text[DIPS_TAG] = len(rec.dips)
+    text[OWN_COLOR_TAG] = sum(not dp.follows_ink for dp in rec.dips)
     return text
 
 
@@ -137,6 +141,7 @@ def copy_settings_from_recording(st, rec: Recording):
         setattr(st.quality, name, value)
     st.paper_color, st.paper_capacity = _paper.color, _paper.capacity
     st.paper_fibre = _paper.fibre
+    st.ink_color = _ink.color  # after the ink preset, which sets its own
     st.seed_of_recording = str(rec.seed) if rec.seed > checks.MAX_INT_PROPERTY else ""
 
 
@@ -172,5 +177,19 @@ def settings_recording(scene) -> Recording:
     return new_recording(scene, [[0.0, 0.0, 100.0, 0.0, 0.0, 0.0]])
 
 
-def current_dip(st, before_sample: int) -> Dip:
-    return Dip(before_sample, float(st.dip_depth), tuple(st.ink_color), float(st.dip_wetness))
+def current_dip(st, before_sample: int, color=None) -> Dip:
+    """A dip of the sidebar's depth and wetness that loads the scene's Ink Colour, whatever
+    it becomes later; or, given a ``color``, keeps that colour (a second ink)."""
+    own = color is not None
+    return Dip(
+        before_sample,
+        float(st.dip_depth),
+        tuple(float(c) for c in (color if own else st.ink_color)),
+        float(st.dip_wetness),
+        follows_ink=not own,
+    )
+
+
+def following_ink(dips) -> list:
+    """The dips, each loading the scene's Ink Colour (the writer's dips, made in the ink)."""
+    return [replace(dp, follows_ink=True) for dp in dips]

@@ -189,7 +189,7 @@ class HAIRY_BRUSH_OT_paint(bpy.types.Operator):
             return {"PASS_THROUGH"}
         now = time.perf_counter()  # the sample clock: when the event is handled
         if event.type == "D" and event.value == "PRESS":
-            self._live.dip(st.dip_depth, st.ink_color, st.dip_wetness, time=now)
+            self._live.dip(st.dip_depth, st.ink_color, st.dip_wetness, now, follows_ink=True)
             return {"RUNNING_MODAL"}
         xy = None
         if event.type in ("MOUSEMOVE", "INBETWEEN_MOUSEMOVE", "LEFTMOUSE"):

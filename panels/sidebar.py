@@ -100,7 +100,21 @@ class HAIRY_BRUSH_PT_ink(_Panel, bpy.types.Panel):
         col.prop(st, "ink_color")
         col.prop(st, "dip_wetness", slider=True)
         col.prop(st, "dip_depth", slider=True)
-        layout.operator("hairy_brush.dip", text="Dip Brush at Current Frame", icon="MOD_FLUIDSIM")
+        col = layout.column(align=True)
+        col.operator("hairy_brush.dip", text="Dip Brush at Current Frame", icon="MOD_FLUIDSIM")
+        op = col.operator("hairy_brush.dip", text="Dip in Own Colour...", icon="COLOR")
+        op.own_color = True
+        text = st.recording
+        if text is None:
+            return
+        # dips stored before dips could follow the ink kept the colour they were recorded with
+        own = text.get(recordings.OWN_COLOR_TAG, text.get(recordings.DIPS_TAG))
+        if own:
+            layout.label(text=f"{own} dip(s) keep their own colour;", icon="INFO")
+            layout.label(text="Ink Colour recolours the others")
+            layout.operator("hairy_brush.follow_ink", icon="COLOR")
+        elif own == 0:
+            layout.label(text="Ink Colour recolours the whole recording", icon="INFO")
 
 
 class HAIRY_BRUSH_PT_write(_Panel, bpy.types.Panel):

@@ -204,15 +204,23 @@ class LiveBrush:
             self.angles[axis] = np.clip(self.angles[axis] + sign * step, -limit, limit)
         return self.state
 
-    def dip(self, depth: float, color, wetness: float, time: float | None = None):
+    def dip(
+        self,
+        depth: float,
+        color,
+        wetness: float,
+        time: float | None = None,
+        follows_ink: bool = False,
+    ):
         """A dip before the next sample, recorded like any other dip event; samples due by
-        ``time`` come before it."""
+        ``time`` come before it. ``follows_ink``: it loads the recording's ink colour (see
+        ``Dip``), ``color`` being the colour that is now."""
         if time is not None:
             self._produce_until(self._clock(LiveEvent("D", time=time)))
         rec = self.sim.rec
         if not rec.dips:  # keep the implicit default dip at the start
             rec.dips = list(self.sim.dips)
-        dp = Dip(self._n, float(depth), tuple(float(c) for c in color), float(wetness))
+        dp = Dip(self._n, float(depth), tuple(float(c) for c in color), float(wetness), follows_ink)
         rec.dips.append(dp)
         self.sim.dips = rec.dips
 

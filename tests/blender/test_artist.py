@@ -8,7 +8,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from tests.blender.helpers import ext, keyframe_stroke, setup_scene
+from tests.blender.helpers import ext, keyframe_stroke, pixels, setup_scene
 
 bpy = pytest.importorskip("bpy")
 
@@ -101,3 +101,78 @@ def _alpha(path, size: int) -> np.ndarray:
     im.pixels.foreach_get(a)
     bpy.data.images.remove(im)
     return a.reshape(size, size, 4)[..., 3]
+
+
+# ----------------------------------------------------------------------------- ink colour
+def _inked(st) -> np.ndarray:
+    """The paper image's RGB where the ink lies (its green is below half the paper's)."""
+    rgb = pixels(st.paper_image)[..., :3]
+    return rgb[rgb[..., 1] < 0.5 * np.median(rgb[..., 1])]
+
+
+def test_a_new_ink_colour_recolours_the_work(hb):
+    st = setup_scene(bpy)
+    keyframe_stroke(bpy, st)
+    assert bpy.ops.hairy_brush.bake_samples() == {"FINISHED"}
+    assert bpy.ops.hairy_brush.simulate() == {"FINISHED"}
+    black = _inked(st)
+    assert len(black) > 50 and black[:, 0].mean() < 0.3
+    st.ink_color = (0.8, 0.05, 0.05)  # after the bake: the recorded dips follow the ink
+    assert bpy.ops.hairy_brush.simulate() == {"FINISHED"}
+    red = _inked(st)
+    assert len(red) > 50 and red[:, 0].mean() > 0.6 > 0.3 > red[:, 2].mean()
+    assert bpy.ops.hairy_brush.bake_samples() == {"FINISHED"}  # baking again keeps it so
+    assert bpy.ops.hairy_brush.simulate() == {"FINISHED"}
+    np.testing.assert_array_equal(_inked(st), red)
+
+
+def _ink_by_side(st, split_mm: float) -> tuple:
+    """Mean RGB of the ink left and right of x = split_mm (a margin of 10 mm either side)."""
+    rgb = pixels(st.paper_image)[..., :3]
+    ink = rgb[..., 1] < 0.5 * np.median(rgb[..., 1])
+    x_mm = np.arange(rgb.shape[1]) / st.px_per_mm
+    left = ink & (x_mm < split_mm - 10)[None, :]
+    right = ink & (x_mm > split_mm + 10)[None, :]
+    assert left.sum() > 20 and right.sum() > 20
+    return rgb[left].mean(axis=0), rgb[right].mean(axis=0)
+
+
+def test_a_dip_in_its_own_colour_keeps_it_until_asked(hb):
+    st = setup_scene(bpy)
+    keyframe_stroke(bpy, st)
+    bpy.ops.hairy_brush.bake_samples()
+    sc = bpy.context.scene
+    sc.frame_set(30)  # the stroke runs from x = 50 to 150 mm over frames 8 to 40
+    blue = (0.05, 0.1, 0.8)
+    assert bpy.ops.hairy_brush.dip(own_color=True, color=blue) == {"FINISHED"}
+    text = st.recording
+    assert text[ext().blender.recordings.OWN_COLOR_TAG] == 1
+    st.ink_color = (0.8, 0.05, 0.05)
+    bpy.ops.hairy_brush.simulate()
+    before, after = _ink_by_side(st, 120.0)
+    assert before[0] > 2 * before[2]  # red up to the dip: the Ink Colour
+    assert after[2] > 2 * after[0]  # blue after it: its own colour
+    assert bpy.ops.hairy_brush.follow_ink() == {"FINISHED"}
+    assert text[ext().blender.recordings.OWN_COLOR_TAG] == 0
+    bpy.ops.hairy_brush.simulate()
+    _before, after = _ink_by_side(st, 120.0)
+    assert after[0] > 2 * after[2]  # the second dip loads the Ink Colour too
+
+
+def test_an_imported_recording_shows_its_ink_and_keeps_its_dips_colours(hb, tmp_path):
+    from sim.core.recording import Dip, Recording
+
+    st = setup_scene(bpy)
+    keyframe_stroke(bpy, st)
+    bpy.ops.hairy_brush.bake_samples()
+    rec = ext().blender.recordings.recording_from_scene(bpy.context.scene)
+    old = Recording(rec.samples, dips=[Dip(0, 0.8, (0.1, 0.2, 0.7), 0.9)])  # as before 29
+    old.ink = {"preset": "sumi_black", "color": [0.3, 0.6, 0.2]}
+    path = tmp_path / "old.json"
+    old.save(path)
+    assert bpy.ops.hairy_brush.import_recording(filepath=str(path)) == {"FINISHED"}
+    assert np.allclose(st.ink_color, (0.3, 0.6, 0.2))  # the recording's ink, shown
+    assert st.recording[ext().blender.recordings.OWN_COLOR_TAG] == 1
+    bpy.ops.hairy_brush.simulate()
+    ink = _inked(st)
+    assert ink[:, 2].mean() > 2 * ink[:, 0].mean()  # the dip's own blue, as recorded
