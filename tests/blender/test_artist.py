@@ -176,3 +176,63 @@ def test_an_imported_recording_shows_its_ink_and_keeps_its_dips_colours(hb, tmp_
     bpy.ops.hairy_brush.simulate()
     ink = _inked(st)
     assert ink[:, 2].mean() > 2 * ink[:, 0].mean()  # the dip's own blue, as recorded
+
+
+# ----------------------------------------------------------------------------- saving the paper
+def _save_image_as(img, path):
+    """Image > Save As in the Image Editor (the image is the editor's)."""
+    with bpy.context.temp_override(edit_image=img):
+        assert bpy.ops.image.save_as(filepath=str(path)) == {"FINISHED"}
+
+
+def _ink_count(rgb) -> int:
+    return int((rgb[..., 1] < 0.5 * np.median(rgb[..., 1])).sum())
+
+
+def test_the_paper_stays_packed_after_image_save_as(hb, tmp_path):
+    st = setup_scene(bpy)
+    keyframe_stroke(bpy, st)
+    bpy.ops.hairy_brush.bake_samples()
+    sc = bpy.context.scene
+    bpy.ops.wm.save_as_mainfile(filepath=str(tmp_path / "art.blend"))
+    img = st.paper_image
+    sc.frame_set(12)
+    _save_image_as(img, tmp_path / "paper.png")  # the artist keeps a copy of the paper
+    assert (tmp_path / "paper.png").is_file()
+    sc.frame_set(45)  # the paper shows more ink than the file
+    assert img.packed_file is not None  # what renders is what the paper shows, not the file
+    with bpy.context.temp_override(edit_image=img):  # Image > Save on it: it stays packed
+        assert bpy.ops.image.save() == {"FINISHED"}
+    assert img.packed_file is not None
+    shown = pixels(img)
+    bpy.ops.wm.save_mainfile()
+    bpy.ops.wm.open_mainfile(filepath=str(tmp_path / "art.blend"))
+    img = bpy.context.scene.hairy_brush.paper_image
+    assert img.packed_file is not None and not img.filepath_raw.endswith("paper.png")
+    np.testing.assert_allclose(pixels(img), shown, atol=1e-6)
+
+
+@pytest.mark.slow
+def test_cycles_renders_the_paper_the_sidebar_shows_after_save_as(hb, tmp_path):
+    st = setup_scene(bpy)
+    keyframe_stroke(bpy, st)
+    bpy.ops.hairy_brush.bake_samples()
+    sc = bpy.context.scene
+    sc.frame_set(12)
+    _save_image_as(st.paper_image, tmp_path / "paper.png")
+    sc.frame_set(45)
+    size = 128
+    _top_camera(sc, size)
+    st.brush_object.hide_render = True
+    sc.world = bpy.data.worlds.new("W")
+    sc.render.engine = "CYCLES"
+    sc.cycles.samples, sc.cycles.device = 4, "CPU"
+    sc.view_settings.view_transform = "Standard"
+    sc.render.filepath = str(tmp_path / "r.png")
+    bpy.ops.render.render(write_still=True)
+    im = bpy.data.images.load(str(tmp_path / "r.png"))
+    rendered = _ink_count(pixels(im)[..., :3])
+    shown = pixels(st.paper_image)[..., :3]
+    # the paper (200 mm, 400 px) seen at 128 px: ink pixels scale by (128 / 400)^2
+    want = _ink_count(shown) * (size / shown.shape[1]) ** 2
+    assert 0.6 * want < rendered < 1.6 * want, (rendered, want)
