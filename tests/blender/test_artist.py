@@ -8,6 +8,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
+from sim.paper.display import srgb_to_linear
 from tests.blender.helpers import ext, keyframe_stroke, pixels, setup_scene
 
 bpy = pytest.importorskip("bpy")
@@ -236,3 +237,62 @@ def test_cycles_renders_the_paper_the_sidebar_shows_after_save_as(hb, tmp_path):
     # the paper (200 mm, 400 px) seen at 128 px: ink pixels scale by (128 / 400)^2
     want = _ink_count(shown) * (size / shown.shape[1]) ** 2
     assert 0.6 * want < rendered < 1.6 * want, (rendered, want)
+
+
+# ----------------------------------------------------------------------------- pictures
+def _blender_saves(grey, tmp_path) -> dict:
+    """The picture saved by Blender in the formats an artist saves renders in."""
+    sc = bpy.context.scene
+    sc.view_settings.view_transform = "Standard"  # the pixels as they are
+    h, w = grey.shape
+    img = bpy.data.images.new("pic", w, h, float_buffer=True)
+    rgba = np.ones((h, w, 4), np.float32)
+    rgba[..., :3] = srgb_to_linear(grey[::-1])[..., None]  # a float image holds linear light
+    img.pixels.foreach_set(rgba.ravel())
+    settings, paths = sc.render.image_settings, {}
+    for name, fmt, depth in (
+        ("blender16.png", "PNG", "16"),
+        ("blender8.png", "PNG", "8"),
+        ("blender16.tif", "TIFF", "16"),
+        ("blender.exr", "OPEN_EXR", "32"),
+        ("blender.jpg", "JPEG", None),
+    ):
+        settings.file_format = fmt
+        if depth is not None:
+            settings.color_depth = depth
+        paths[name] = tmp_path / name
+        img.save_render(str(paths[name]), scene=sc)
+    bpy.data.images.remove(img)
+    return paths
+
+
+def test_imitate_picture_reads_every_picture_blender_loads(hb, tmp_path):
+    from sim.picture.ink import grey_of
+    from tests.blender.test_picture import picture
+    from tests.picture_files import png_kinds
+
+    grey = picture(96)
+    paths = _blender_saves(grey, tmp_path)
+    for name, data in png_kinds(grey).items():
+        paths[name] = tmp_path / f"{name}.png"
+        paths[name].write_bytes(data)
+    file_picture = ext().operators.imitate_image.file_picture
+    for name, path in paths.items():
+        got = grey_of(file_picture(str(path)))
+        err = np.abs(got - grey)
+        if name.endswith(".jpg"):
+            assert err.mean() < 0.02, name
+        else:
+            assert err.max() <= 1.5 / 255, (name, err.max())
+    assert not [im for im in bpy.data.images if im.filepath]  # read, not kept
+
+
+@pytest.mark.slow
+def test_imitate_picture_takes_blenders_own_16_bit_png(hb, tmp_path):
+    from tests.blender.test_picture import picture
+
+    st = setup_scene(bpy, ppm=1.0)
+    path = _blender_saves(picture(128), tmp_path)["blender16.png"]
+    res = bpy.ops.hairy_brush.imitate_image(filepath=str(path), size_mm=80.0, passes=1, detail=128)
+    assert res == {"FINISHED"}
+    assert st.paper_width_mm == 80.0 and st.recording is not None
