@@ -83,7 +83,7 @@ def store_recording(st, rec: Recording) -> bpy.types.Text:
     # counted here, so the sidebar shows them without reading the text
     text[SAMPLES_TAG] = len(rec.samples)
     text[DIPS_TAG] = len(rec.dips)
-    text[OWN_COLOR_TAG] = sum(not dp.follows_ink for dp in rec.dips)
+    text[OWN_COLOR_TAG] = sum(not dp.follows_ink for dp in rec.dips_or_default())
     return text
 
 

@@ -151,8 +151,7 @@ class Recording:
     def dips_or_default(self) -> list:
         if self.dips:
             return self.dips
-        # the default dip (see Dip), in the recording's ink colour when it names one
-        return [Dip(0, follows_ink="color" in self.ink)]
+        return [Dip(0)]  # the default dip (see Dip): black, whatever the ink colour
 
     def to_dict(self) -> dict:
         d = {

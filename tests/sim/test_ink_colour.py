@@ -57,10 +57,10 @@ def test_a_dip_that_follows_the_ink_loads_the_recordings_ink_colour():
     assert len(ink) > 20 and ink[:, 0].mean() > 0.6
 
 
-def test_without_dips_the_default_dip_takes_the_ink_colour_only_when_one_is_named():
-    assert not from_dict(with_(dips=[])).dips_or_default()[0].follows_ink
+def test_without_dips_the_default_dip_is_the_papers_black_whatever_the_ink():
     named = from_dict(with_(dips=[], ink={"preset": "sumi_black", "color": [0.8, 0.1, 0.1]}))
-    assert named.dips_or_default()[0].follows_ink
+    (dip,) = named.dips_or_default()
+    assert not dip.follows_ink and dip.color_with(named.resolve()[3]) == (0.0, 0.0, 0.0)
 
 
 @pytest.mark.parametrize(
