@@ -178,6 +178,11 @@ class HAIRY_BRUSH_PT_recording(_Panel, bpy.types.Panel):
                 layout.label(text="Not counted: stored outside the extension", icon="INFO")
             else:
                 layout.label(text=f"{n} samples, {text.get(recordings.DIPS_TAG, 0)} dips")
+            hair, now = text.get(recordings.HAIR_TAG), HAIR_LENGTH_MM.get(st.brush_preset)
+            if hair is not None and now is not None and abs(now - hair) > 1e-6:
+                layout.label(
+                    text=f"Recorded with {hair:g} mm hair: placed {now - hair:+g} mm", icon="INFO"
+                )
         row = layout.row(align=True)
         row.operator("hairy_brush.import_recording", icon="IMPORT")
         row.operator("hairy_brush.export_recording", icon="EXPORT")

@@ -9,7 +9,7 @@ import numpy as np
 import pytest
 
 from sim.paper.display import srgb_to_linear
-from tests.blender.helpers import ext, keyframe_stroke, pixels, setup_scene
+from tests.blender.helpers import HAIR, ext, keyframe_stroke, pixels, setup_scene
 
 bpy = pytest.importorskip("bpy")
 
@@ -179,6 +179,25 @@ def test_an_imported_recording_shows_its_ink_and_keeps_its_dips_colours(hb, tmp_
     assert ink[:, 2].mean() > 2 * ink[:, 0].mean()  # the dip's own blue, as recorded
 
 
+def test_a_recording_without_dips_counts_the_papers_default_dip_as_its_own(hb, tmp_path):
+    from sim.core.recording import Recording
+
+    st = setup_scene(bpy)
+    keyframe_stroke(bpy, st)
+    bpy.ops.hairy_brush.bake_samples()
+    rec = ext().blender.recordings.recording_from_scene(bpy.context.scene)
+    path = tmp_path / "no_dips.json"
+    Recording(rec.samples).save(path)  # the default dip: black, as `sim render` draws it
+    bpy.ops.hairy_brush.import_recording(filepath=str(path))
+    assert st.recording[ext().blender.recordings.OWN_COLOR_TAG] == 1
+    st.ink_color = (0.8, 0.05, 0.05)
+    bpy.ops.hairy_brush.simulate()
+    assert _inked(st)[:, 0].mean() < 0.3  # still black: the sidebar says why
+    assert bpy.ops.hairy_brush.follow_ink() == {"FINISHED"}
+    bpy.ops.hairy_brush.simulate()
+    assert _inked(st)[:, 0].mean() > 0.6
+
+
 # ----------------------------------------------------------------------------- saving the paper
 def _save_image_as(img, path):
     """Image > Save As in the Image Editor (the image is the editor's)."""
@@ -296,3 +315,78 @@ def test_imitate_picture_takes_blenders_own_16_bit_png(hb, tmp_path):
     res = bpy.ops.hairy_brush.imitate_image(filepath=str(path), size_mm=80.0, passes=1, detail=128)
     assert res == {"FINISHED"}
     assert st.paper_width_mm == 80.0 and st.recording is not None
+
+
+# ----------------------------------------------------------------------------- brush preset
+def _stroke_recording(tmp_path, press: float, brush: dict | None = None):
+    from sim.core.recording import Recording
+
+    hair = HAIR
+    xs = np.linspace(60.0, 140.0, 120)
+    samples = np.zeros((len(xs) + 2, 6))
+    samples[1:-1, 0], samples[1:-1, 1], samples[1:-1, 2] = xs, 100.0, hair - press
+    samples[0, :3] = 60.0, 100.0, hair + 5.0
+    samples[-1, :3] = 140.0, 100.0, hair + 5.0
+    rec = Recording(samples, brush=brush or {"preset": "wolf_kaishu"})
+    path = tmp_path / "stroke.json"
+    rec.save(path)
+    return path, samples
+
+
+def _preset_report(kind: str, name: str) -> str:
+    op = ext().operators.apply_preset.HAIRY_BRUSH_OT_apply_preset
+    reports = []
+
+    class Call:  # the operator's execute with its report kept (a test reads what it says)
+        def report(self, _kind, msg):
+            reports.append(msg)
+
+    call = Call()
+    call.kind, call.name = kind, name
+    assert op.execute(call, bpy.context) == {"FINISHED"}
+    return reports[-1]
+
+
+def test_a_new_brush_re_places_an_imported_recordings_samples(hb, tmp_path):
+    setup_scene(bpy)
+    path, samples = _stroke_recording(tmp_path, press=3.0)
+    assert bpy.ops.hairy_brush.import_recording(filepath=str(path)) == {"FINISHED"}
+    sc = bpy.context.scene
+    report = _preset_report("brush", "goat_soft")  # hair 34 mm instead of 28
+    assert "moved up 6 mm" in report and "recording" in report, report
+    rec = ext().blender.recordings.recording_from_scene(sc)
+    # pressed 3 mm into its touching height and hovering 5 mm above it, as recorded
+    np.testing.assert_allclose(rec.samples[:, 2], samples[:, 2] + 6.0, atol=1e-9)
+    assert bpy.ops.hairy_brush.export_recording(filepath=str(tmp_path / "out.json"))
+    from sim.core.recording import load
+
+    out = load(tmp_path / "out.json")  # what the scene writes is what it simulates
+    assert out.preset_name("brush") == "goat_soft"
+    np.testing.assert_allclose(out.samples[:, 2], samples[:, 2] + 6.0, atol=1e-9)
+    _preset_report("brush", "wolf_kaishu")  # back: as recorded
+    rec = ext().blender.recordings.recording_from_scene(sc)
+    np.testing.assert_allclose(rec.samples[:, 2], samples[:, 2], atol=1e-9)
+
+
+def test_a_new_brush_moves_keyframes_and_recording_alike(hb):
+    st = setup_scene(bpy)
+    keyframe_stroke(bpy, st)
+    bpy.ops.hairy_brush.bake_samples()
+    sc = bpy.context.scene
+    _preset_report("brush", "small_detail")  # 16 mm: 12 mm shorter
+    placed = ext().blender.recordings.recording_from_scene(sc).samples
+    bpy.ops.hairy_brush.bake_samples()  # from the keyframes, which moved down as much
+    baked = ext().blender.recordings.recording_from_scene(sc).samples
+    np.testing.assert_allclose(placed, baked, atol=2e-5)
+    assert placed[:, 2].min() < 16.0  # it still presses into the paper
+
+
+def test_a_recording_with_its_own_hair_length_is_not_moved(hb, tmp_path):
+    setup_scene(bpy)
+    own = {"preset": "wolf_kaishu", "geometry": {"hair_length_mm": HAIR}}
+    path, samples = _stroke_recording(tmp_path, press=3.0, brush=own)
+    bpy.ops.hairy_brush.import_recording(filepath=str(path))
+    report = _preset_report("brush", "goat_soft")
+    assert "its own hair length" in report, report
+    rec = ext().blender.recordings.recording_from_scene(bpy.context.scene)
+    np.testing.assert_allclose(rec.samples[:, 2], samples[:, 2], atol=1e-9)
