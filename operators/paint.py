@@ -24,6 +24,7 @@ from ..blender import (
     presets,
     primitives,
     recordings,
+    runtime,
     surfaces,
     transforms,
 )
@@ -175,7 +176,7 @@ class HAIRY_BRUSH_OT_paint(bpy.types.Operator):
         """The stroke's state (also used by tests, which have no window to run a modal in)."""
         st = checks.settings(context.scene)
         self._img = img
-        self._live = live
+        self._live = runtime.get().painter = live  # the painting in progress, while it lasts
         self._brush_mw = st.brush_object.matrix_world.copy() if st.brush_object else None
         self._last_draw = 0.0
         self._refresh_s = 0.0  # what the last refresh cost
@@ -252,6 +253,7 @@ class HAIRY_BRUSH_OT_paint(bpy.types.Operator):
             primitives.sync_primitives(scene, sim, create=False)
 
     def _finish(self, context):
+        runtime.get().painter = None
         if self._timer is not None:
             context.window_manager.event_timer_remove(self._timer)
             context.workspace.status_text_set(None)

@@ -86,6 +86,7 @@ def test_paint_operator_refreshes_what_changed_moves_the_brush_and_cancels_exact
         bpy.context, st.paper_image, ext().sim.engine.live.LiveBrush(sim, 5.0, 2.0, (60.0, 100.0))
     )
     before = pixels(st.paper_image)
+    assert ext().blender.runtime.get().painter is op._live  # the runtime knows the painting
     t0 = op._live._t0
     op.step(bpy.context, LiveEvent("LEFTMOUSE", "PRESS", (60.0, 100.0), time=t0))
     brush_z, prim_z = [], []
@@ -105,7 +106,7 @@ def test_paint_operator_refreshes_what_changed_moves_the_brush_and_cancels_exact
     assert len(set(np.round(prim_z, 6))) > 1  # and the primitive surfaces follow the brush
     assert op.step(bpy.context, LiveEvent("ESC", "PRESS", time=t0 + 0.7)) == {"CANCELLED"}
     np.testing.assert_array_equal(pixels(st.paper_image), before)
-    assert st.recording is None
+    assert st.recording is None and ext().blender.runtime.get().painter is None
 
 
 def test_bake_asks_before_replacing_painted_strokes(hb):
