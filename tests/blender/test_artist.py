@@ -390,3 +390,102 @@ def test_a_recording_with_its_own_hair_length_is_not_moved(hb, tmp_path):
     assert "its own hair length" in report, report
     rec = ext().blender.recordings.recording_from_scene(bpy.context.scene)
     np.testing.assert_allclose(rec.samples[:, 2], samples[:, 2], atol=1e-9)
+
+
+# ----------------------------------------------------------------------------- live painting
+def _paint_operator():
+    """The paint operator's own methods on a stand-in (a modal operator cannot run headless)."""
+    cls = ext().operators.paint.HAIRY_BRUSH_OT_paint
+
+    class Stroke:
+        def report(self, _kind, _msg):
+            pass
+
+    for name in ("start", "step", "show", "_finish"):
+        setattr(Stroke, name, getattr(cls, name))
+    return Stroke()
+
+
+def _begin(st, xy):
+    """Painting started as the benchmark starts it: the operator's state, the button down at
+    once under the pointer. Returns the operator and its clock's start."""
+    live_mod = ext().sim.engine.live
+    sim, _ = ext().operators.paint.start_simulation(bpy.context.scene, xy)
+    op = _paint_operator()
+    op.start(bpy.context, st.paper_image, live_mod.LiveBrush(sim, 4.0, 2.0, xy))
+    t0 = op._live._t0  # events are stamped on the operator's clock
+    op.step(bpy.context, live_mod.LiveEvent("LEFTMOUSE", "PRESS", xy, time=t0))
+    return op, t0
+
+
+def _drag(op, xy0, xy1, t0: float, n: int = 40) -> float:
+    """The pointer from xy0 to xy1 at 120 Hz from t0; returns the time it gets there."""
+    LiveEvent = ext().sim.engine.live.LiveEvent  # noqa: N806 - the installed copy's class
+    for k in range(1, n + 1):
+        xy = tuple(np.asarray(xy0) + (np.asarray(xy1) - np.asarray(xy0)) * k / n)
+        op.step(bpy.context, LiveEvent("MOUSEMOVE", "NOTHING", xy, time=t0 + k / 120))
+        op.step(bpy.context, LiveEvent("TIMER", "NOTHING", time=t0 + k / 120))
+    return t0 + n / 120
+
+
+def _stroke(st, xy0, xy1):
+    LiveEvent = ext().sim.engine.live.LiveEvent  # noqa: N806
+    op, t0 = _begin(st, xy0)
+    t = _drag(op, xy0, xy1, t0)
+    res = op.step(bpy.context, LiveEvent("LEFTMOUSE", "RELEASE", xy1, time=t + 0.01))
+    assert res == {"FINISHED"}
+    ext().operators.paint.keep_stroke(bpy.context.scene, op._live)
+    op.show(bpy.context, final=True)
+
+
+def test_ctrl_z_while_painting_takes_back_the_stroke_and_painting_goes_on(hb):
+    LiveEvent = ext().sim.engine.live.LiveEvent  # noqa: N806
+    st = setup_scene(bpy)
+    _stroke(st, (40.0, 60.0), (120.0, 60.0))
+    before, text = pixels(st.paper_image), st.recording.as_string()
+    op, t0 = _begin(st, (40.0, 140.0))
+    t = _drag(op, (40.0, 140.0), (120.0, 140.0), t0)
+    op._last_draw = 0.0
+    op.step(bpy.context, LiveEvent("TIMER", "NOTHING", time=t + 0.01))
+    assert np.abs(pixels(st.paper_image) - before).max() > 0.3  # the stroke shows
+    z = LiveEvent("Z", "PRESS", time=t + 0.02, ctrl=True)
+    assert op.step(bpy.context, z) == {"RUNNING_MODAL"}  # painting goes on
+    np.testing.assert_array_equal(pixels(st.paper_image), before)  # without the stroke
+    op.step(bpy.context, LiveEvent("LEFTMOUSE", "PRESS", (40.0, 100.0), time=t + 0.5))
+    t = _drag(op, (40.0, 100.0), (120.0, 100.0), t + 0.5)
+    assert op.step(bpy.context, LiveEvent("RET", "PRESS", time=t + 0.01)) == {"FINISHED"}
+    ext().operators.paint.keep_stroke(bpy.context.scene, op._live)
+    rec = ext().blender.recordings.recording_from_scene(bpy.context.scene)
+    kept = rec.samples[len(json_samples(text)) :]
+    down = kept[kept[:, 2] < HAIR]  # pressed: the stroke at y = 100 mm, none at 140
+    assert len(down) >= 40 and np.all(np.abs(down[:, 1] - 100.0) < 1e-6)
+
+
+def json_samples(text: str) -> list:
+    import json
+
+    return json.loads(text)["samples"]
+
+
+def test_ctrl_z_before_pressing_hands_over_to_blenders_undo_of_the_last_stroke(hb):
+    from tests.blender.helpers import call, undo_step
+
+    LiveEvent = ext().sim.engine.live.LiveEvent  # noqa: N806
+    st = setup_scene(bpy)
+    undo_step(bpy, "set up")
+    _stroke(st, (40.0, 60.0), (120.0, 60.0))
+    undo_step(bpy, "Paint")  # as Blender pushes after the operator
+    one, text_one = pixels(st.paper_image), st.recording.as_string()
+    _stroke(st, (40.0, 140.0), (120.0, 140.0))
+    undo_step(bpy, "Paint")
+    assert np.abs(pixels(st.paper_image) - one).max() > 0.3
+    # painting again, Ctrl+Z before the button goes down: painting ends, the key goes on
+    sim, _ = ext().operators.paint.start_simulation(bpy.context.scene, (60.0, 100.0))
+    op = _paint_operator()
+    op.start(bpy.context, st.paper_image, ext().sim.engine.live.LiveBrush(sim, 4.0, 2.0, None))
+    z = LiveEvent("Z", "PRESS", time=op._live._t0 + 0.1, ctrl=True)
+    assert op.step(bpy.context, z) == {"CANCELLED", "PASS_THROUGH"}
+    call(bpy, "undo")  # Blender's Ctrl+Z: the last stroke goes
+    st = bpy.context.scene.hairy_brush
+    assert st.recording.as_string() == text_one
+    np.testing.assert_array_equal(pixels(st.paper_image), one)
