@@ -111,9 +111,12 @@ def _inked(st) -> np.ndarray:
     return rgb[rgb[..., 1] < 0.5 * np.median(rgb[..., 1])]
 
 
+SHORT = (1, 3, 14, 16)  # a quicker stroke: x = 50 to 150 mm over frames 3 to 14
+
+
 def test_a_new_ink_colour_recolours_the_work(hb):
     st = setup_scene(bpy)
-    keyframe_stroke(bpy, st)
+    keyframe_stroke(bpy, st, frames=SHORT)
     assert bpy.ops.hairy_brush.bake_samples() == {"FINISHED"}
     assert bpy.ops.hairy_brush.simulate() == {"FINISHED"}
     black = _inked(st)
@@ -140,23 +143,23 @@ def _ink_by_side(st, split_mm: float) -> tuple:
 
 def test_a_dip_in_its_own_colour_keeps_it_until_asked(hb):
     st = setup_scene(bpy)
-    keyframe_stroke(bpy, st)
+    keyframe_stroke(bpy, st, frames=SHORT)
     bpy.ops.hairy_brush.bake_samples()
     sc = bpy.context.scene
-    sc.frame_set(30)  # the stroke runs from x = 50 to 150 mm over frames 8 to 40
+    sc.frame_set(9)  # at x = 105 mm
     blue = (0.05, 0.1, 0.8)
     assert bpy.ops.hairy_brush.dip(own_color=True, color=blue) == {"FINISHED"}
     text = st.recording
     assert text[ext().blender.recordings.OWN_COLOR_TAG] == 1
     st.ink_color = (0.8, 0.05, 0.05)
     bpy.ops.hairy_brush.simulate()
-    before, after = _ink_by_side(st, 120.0)
+    before, after = _ink_by_side(st, 105.0)
     assert before[0] > 2 * before[2]  # red up to the dip: the Ink Colour
     assert after[2] > 2 * after[0]  # blue after it: its own colour
     assert bpy.ops.hairy_brush.follow_ink() == {"FINISHED"}
     assert text[ext().blender.recordings.OWN_COLOR_TAG] == 0
     bpy.ops.hairy_brush.simulate()
-    _before, after = _ink_by_side(st, 120.0)
+    _before, after = _ink_by_side(st, 105.0)
     assert after[0] > 2 * after[2]  # the second dip loads the Ink Colour too
 
 
@@ -164,7 +167,7 @@ def test_an_imported_recording_shows_its_ink_and_keeps_its_dips_colours(hb, tmp_
     from sim.core.recording import Dip, Recording
 
     st = setup_scene(bpy)
-    keyframe_stroke(bpy, st)
+    keyframe_stroke(bpy, st, frames=SHORT)
     bpy.ops.hairy_brush.bake_samples()
     rec = ext().blender.recordings.recording_from_scene(bpy.context.scene)
     old = Recording(rec.samples, dips=[Dip(0, 0.8, (0.1, 0.2, 0.7), 0.9)])  # as before 29
@@ -183,7 +186,7 @@ def test_a_recording_without_dips_counts_the_papers_default_dip_as_its_own(hb, t
     from sim.core.recording import Recording
 
     st = setup_scene(bpy)
-    keyframe_stroke(bpy, st)
+    keyframe_stroke(bpy, st, frames=SHORT)
     bpy.ops.hairy_brush.bake_samples()
     rec = ext().blender.recordings.recording_from_scene(bpy.context.scene)
     path = tmp_path / "no_dips.json"
