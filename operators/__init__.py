@@ -15,6 +15,7 @@ from .build_primitives import HAIRY_BRUSH_OT_build_primitives
 from .dip import HAIRY_BRUSH_OT_dip
 from .export_recording import HAIRY_BRUSH_OT_export_recording
 from .fit_parameters import HAIRY_BRUSH_OT_fit_parameters
+from .follow_ink import HAIRY_BRUSH_OT_follow_ink
 from .imitate_image import HAIRY_BRUSH_OT_imitate_image
 from .import_recording import HAIRY_BRUSH_OT_import_recording
 from .paint import HAIRY_BRUSH_OT_paint
@@ -29,6 +30,7 @@ CLASSES = (
     HAIRY_BRUSH_OT_simulate,
     HAIRY_BRUSH_OT_paint,
     HAIRY_BRUSH_OT_dip,
+    HAIRY_BRUSH_OT_follow_ink,
     HAIRY_BRUSH_OT_build_primitives,
     HAIRY_BRUSH_OT_bake_sequence,
     HAIRY_BRUSH_OT_bake_cache,

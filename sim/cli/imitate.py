@@ -61,7 +61,10 @@ def _add_imitate(sub, size, common):
 
     im = sub.add_parser("imitate", help="read a picture of writing and write it with the brush")
     im.add_argument(
-        "image", type=_named, help="dark writing on a light ground: PNG (JPEG etc. with Pillow)"
+        "image",
+        type=_named,
+        help="dark writing on a light ground: any PNG, JPEG, TIFF, ... with Pillow installed "
+        "(pip install pillow); without it an 8-bit PNG",
     )
     im.add_argument("-o", "--output", type=_named, required=True)
     im.add_argument(

@@ -33,6 +33,13 @@ def cmd_bench(args) -> int:
     return 0
 
 
+def cmd_speed(args) -> int:
+    from .speed import main as speed
+
+    speed(args.repeats, baseline=args.baseline, against=args.against)
+    return 0
+
+
 def _parser() -> argparse.ArgumentParser:
     from ..writing.writer import DEFAULT_PASSES, MAX_PASSES, MIN_SHEET_PX
 
@@ -96,8 +103,15 @@ def _parser() -> argparse.ArgumentParser:
     m.set_defaults(func=cmd_iou)
     _add_fit(sub, size, common)
     b = sub.add_parser("bench", help="speed benchmark: a table, then one JSON line")
-    b.add_argument("--quick", action="store_true", help="one repetition instead of three")
+    b.add_argument("--quick", action="store_true", help="one repetition instead of five")
     b.set_defaults(func=cmd_bench)
+    sp = sub.add_parser(
+        "speed", help="what users wait for, beside the previous version measured in the same run"
+    )
+    sp.add_argument("--repeats", type=_whole(1, 50), default=3, help="runs of each version")
+    sp.add_argument("--against", default=None, help="the previous version: a git revision")
+    sp.add_argument("--baseline", default=None, help="the previous version: a checkout")
+    sp.set_defaults(func=cmd_speed)
     return ap
 
 

@@ -69,20 +69,34 @@ class RecordingError(ValueError):
 @dataclass
 class Dip:
     """A dip before a sample; a field a recording leaves out is the paper's default dip's: "a
-    full dip in black ink" (depth 1, black), as wet as the default ink loads."""
+    full dip in black ink" (depth 1, black), as wet as the default ink loads.
+
+    ``follows_ink`` (added beyond the paper): the dip loads the recording's ink colour (its
+    'ink' section's colour, else its ink preset's), so a new ink colour recolours the work;
+    ``color`` is then only the colour it had when recorded (what an engine that does not know
+    the field loads). False, as for every dip of a recording that leaves the field out: the dip
+    keeps its own colour (a second ink)."""
 
     before_sample: int
     depth: float = 1.0
     color: tuple = (0.0, 0.0, 0.0)
     wetness: float = InkSpec.wetness
+    follows_ink: bool = False
+
+    def color_with(self, ink: InkSpec) -> tuple:
+        """The colour this dip loads with the recording's resolved ``ink``."""
+        return tuple(ink.color) if self.follows_ink else tuple(self.color)
 
     def to_dict(self):
-        return {
+        d = {
             "before_sample": self.before_sample,
             "depth": self.depth,
             "color": list(self.color),
             "wetness": self.wetness,
         }
+        if self.follows_ink:  # left out otherwise: older recordings' text stays as it was
+            d["follows_ink"] = True
+        return d
 
 
 @dataclass
@@ -130,14 +144,17 @@ class Recording:
             q = QualityParams().with_values(values)
             geom = _geometry_override(geometry_from_preset(bp), self.brush.get("geometry"))
             paper = replace(paper_from_preset(pp), **self.paper_overrides)
-            return q, geom, paper, ink_from_preset(ip)
+            ink = ink_from_preset(ip)
+            if "color" in self.ink:  # the recording's own ink colour (see Dip.follows_ink)
+                ink = replace(ink, color=tuple(float(c) for c in self.ink["color"]))
+            return q, geom, paper, ink
         except ParameterError as exc:
             raise RecordingError(str(exc)) from None
 
     def dips_or_default(self) -> list:
         if self.dips:
             return self.dips
-        return [Dip(0)]  # the default dip (see Dip)
+        return [Dip(0)]  # the default dip (see Dip): black, whatever the ink colour
 
     def to_dict(self) -> dict:
         d = {
@@ -296,6 +313,8 @@ def _presets_and_quality(d: dict):
     for name, sec in (("brush", brush), ("ink", ink)):
         if "preset" in sec and not isinstance(sec["preset"], str):
             raise RecordingError(f"'{name}.preset' must be a preset name")
+    if "color" in ink:
+        ink = {**ink, "color": list(_color(ink["color"], "ink.color"))}
     quality = _obj(d, "quality", "quality", required=False) or {}
     known = QualityParams.names()
     for k, v in quality.items():
@@ -359,23 +378,27 @@ def _dips(d: dict, n_samples: int) -> list:
         bs = _num(dp["before_sample"], f"'{where}.before_sample'", 0, n_samples, integer=True)
         depth = _num(dp.get("depth", Dip.depth), f"'{where}.depth'", 0.0, 1.0)
         wet = _num(dp.get("wetness", Dip.wetness), f"'{where}.wetness'", 0.0, 1.0)
-        col = dp.get("color", list(Dip.color))
-        if not isinstance(col, list) or len(col) != 3:
-            raise RecordingError(f"'{where}.color' must be [r, g, b]")
-        col = tuple(_num(c, f"'{where}.color[{k}]'", 0.0, 1.0) for k, c in enumerate(col))
-        dips.append(Dip(bs, depth, col, wet))
+        col = _color(dp.get("color", list(Dip.color)), f"{where}.color")
+        follows = dp.get("follows_ink", False)
+        if not isinstance(follows, bool):
+            raise RecordingError(f"'{where}.follows_ink' must be true or false")
+        dips.append(Dip(bs, depth, col, wet, follows))
     dips.sort(key=lambda x: x.before_sample)
     return dips
+
+
+def _color(col, where: str) -> tuple:
+    """An [r, g, b] colour of a recording, each in [0, 1]."""
+    if not isinstance(col, list) or len(col) != 3:
+        raise RecordingError(f"'{where}' must be [r, g, b]")
+    return tuple(_num(c, f"'{where}[{k}]'", 0.0, 1.0) for k, c in enumerate(col))
 
 
 def _paper_overrides(paper: dict) -> dict:
     """The 'paper' section's own colour, capacity and fibre, checked."""
     out = {}
     if "color" in paper:
-        col = paper["color"]
-        if not isinstance(col, list) or len(col) != 3:
-            raise RecordingError("'paper.color' must be [r, g, b]")
-        out["color"] = tuple(_num(c, f"'paper.color[{k}]'", 0.0, 1.0) for k, c in enumerate(col))
+        out["color"] = _color(paper["color"], "paper.color")
     if "capacity" in paper:
         out["capacity"] = _num(paper["capacity"], "'paper.capacity'", *PAPER_CAPACITY_RANGE)
     if "fibre" in paper:

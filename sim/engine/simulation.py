@@ -83,7 +83,7 @@ class Simulation:
 
     def _dip_now(self):
         for dp in self._dips_at.get(self.index, ()):
-            self.brush.dip(self.ink, dp.depth, dp.color, dp.wetness)
+            self.brush.dip(self.ink, dp.depth, dp.color_with(self.ink), dp.wetness)
             self.predictor.reset()
 
     def step(self):
