@@ -16,6 +16,7 @@ from ..core.recording import (
     PX_PER_MM_RANGE,
     RecordingError,
 )
+from .compose import _add_compose
 from .evaluate import cmd_iou
 from .fit import _add_fit
 from .imitate import _add_imitate
@@ -96,6 +97,7 @@ def _parser() -> argparse.ArgumentParser:
     common(m)
     m.set_defaults(func=cmd_iou)
     _add_fit(sub, size, common)
+    _add_compose(sub, seed)
     b = sub.add_parser("bench", help="speed benchmark: a table, then one JSON line")
     b.add_argument("--quick", action="store_true", help="one repetition instead of five")
     b.set_defaults(func=cmd_bench)

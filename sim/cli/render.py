@@ -12,6 +12,7 @@ def cmd_render(args) -> int:
     from ..core.recording import load
     from ..engine.simulation import Simulation
     from ..image.png import write_png
+    from ..writing.work.compose import image8
 
     _writable(args.output)
     rec = load(args.recording)
@@ -25,7 +26,7 @@ def cmd_render(args) -> int:
         rec.seed = args.seed
     t0 = time.perf_counter()
     sim = Simulation(rec).run(progress=None if args.quiet else _progress)
-    write_png(args.output, sim.image8())
+    write_png(args.output, image8(sim.paper, rec))  # a work's grid and seal with the ink
     if not args.quiet:
         dt = time.perf_counter() - t0
         print(
