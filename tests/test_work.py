@@ -318,3 +318,9 @@ def test_one_cell_written_again_leaves_the_others_untouched(tiny):
     mine = _owned(p0, rec, [1]) | _owned(p1, again, [1])
     assert np.array_equal(np.where(mine, 0, p0.ink), np.where(mine, 0, p1.ink))  # the others
     assert not np.array_equal(p0.ink, p1.ink)  # and the cell itself changed
+
+
+def test_a_short_text_is_one_line():
+    from sim.writing.work.layout import auto_per_line
+
+    assert auto_per_line(_lines("山，水"), False) == 2 and auto_per_line(_lines("山水日"), False) == 3

@@ -246,17 +246,22 @@ def wrap(lines, per_line: int) -> list[list]:
     return out
 
 
+SHORT_TEXT = 4
+
+
 def auto_per_line(lines, vertical: bool) -> int:
     """Characters a line when the calligrapher did not say: the text's own lines when it has
-    several (the longest), else about a block a little taller than wide (vertical) or wider
+    several (the longest), a short text (up to SHORT_TEXT) in one, else about a block a little taller than wide (vertical) or wider
     than tall (horizontal), the last line as full as the neighbouring choices allow."""
     if len(lines) > 1:
         return max(1, max(len(line) for line in lines))
     n = max(1, sum(len(line) for line in lines))
+    if n <= SHORT_TEXT:  # a word or an idiom: one line (a 横幅, a column of 四字)
+        return n
     ratio = 1.35 if vertical else 1.0 / 1.35  # characters along / lines
     best = max(1, round(math.sqrt(n * ratio * (1 + ACROSS_GAP) / (1 + ALONG_GAP))))
     options = [p for p in (best - 1, best, best + 1) if p >= 1]
-    return min(options, key=lambda p: ((-n) % p, abs(p - best)))
+    return min(options, key=lambda p: ((-n) % p, abs(p - best), -p))
 
 
 def _signature_length(settings: Settings, char_mm: float) -> float:
