@@ -323,4 +323,5 @@ def test_one_cell_written_again_leaves_the_others_untouched(tiny):
 def test_a_short_text_is_one_line():
     from sim.writing.work.layout import auto_per_line
 
-    assert auto_per_line(_lines("山，水"), False) == 2 and auto_per_line(_lines("山水日"), False) == 3
+    assert auto_per_line(_lines("山，水"), False) == 2
+    assert auto_per_line(_lines("山水日"), False) == 3

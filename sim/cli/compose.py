@@ -13,7 +13,7 @@ import time
 
 from ..core.params import ParameterError
 from ..core.recording import DEFAULT_BRUSH, DEFAULT_PAPER
-from .shared import _progress, _real, _template, _whole, _writable
+from .shared import _progress, _real, _response, _template, _whole, _writable
 
 DEFAULT_CHAR_PX = 256
 DEFAULT_DPI = 150.0
@@ -153,6 +153,7 @@ def cmd_compose(args) -> int:
             options=options,
             mapper=mapper,
             progress=stage(0.0, 0.85),
+            response=_response(template),
             **res,
         )
         paper, inks = work.render(rec, mapper=mapper, progress=stage(0.85, 1.0))

@@ -302,18 +302,21 @@ def compose(
     options: Options | None = None,
     mapper=local_map,
     progress=None,
+    response: Response | None = None,
 ):
     """A work from ``text``: (its recording, its layout, the characters skipped). The em box is
     ``settings.char_mm``, or fitted to ``settings.paper_mm``, or (neither) the brush's own
     size for the text; the resolution is ``char_px`` pixels an em box or ``px_per_mm``.
-    ``progress(share)`` as cells are written. Raises ParameterError before any writing."""
+    ``progress(share)`` as cells are written; ``response``: the brush's calibrated response
+    (``calibrate(template)``, measured here when not given). Raises ParameterError before any
+    writing."""
     if (char_px is None) == (px_per_mm is None):
         raise ParameterError("give the character size in pixels or the resolution (one of them)")
     options = options or Options()
     lines, settings, missing = prepare(
         text, settings, data=data, punctuation=punctuation, skip_missing=skip_missing
     )
-    response = calibrate(template)
+    response = response or calibrate(template)
     if settings.char_mm is None and settings.paper_mm is None:
         chars = sorted({g.text for line in lines for g in line if g.kind == CHAR})
         size = natural_size_mm([lookup(c, data) for c in chars], response)

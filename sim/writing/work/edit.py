@@ -46,10 +46,6 @@ def _layout(rec: Recording) -> Layout:
     return Layout.from_dict(work["layout"])
 
 
-def _step_mm(template: Recording) -> float:
-    return calibrate(template).speed_mm_s / template.sample_rate_hz
-
-
 def place_text(lay: Layout, lines, new_line: bool = False) -> list[Cell]:
     """Cells for ``lines`` (sim.writing.work.text) after the last character of the work's
     text: on at its next place, a newline starting the next line; every cell on the paper
@@ -93,10 +89,12 @@ def append_text(
     options: Options | None = None,
     mapper=local_map,
     progress=None,
+    response=None,
 ) -> tuple[Recording, list[Cell]]:
     """The work with ``text`` written after its last character (a new line first when
     ``new_line``): (the new recording, the new cells). The paper, the earlier samples, dips and
-    cells are kept as they are; the brush goes on with the ink it had left."""
+    cells are kept as they are; the brush goes on with the ink it had left. ``response``: the
+    brush's calibrated response (measured when not given)."""
     options = options or Options()
     lay = _layout(rec)
     if lay.seal or any(c.role != TEXT for c in lay.cells):
@@ -110,7 +108,7 @@ def append_text(
     if not cells:
         raise ParameterError("the text has nothing to write (only spaces and punctuation?)")
     template = _template(rec)
-    response = calibrate(template)
+    response = response or calibrate(template)
     tasks = [
         cell_task(
             c, lay, template, response, rec.px_per_mm, options.passes, data, options.variation
@@ -140,6 +138,7 @@ def rewrite_cell(
     data=None,
     options: Options | None = None,
     mapper=local_map,
+    response=None,
 ) -> Recording:
     """The work with cell ``index`` (of the layout's cells, in writing order) written again
     with another ``seed`` (default: one no cell has): its own variation, practice and random
@@ -155,7 +154,7 @@ def rewrite_cell(
         seed = max(c.seed for c in lay.cells) + 1
     cell = replace(old, seed=int(seed))
     template = _template(rec)
-    response = calibrate(template)
+    response = response or calibrate(template)
     task = cell_task(
         cell, lay, template, response, rec.px_per_mm, options.passes, data, options.variation
     )

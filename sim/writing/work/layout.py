@@ -251,8 +251,9 @@ SHORT_TEXT = 4
 
 def auto_per_line(lines, vertical: bool) -> int:
     """Characters a line when the calligrapher did not say: the text's own lines when it has
-    several (the longest), a short text (up to SHORT_TEXT) in one, else about a block a little taller than wide (vertical) or wider
-    than tall (horizontal), the last line as full as the neighbouring choices allow."""
+    several (the longest), a short text (up to SHORT_TEXT) in one, else about a block a little
+    taller than wide (vertical) or wider than tall (horizontal), the last line as full as the
+    neighbouring choices allow."""
     if len(lines) > 1:
         return max(1, max(len(line) for line in lines))
     n = max(1, sum(len(line) for line in lines))
