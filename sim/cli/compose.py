@@ -184,6 +184,7 @@ def cmd_compose(args) -> int:
 
 def _add_compose(sub, seed):
     """The ``compose`` command's options."""
+    from ..writing.work.compose import WORK_PASSES
     from ..writing.work.layout import DIRECTIONS, GRIDS, PAPER_SIZES_MM
     from ..writing.work.seal import STYLES
     from ..writing.work.text import PUNCTUATION_MODES
@@ -262,7 +263,10 @@ def _add_compose(sub, seed):
     c.add_argument("--quality", default=None, help="quality JSON (e.g. from sim fit)")
     c.add_argument("--seed", type=seed, default=0)
     c.add_argument(
-        "--passes", type=_whole(1, MAX_PASSES), default=DEFAULT_PASSES, help="practice passes"
+        "--passes",
+        type=_whole(1, MAX_PASSES),
+        default=WORK_PASSES,
+        help=f"practice passes per stroke (default {WORK_PASSES}; {DEFAULT_PASSES}: the finest)",
     )
     c.add_argument("--workers", type=_whole(0, 256), default=0, help="processes (0: all cores)")
     c.add_argument(
