@@ -4,6 +4,7 @@ the layout JSON against the ink, bit-identical re-rendering from the saved recor
 the seal, the message for characters without stroke data, on a Dask cluster as here."""
 
 import json
+import time
 
 import numpy as np
 import pytest
@@ -179,3 +180,21 @@ def test_a_work_on_a_dask_cluster_is_the_same_sheet(tmp_path):
     argv[argv.index("--workers") + 1] = "2"
     assert main([*argv, "--scheduler", "local"]) == 0
     assert np.array_equal(read_png(tmp_path / "dask.png"), here)
+
+
+def test_a_damaged_work_in_a_recording_is_one_clear_message(signed, tmp_path, capsys):
+    _, _, rec, _ = signed
+    for bad in (
+        {"seal_glyphs": [{"strokes": ["M 1 2 X"]}]},
+        {"seal_glyphs": "no"},
+        {"layout": {"direction": "vertical"}},
+    ):
+        d = json.loads(rec.read_text(encoding="utf-8"))
+        d["work"].update(bad)
+        p = tmp_path / "bad.json"
+        p.write_text(json.dumps(d), encoding="utf-8")
+        t0 = time.perf_counter()
+        assert main(["render", str(p), "-o", str(tmp_path / "x.png"), "-q"]) == 2
+        assert time.perf_counter() - t0 < 1.0  # refused before any simulation
+        err = capsys.readouterr().err
+        assert "work" in err and "Traceback" not in err

@@ -12,10 +12,11 @@ def cmd_render(args) -> int:
     from ..core.recording import load
     from ..engine.simulation import Simulation
     from ..image.png import write_png
-    from ..writing.work.compose import image8
+    from ..writing.work.compose import check_work, image8
 
     _writable(args.output)
     rec = load(args.recording)
+    check_work(rec)  # a work's layout and seal, before any simulation
     if args.px_per_mm is not None:
         from ..core.recording import from_dict
 

@@ -220,6 +220,26 @@ def work_of(rec: Recording) -> dict | None:
     return w if isinstance(w, dict) and "layout" in w else None
 
 
+def check_work(rec: Recording) -> None:
+    """A recording's work, checked before any simulation (ParameterError names the field)."""
+    from .overlay import _seal_glyphs
+
+    w = rec.extra.get(WORK_KEY)
+    if w is None:
+        return
+    if not isinstance(w, dict) or "layout" not in w:
+        raise ParameterError("'work' must be an object with a 'layout'")
+    lay = Layout.from_dict(w["layout"])
+    if w.get("seal_glyphs"):
+        _seal_glyphs(w["seal_glyphs"])
+    for c in lay.cells:
+        a, b = c.samples
+        if not (isinstance(a, int) and isinstance(b, int) and 0 <= a <= b <= len(rec.samples)):
+            raise ParameterError(
+                f"'work.layout': cell {c.char!r} has samples outside the recording"
+            )
+
+
 def _recording(template: Recording, lay: Layout, samples, dips, ppm, seal_glyphs) -> Recording:
     work = {"version": WORK_VERSION, "layout": lay.to_dict(), "seal_glyphs": seal_glyphs}
     return replace(

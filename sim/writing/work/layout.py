@@ -186,6 +186,16 @@ def _check(lay: Layout) -> None:
     nums = (lay.width_mm, lay.height_mm, lay.char_mm, lay.pitch_mm, lay.line_mm, *lay.origin)
     if not all(number_within(v, -1e6, 1e6) for v in nums) or lay.char_mm <= 0:
         raise ParameterError("'work.layout' has a size that is not a finite number")
+    seal = lay.seal
+    if seal is not None and not (
+        isinstance(seal, dict)
+        and isinstance(seal.get("text"), str)
+        and seal.get("style") in ("baiwen", "zhuwen")
+        and isinstance(seal.get("box"), list)
+        and len(seal["box"]) == 4
+        and all(number_within(v, -1e6, 1e6) for v in seal["box"])
+    ):
+        raise ParameterError("'work.layout.seal' must be {text, style (baiwen|zhuwen), box}")
     for c in lay.cells:
         ok = (
             isinstance(c.char, str)

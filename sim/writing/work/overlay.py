@@ -24,6 +24,31 @@ GRID_LINE = 0.011  # the border's width, share of the box (at least a pixel)
 DASHES = 9  # dashes along an inner line
 
 
+MAX_SEAL_PATH = 20_000  # characters of a seal glyph's stroke outline (as stroke data's)
+
+
+def _seal_glyphs(glyphs) -> list[dict]:
+    """The seal's glyphs as the recording keeps them ({"strokes": [SVG outline, ...]} each),
+    checked: ParameterError names what is wrong."""
+    from ...core.params import ParameterError
+    from ..outline import parse_path
+    from .seal import MAX_SEAL_CHARS
+
+    ok = isinstance(glyphs, list) and len(glyphs) <= MAX_SEAL_CHARS
+    for g in glyphs if ok else ():
+        strokes = g.get("strokes") if isinstance(g, dict) else None
+        ok = isinstance(strokes, list) and 0 < len(strokes) <= 64
+        for path in strokes if ok else ():
+            try:
+                ok = ok and isinstance(path, str) and len(path) <= MAX_SEAL_PATH
+                ok = ok and bool(parse_path(path))
+            except ValueError:
+                ok = False
+    if not ok:
+        raise ParameterError("'work.seal_glyphs' must be a list of {\"strokes\": [SVG path]}")
+    return glyphs
+
+
 class Overlay:
     """A work's grid and seal in pixels of a paper of ``width_px`` x ``height_px`` at ``ppm``
     (top row first)."""
@@ -40,7 +65,7 @@ class Overlay:
         if seal and work.get("seal_glyphs"):
             x0, y0, x1, y1 = self._px(seal["box"])
             side = x1 - x0
-            alpha = stamp(work["seal_glyphs"], seal["style"], side, seed)
+            alpha = stamp(_seal_glyphs(work["seal_glyphs"]), seal["style"], side, seed)
             n = alpha.shape[0]
             self.seal = (int(round((x0 + x1 - n) / 2)), int(round((y0 + y1 - n) / 2)), alpha)
 
