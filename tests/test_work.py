@@ -325,3 +325,28 @@ def test_a_short_text_is_one_line():
 
     assert auto_per_line(_lines("山，水"), False) == 2
     assert auto_per_line(_lines("山水日"), False) == 3
+
+
+def test_a_work_written_in_calls_is_signed_after_its_text(tiny):
+    from sim.writing.work.compose import Options, compose
+    from sim.writing.work.edit import append_text, sign_work
+    from sim.writing.work.layout import SIGNATURE, Layout, Settings
+
+    one = Options(passes=1)
+    rec, _, _ = compose(
+        "山",
+        Settings(char_mm=24.0, per_line=2, paper_mm=(150.0, 90.0)),
+        _template(),
+        char_px=40.0,
+        options=one,
+    )
+    rec, _ = append_text(rec, "水", options=one)
+    signed = sign_work(rec, "人", "永", options=one)
+    n = len(rec.samples)
+    assert np.array_equal(signed.samples[:n], rec.samples)
+    lay = Layout.from_dict(signed.extra["work"]["layout"])
+    (sig,) = [c for c in lay.cells if c.role == SIGNATURE]
+    assert sig.samples[0] == n and sig.x + sig.size < min(c.x for c in lay.cells[:2])
+    assert lay.seal["text"] == "永" and signed.extra["work"]["seal_glyphs"]
+    with pytest.raises(ValueError, match="signed"):
+        append_text(signed, "大", options=one)

@@ -25,7 +25,7 @@ from .compose import (
     work_of,
     write_cell,
 )
-from .layout import TEXT, Cell, Layout
+from .layout import TEXT, Cell, Layout, sign
 from .text import SPACE, MissingCharacters, drop, missing_characters, parse_text
 
 
@@ -183,3 +183,52 @@ def rewrite_cell(
     for c in lay.cells[index + 1 :]:
         c.samples = (c.samples[0] + shift, c.samples[1] + shift)
     return _with_layout(rec, lay, samples, dips)
+
+
+def sign_work(
+    rec: Recording,
+    signature: str,
+    seal: str = "",
+    seal_style: str = "baiwen",
+    *,
+    data=None,
+    options: Options | None = None,
+    mapper=local_map,
+    response=None,
+) -> Recording:
+    """The work signed (its signature written after its text, as ``compose`` places it) and
+    sealed; the earlier samples, dips and cells kept. A character without stroke data raises
+    MissingCharacters."""
+    from .compose import _glyphs_of
+    from .text import CHAR, Glyph
+
+    options = options or Options()
+    lay = _layout(rec)
+    signature, seal = _glyphs_of(signature), _glyphs_of(seal)
+    missing = missing_characters([[Glyph(c, CHAR) for c in signature + seal]], data)
+    if missing:
+        raise MissingCharacters(missing, data)
+    if not (signature or seal):
+        raise ParameterError("give a signature or a seal")
+    cells = sign(lay, signature, seal, seal_style)
+    template = _template(rec)
+    response = response or calibrate(template)
+    tasks = [
+        cell_task(
+            c, lay, template, response, rec.px_per_mm, options.passes, data, options.variation
+        )
+        for c in cells
+    ]
+    written = mapper(write_cell, tasks, None)
+    last = next(c for c in reversed(lay.cells) if c.samples != (0, 0) or c is lay.cells[0])
+    base = Continued(
+        rec.samples, list(rec.dips), last.load - last.used, len(lay.cells) - len(cells)
+    )
+    step = response.speed_mm_s / template.sample_rate_hz
+    samples, dips, _ = assemble(template, cells, written, step, options.dip_every, base)
+    work = {**work_of(rec), "layout": lay.to_dict()}
+    if seal:
+        from ..hanzi import lookup
+
+        work["seal_glyphs"] = [{"strokes": lookup(c, data)["strokes"]} for c in seal]
+    return replace(rec, samples=samples, dips=dips, extra={**rec.extra, WORK_KEY: work})

@@ -432,6 +432,24 @@ def _sign(lay: Layout, settings: Settings, n_rows: int, seed: int, right_edge: f
         lay.seal = {"text": settings.seal, "style": settings.seal_style, "box": list(box)}
 
 
+def sign(lay: Layout, signature: str, seal: str = "", seal_style: str = "baiwen") -> list[Cell]:
+    """Add the signature's cells (returned) and the seal after the work's text as it is now,
+    on its paper (ParameterError when they would fall off it, or the work is signed)."""
+    if lay.seal or any(c.role != TEXT for c in lay.cells):
+        raise ParameterError("the work is signed already")
+    text = lay.text_cells()
+    n_rows = max((c.line for c in text), default=0) + 1
+    inset = (lay.pitch_mm - lay.char_mm) / 2 if lay.grid != "none" else 0.0
+    box = lay.char_mm + 2 * inset
+    right = lay.origin[0] - inset + (lay.per_line - 1) * lay.pitch_mm + box  # horizontal work
+    before = len(lay.cells)
+    seed = max((c.seed for c in lay.cells), default=-1) + 1
+    settings = Settings(lay.direction, signature=signature, seal=seal, seal_style=seal_style)
+    _sign(lay, settings, n_rows, seed, right)
+    _check_on_paper(lay)
+    return lay.cells[before:]
+
+
 def paper_size(name: str, landscape: bool) -> tuple[float, float]:
     """A named paper (``PAPER_SIZES_MM``) or ``WxH`` in mm, as (width, height)."""
     key = {k.lower(): k for k in PAPER_SIZES_MM}.get(name.strip().lower())
