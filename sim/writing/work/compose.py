@@ -45,10 +45,10 @@ from .text import CHAR, Glyph, MissingCharacters, drop, missing_characters, pars
 WORK_KEY = "work"  # the recording's field that holds the work (Recording.extra)
 WORK_VERSION = 1
 # the brush is dipped before a character it would end with less than this share of a full load
-# (measured: below about a third the brush, re-formed, leaves grey strokes with flying white
-# that begin to break up; a calligrapher dips before the brush fails a character)
-LOW_INK = 0.35
-MIN_LOAD = 0.25  # with dip_every, a character starts with at least this share of a load
+# (measured on the poem: a character begun with 0.65 of a load is greyer and textured, one begun
+# with 0.55 loses its last strokes; a calligrapher dips before the brush fails a character)
+LOW_INK = 0.55
+MIN_LOAD = 0.45  # with dip_every, a character starts with at least this share of a load
 PRACTICE_DIP_MM = 1e6  # the writer practises a character on one dip (the work's are its own)
 
 
