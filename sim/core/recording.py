@@ -84,6 +84,7 @@ class Dip:
     def color_with(self, ink: InkSpec) -> tuple:
         """The colour this dip loads with the recording's resolved ``ink``."""
         return tuple(ink.color) if self.follows_ink else tuple(self.color)
+
     # a dip that starts a cell of a composed work (sim.writing.work): the brush is made new and
     # its random draws come from the stream (seed, restart) from then on, so that the cell's
     # writing depends on nothing before it (Simulation._restart); None: an ordinary dip

@@ -204,7 +204,9 @@ def assemble(template: Recording, cells, written, step_mm: float, dip_every=None
             dip = load - w.used < LOW_INK
         load = 1.0 if dip else max(load, MIN_LOAD)
         wet = float(ink.wetness) * load
-        dips.append(Dip(at, ink.depth, tuple(ink.color), wet, restart=int(cell.seed)))
+        dips.append(
+            Dip(at, ink.depth, tuple(ink.color), wet, follows_ink=True, restart=int(cell.seed))
+        )
         cell.samples, cell.load, cell.dip, cell.used = (at, at + len(s)), load, dip, w.used
         load -= w.used
         at += len(s)

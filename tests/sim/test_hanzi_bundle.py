@@ -7,15 +7,14 @@ import json
 import subprocess
 import sys
 import tarfile
-import zipfile
 
 import pytest
-from conftest import ROOT
 
 from sim.writing import bundle as bundle_mod
 from sim.writing import hanzi
 from sim.writing.bundle import Bundle, decode, encode, write_bundle
 from sim.writing.hanzi import BUNDLE, CharacterError, find_char, lookup
+from tests.paths import ROOT
 
 SHIPPED = sorted((ROOT / "data" / "hanzi").glob("*.json"))
 UNSEEN = sorted((ROOT / "tests" / "data" / "unseen").glob("*.json"))
@@ -137,14 +136,3 @@ def test_graphics_txt_is_indexed_once(tmp_path, monkeypatch):
     # one pass over the file for the index, then one read of a line per character
     assert opened.count(str(g)) == len(rows) + 1
     assert hanzi._graphics_index(g)["永"][0] == [r["character"] for r in rows].index("永") + 1
-
-
-def test_the_zip_holds_the_bundle_and_its_licence(extension_zip):
-    z = zipfile.ZipFile(extension_zip)
-    names = z.namelist()
-    for name in ("data/hanzi/hanzi-writer-data.bin", "data/hanzi/ARPHICPL.TXT"):
-        assert name in names, name
-    info = z.getinfo("data/hanzi/hanzi-writer-data.bin")
-    assert info.file_size == BUNDLE.stat().st_size
-    assert info.compress_size <= 15 * 2**20  # issue 27: at most 15 MB added to the zip
-    assert z.read("data/hanzi/hanzi-writer-data.bin") == BUNDLE.read_bytes()
