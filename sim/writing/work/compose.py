@@ -162,9 +162,13 @@ def cell_task(cell: Cell, lay: Layout, template, response, ppm, passes, data, am
 
 
 # ------------------------------------------------------------------------------ the assembly
+AIR_PACE = 6.0  # the hand between characters: steps of this many writing steps (the writer's
+# own travel between strokes takes 2; a column's end to the next one's top is half a metre)
+
+
 def _travel(a, b, step_mm: float) -> np.ndarray:
     """Samples in the air between two samples (neither included)."""
-    k = max(int(np.linalg.norm(b[:2] - a[:2]) / (2.0 * step_mm)), 4)
+    k = max(int(np.linalg.norm(b[:2] - a[:2]) / (AIR_PACE * step_mm)), 4)
     t = np.linspace(0.0, 1.0, k + 2)[1:-1, None]
     return a[None] * (1 - t) + b[None] * t
 
