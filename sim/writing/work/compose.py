@@ -35,7 +35,7 @@ from ...core.recording import PAPER_MM_RANGE, PX_PER_MM_RANGE, Dip, Recording, q
 from ...engine.simulation import Simulation
 from ..hanzi import lookup
 from ..response import Response, calibrate
-from ..writer import DEFAULT_PASSES, auto_size_mm, write_character
+from ..writer import auto_size_mm, write_character
 from . import variation as var
 from .layout import Cell, Layout, Settings, lay_out
 from .marks import mark_char
@@ -285,11 +285,13 @@ def check_sheet(width_mm: float, height_mm: float, ppm: float) -> None:
 
 
 # ---------------------------------------------------------------------------------- compose
-# practice passes a work's strokes get by default: a 20-character poem at the brush's own size is
-# 24,000 samples, and each pass simulates them again (measured on the poem: IoU with the outlines
-# 0.80 with 1 pass, 0.85 with 2, 0.88 with 4, at 1, 2 and 4.5 times the time of one); the
-# writer's own default (DEFAULT_PASSES) is the choice for the finest sheet
-WORK_PASSES = min(2, DEFAULT_PASSES)
+# practice passes a work's strokes get by default. The 20-character poem with its signature at
+# the brush's own size is 24,000 samples and each pass simulates them again: measured (CPU
+# seconds of the whole command, 256 px an em box) 82 s with 1 pass, 139 s with 2, 215 s with 4
+# - on two free cores about 45, 70 and 110 s of waiting - for an IoU with the outlines of 0.80,
+# 0.85 and 0.88 a character. At a sheet's scale one pass reads well; --passes 4 (the writer's
+# own default) makes the finest sheet.
+WORK_PASSES = 1
 
 
 class Options(NamedTuple):
