@@ -141,6 +141,16 @@ def cmd_compose(args) -> int:
     def stage(lo, hi):
         return None if quiet else (lambda f: _progress(lo + (hi - lo) * f))
 
+    # the text, signature and seal checked (every character without stroke data named) before
+    # the brush is calibrated or a cluster is reached
+    work.prepare(
+        text,
+        settings,
+        data=args.data,
+        punctuation=args.punctuation,
+        skip_missing=args.skip_missing,
+    )
+    response = _response(template)
     mapper = Mapper(workers, args.scheduler)
     try:
         rec, lay, skipped = work.compose(
@@ -153,7 +163,7 @@ def cmd_compose(args) -> int:
             options=options,
             mapper=mapper,
             progress=stage(0.0, 0.85),
-            response=_response(template),
+            response=response,
             **res,
         )
         paper, inks = work.render(rec, mapper=mapper, progress=stage(0.85, 1.0))

@@ -46,6 +46,7 @@ def inside(mask, box):
     return m
 
 
+@pytest.mark.slow
 def test_the_layout_json_holds_every_character_and_its_ink(signed):
     img, items, _, _ = signed
     assert [(i["char"], i["role"]) for i in items] == [
@@ -71,6 +72,7 @@ def test_the_layout_json_holds_every_character_and_its_ink(signed):
     assert sig[2] <= da[0] + 2 and (sig[2] - sig[0]) < (da[2] - da[0])  # smaller, left of it
 
 
+@pytest.mark.slow
 def test_the_saved_recording_renders_the_same_sheet_bit_for_bit(signed, tmp_path):
     img, _, rec, _ = signed
     again = tmp_path / "again.png"
@@ -86,6 +88,7 @@ def _reddish(img):
     return (a[..., 0] - a[..., 1] > 25) & (a[..., 0] - a[..., 2] > 25)
 
 
+@pytest.mark.slow
 def test_the_grid_is_printed_faintly_in_red_under_each_cell(signed):
     from sim.core.recording import load
     from sim.writing.work.layout import Layout
@@ -109,6 +112,7 @@ def test_the_grid_is_printed_faintly_in_red_under_each_cell(signed):
     assert faint.size and faint.min(axis=1).min() > 90  # faint: never as dark as ink
 
 
+@pytest.mark.slow
 def test_the_seal_is_red_square_and_unevenly_printed(signed):
     img, items, _, _ = signed
     x0, y0, x1, y1 = items[-1]["box"]
@@ -122,6 +126,7 @@ def test_the_seal_is_red_square_and_unevenly_printed(signed):
     assert patch[red][:, 0].std() > 4  # not a flat red: the paste lies unevenly
 
 
+@pytest.mark.slow
 def test_a_horizontal_work_keeps_its_marks_and_reads_in_rows(tmp_path):
     img, items, _, _ = compose(
         tmp_path, "h", "山，水", "--layout", "horizontal", "--punctuation", "keep"
@@ -137,7 +142,13 @@ def test_a_horizontal_work_keeps_its_marks_and_reads_in_rows(tmp_path):
     assert not _reddish(img).any()  # no grid, no seal
 
 
-def test_characters_without_stroke_data_are_named_in_one_message(tmp_path, capsys):
+def test_characters_without_stroke_data_are_named_in_one_message(tmp_path, capsys, monkeypatch):
+    import sim.writing.response
+
+    def no_calibration(*a, **k):
+        raise AssertionError("the brush was calibrated before the text was checked")
+
+    monkeypatch.setattr(sim.writing.response, "calibrate", no_calibration)
     out = tmp_path / "x.png"
     rc = main(["compose", "山A水😀x，", "-o", str(out), *SMALL])
     err = capsys.readouterr().err
@@ -150,6 +161,7 @@ def test_characters_without_stroke_data_are_named_in_one_message(tmp_path, capsy
     assert "'，'" not in err  # punctuation is left out, not missing
 
 
+@pytest.mark.slow
 def test_skip_missing_leaves_them_out_and_says_so(tmp_path, capsys):
     _, items, _, _ = compose(tmp_path, "s", "A一", "--skip-missing")
     assert [i["char"] for i in items] == ["一"]
@@ -182,6 +194,7 @@ def test_a_work_on_a_dask_cluster_is_the_same_sheet(tmp_path):
     assert np.array_equal(read_png(tmp_path / "dask.png"), here)
 
 
+@pytest.mark.slow
 def test_a_damaged_work_in_a_recording_is_one_clear_message(signed, tmp_path, capsys):
     _, _, rec, _ = signed
     for bad in (

@@ -24,6 +24,7 @@ def _two_strokes(press_first: float):
     return rec, len(a)
 
 
+@pytest.mark.slow
 def test_a_restarting_dip_makes_what_follows_independent_of_what_came_before():
     (r1, n1), (r2, _) = _two_strokes(6.0), _two_strokes(12.0)
     p1, p2 = Simulation(r1).run().paper, Simulation(r2).run().paper
@@ -182,6 +183,7 @@ def tiny():
     return rec, lay
 
 
+@pytest.mark.slow
 def test_cells_rendered_side_by_side_in_processes_equal_one_run(tiny):
     from concurrent.futures import ProcessPoolExecutor
 
@@ -200,6 +202,7 @@ def test_cells_rendered_side_by_side_in_processes_equal_one_run(tiny):
     assert len(inks) == len(lay.cells) and all(ci.mask.any() for ci in inks)
 
 
+@pytest.mark.slow
 def test_one_brush_dips_first_and_when_its_ink_runs_low(tiny):
     from sim.writing.work.compose import LOW_INK, assemble
 
@@ -222,6 +225,7 @@ def test_one_brush_dips_first_and_when_its_ink_runs_low(tiny):
     assert cells[1].load == pytest.approx(0.6) and cells[3].load == pytest.approx(0.6)
 
 
+@pytest.mark.slow
 def test_a_character_written_twice_is_not_a_copy(tiny):
     rec, lay = tiny
     one, _, again = lay.cells[:3]
@@ -232,6 +236,7 @@ def test_a_character_written_twice_is_not_a_copy(tiny):
     assert len(a) != len(b) or not np.allclose(a, b, atol=0.05)
 
 
+@pytest.mark.slow
 def test_the_layout_items_hold_each_characters_ink(tiny):
     from sim.writing.work.compose import layout_items, render
 
@@ -256,6 +261,7 @@ def test_the_layout_items_hold_each_characters_ink(tiny):
         assert img_rows.min() >= y0 and img_rows.max() < y1, item
 
 
+@pytest.mark.slow
 def test_text_appended_goes_on_after_the_last_character_on_the_same_paper(tiny):
     from sim.writing.work.compose import Options, compose, render
     from sim.writing.work.edit import append_text
@@ -301,6 +307,7 @@ def _owned(paper, rec, which):
     return out
 
 
+@pytest.mark.slow
 def test_one_cell_written_again_leaves_the_others_untouched(tiny):
     from sim.writing.work.compose import Options, render
     from sim.writing.work.edit import rewrite_cell
@@ -327,6 +334,7 @@ def test_a_short_text_is_one_line():
     assert auto_per_line(_lines("山水日"), False) == 3
 
 
+@pytest.mark.slow
 def test_a_work_written_in_calls_is_signed_after_its_text(tiny):
     from sim.writing.work.compose import Options, compose
     from sim.writing.work.edit import append_text, sign_work
