@@ -134,7 +134,7 @@ def find_char(spec: str, data=None) -> dict:
     char = lookup(spec, data)
     if char is None:
         where = f"{data} nor in the bundled set" if data else "the bundled set"
-        raise CharacterError(f"no stroke data for {spec!r} in {where}")
+        raise CharacterError(f"no data for {spec!r} in {where}")
     return char
 
 

@@ -116,7 +116,7 @@ def test_the_users_data_wins_over_the_bundle(tmp_path):
     assert find_char("永", g) == {"character": "永", **mine}
     assert find_char("山", g) == source(ROOT / "data" / "hanzi" / "山.json")
     assert lookup("A", g) is None and lookup("😀") is None
-    with pytest.raises(CharacterError, match="no stroke data for 'A'"):
+    with pytest.raises(CharacterError, match="no data for 'A'"):
         find_char("A", folder)
     with pytest.raises(CharacterError, match="does not exist"):
         find_char("永", tmp_path / "nowhere")
