@@ -80,15 +80,14 @@ class Dip:
     color: tuple = (0.0, 0.0, 0.0)
     wetness: float = InkSpec.wetness
     follows_ink: bool = False
-
-    def color_with(self, ink: InkSpec) -> tuple:
-        """The colour this dip loads with the recording's resolved ``ink``."""
-        return tuple(ink.color) if self.follows_ink else tuple(self.color)
-
     # a dip that starts a cell of a composed work (sim.writing.work): the brush is made new and
     # its random draws come from the stream (seed, restart) from then on, so that the cell's
     # writing depends on nothing before it (Simulation._restart); None: an ordinary dip
     restart: int | None = None
+
+    def color_with(self, ink: InkSpec) -> tuple:
+        """The colour this dip loads with the recording's resolved ``ink``."""
+        return tuple(ink.color) if self.follows_ink else tuple(self.color)
 
     def to_dict(self):
         d = {
