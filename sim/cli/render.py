@@ -13,9 +13,11 @@ def cmd_render(args) -> int:
     from ..core.recording import load
     from ..engine.simulation import Simulation
     from ..image.png import write_png
+    from ..writing.work.compose import check_work, image8
 
     _writable(args.output)
     rec = load(args.recording)
+    check_work(rec)  # a work's layout and seal, before any simulation
     if args.px_per_mm is not None:
         from ..core.recording import from_dict
 
@@ -28,7 +30,7 @@ def cmd_render(args) -> int:
     check_room(w * h * RENDER_BYTES_PER_PIXEL, f"a paper of {w} x {h} px")
     t0 = time.perf_counter()
     sim = Simulation(rec).run(progress=None if args.quiet else _progress)
-    write_png(args.output, sim.image8())
+    write_png(args.output, image8(sim.paper, rec))  # a work's grid and seal with the ink
     if not args.quiet:
         dt = time.perf_counter() - t0
         print(

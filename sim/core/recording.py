@@ -44,6 +44,7 @@ PAPER_MM_RANGE = (1.0, 5000.0)  # a side of the paper
 PX_PER_MM_RANGE = (0.1, 200.0)
 MAX_DIPS = 10_000  # a dip before every stroke of a long artwork, with room to spare
 MAX_SEED = 2**64 - 1  # PCG64 takes any non-negative integer; a recording keeps 64 bits
+MAX_RESTART = 2**32 - 1  # a restarting dip's stream number (Dip.restart)
 Z_LIMIT_MM = 1000.0
 ANGLE_LIMIT_DEG = 89.0
 # the rotation about the handle may wind on (a twisting stroke baked from keyframes); a bound
@@ -82,6 +83,10 @@ class Dip:
     color: tuple = (0.0, 0.0, 0.0)
     wetness: float = InkSpec.wetness
     follows_ink: bool = False
+    # a dip that starts a cell of a composed work (sim.writing.work): the brush is made new and
+    # its random draws come from the stream (seed, restart) from then on, so that the cell's
+    # writing depends on nothing before it (Simulation._restart); None: an ordinary dip
+    restart: int | None = None
 
     def color_with(self, ink: InkSpec) -> tuple:
         """The colour this dip loads with the recording's resolved ``ink``."""
@@ -96,6 +101,8 @@ class Dip:
         }
         if self.follows_ink:  # left out otherwise: older recordings' text stays as it was
             d["follows_ink"] = True
+        if self.restart is not None:
+            d["restart"] = self.restart
         return d
 
 
@@ -382,7 +389,10 @@ def _dips(d: dict, n_samples: int) -> list:
         follows = dp.get("follows_ink", False)
         if not isinstance(follows, bool):
             raise RecordingError(f"'{where}.follows_ink' must be true or false")
-        dips.append(Dip(bs, depth, col, wet, follows))
+        restart = dp.get("restart")
+        if restart is not None:
+            restart = _num(restart, f"'{where}.restart'", 0, MAX_RESTART, integer=True)
+        dips.append(Dip(bs, depth, col, wet, follows, restart))
     dips.sort(key=lambda x: x.before_sample)
     return dips
 
