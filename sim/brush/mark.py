@@ -57,8 +57,6 @@ _CASES = {
 # contour (measured up to 1.7 mm); a mark whose inside pixels touch the end of a span is then
 # scanned again over the cut's whole bounding box (see fill_marks)
 SPAN_MARGIN_PX = 2.0
-# a segment part this near a scanline (besides the chord error) bounds the scanline's span
-SPAN_NEAR_PX = 0.5
 # span pixels evaluated together (all primitives' marks at once, in groups of about this many)
 BATCH_PIXELS = 1 << 17
 
@@ -131,18 +129,18 @@ def slice_grid(X) -> np.ndarray:
     return slice_grids(X[None])[0]
 
 
-def _scanline_spans(xy, owner, ppm, win, margin_px, near_px):
+def _scanline_spans(xy, owner, ppm, win, margin_px):
     """Pixel columns [lo, hi) of every pixel row of every window that can lie inside a cut.
 
     A section's boundary is its cur_u, so every inside point of a scanline has cur_u on both
     sides of it on that scanline: the pixels outside the x range of the parts of the segments
-    that come near the scanline are outside (the margins cover the grid's chords against the
-    true surface). A segment part is near when it lies within ``near_px`` of the scanline
-    (then it is widened by ``margin_px``); a row that no segment comes that near (the top and
-    bottom of a cut) takes the parts within ``margin_px`` instead. All windows at once: ``xy``
-    (M, 2, 2) segments, ``owner`` (M,) their window, ``win`` (k, 4) windows (iy0, ix0, h, w),
-    ``margin_px`` and ``near_px`` (k,). Returns lo, hi over the windows' rows stacked in
-    window order."""
+    within ``margin_px`` of the scanline, widened by ``margin_px``, are outside (the margin
+    covers the grid's chords against the true surface, and a section that reaches a little past
+    the grid's contour where it grazes the paper). (Taking only the segments that cross the
+    scanline missed, where a bent, split primitive grazed the paper, a run of inside pixels
+    that the contour of the next rows reached.) All windows at once: ``xy`` (M, 2, 2)
+    segments, ``owner`` (M,) their window, ``win`` (k, 4) windows (iy0, ix0, h, w),
+    ``margin_px`` (k,). Returns lo, hi over the windows' rows stacked in window order."""
     m = (margin_px / ppm)[owner]
     x0, y0, x1, y1 = xy[:, 0, 0], xy[:, 0, 1], xy[:, 1, 0], xy[:, 1, 1]
     ylo = np.minimum(y0, y1) - m
@@ -163,26 +161,15 @@ def _scanline_spans(xy, owner, ppm, win, margin_px, near_px):
     total = int(h.sum())
     flat = dy == 0
     ddy = np.where(flat, 1.0, dy)
-    ends = []
-    for band in (ms, (near_px / ppm)[owner][seg]):
-        # the part of the segment within the band around the scanline, widened by the margin
-        ta = np.where(flat, 0.0, (yc - band - sy0) / ddy)
-        tb = np.where(flat, 1.0, (yc + band - sy0) / ddy)
-        t0, t1 = np.minimum(ta, tb), np.maximum(ta, tb)
-        xa, xb = sx0 + np.clip(t0, 0.0, 1.0) * dx, sx0 + np.clip(t1, 0.0, 1.0) * dx
-        xlo, xhi, rows = np.minimum(xa, xb) - ms, np.maximum(xa, xb) + ms, row
-        if ends:  # the near band: only segments that reach it
-            near = (t0 <= 1.0) & (t1 >= 0.0) & (~flat | (np.abs(sy0 - yc) <= band))
-            xlo, xhi, rows = xlo[near], xhi[near], row[near]
-        lo_mm = np.full(total, np.inf)
-        hi_mm = np.full(total, -np.inf)
-        np.minimum.at(lo_mm, rows, xlo)
-        np.maximum.at(hi_mm, rows, xhi)
-        ends.append((lo_mm, hi_mm))
-    (lo_w, hi_w), (lo_n, hi_n) = ends
-    close = np.isfinite(lo_n)
-    lo_mm = np.where(close, lo_n, lo_w)
-    hi_mm = np.where(close, hi_n, hi_w)
+    # the part of the segment within the margin around the scanline, widened by the margin
+    ta = np.where(flat, 0.0, (yc - ms - sy0) / ddy)
+    tb = np.where(flat, 1.0, (yc + ms - sy0) / ddy)
+    t0, t1 = np.minimum(ta, tb), np.maximum(ta, tb)
+    xa, xb = sx0 + np.clip(t0, 0.0, 1.0) * dx, sx0 + np.clip(t1, 0.0, 1.0) * dx
+    lo_mm = np.full(total, np.inf)
+    hi_mm = np.full(total, -np.inf)
+    np.minimum.at(lo_mm, row, np.minimum(xa, xb) - ms)
+    np.maximum.at(hi_mm, row, np.maximum(xa, xb) + ms)
     seen = np.isfinite(lo_mm)
     wx0 = np.repeat(ix0, h)
     ww = np.repeat(w, h)
@@ -324,7 +311,7 @@ def fill_marks(cuts: list[Cut | None], ppm: float) -> list[list[Mark]]:
         rows = SurfaceRows._make(
             np.concatenate(parts) for parts in zip(*(c.rows for c in real), strict=True)
         )
-    lo, hi = _scanline_spans(xy, seg_win, ppm, win, SPAN_MARGIN_PX + chord, SPAN_NEAR_PX + chord)
+    lo, hi = _scanline_spans(xy, seg_win, ppm, win, SPAN_MARGIN_PX + chord)
     pixels, edge = _marks_ink_batched(prims, win, lo, hi, ppm, rows)
     redo = np.nonzero(edge)[0]
     if redo.size:  # the solid reaches past a span: scan those cuts' whole bounding boxes
