@@ -79,12 +79,13 @@ class Mark:
     cols: np.ndarray  # (P,)
     wet: np.ndarray  # (P,) wetness of the brush at tau (Eq. 23)
     col: np.ndarray  # (P, 3) ink density of the brush at tau (Eq. 23)
-    lateral: np.ndarray  # (P,) position across the primitive's major axis, [-1, 1]
+    lateral: np.ndarray  # (P,) across the major axis, [-1, 1] (bristles.across: mm off the path)
     depth: np.ndarray  # (P,) Eq. 23's f = |tau - V^| / |V - V^|: 0 on the axis, 1 at the surface
     shape: tuple  # window (h, w)
     segments: np.ndarray  # (M, 2, 2) the intersection curve cur_u, mm
     area_bbox: float  # S_i: area of the section's bounding box (mm^2), Eq. 10
     height: float  # hei_i: distance from the section to the tip line's midpoint (mm)
+    skip: np.ndarray | None = None  # (P,) no ink this step (Eq. 27, set by bristles.lay)
 
 
 def slice_grids(X):
@@ -209,6 +210,21 @@ class Cut:
     segments: list  # (M_i, 2, 2) cur_u of each cut
     area: np.ndarray  # (k,) S_i
     height: np.ndarray  # (k,) hei_i
+    centre: np.ndarray  # (k, 2) mm: the middle of each cut's bounding box
+    extent: np.ndarray  # (k, 2) mm: each cut's bounding box's width and height
+
+    def contact(self):
+        """The middle of the hair's contact with the paper (mm): the cuts' middles, weighted
+        by their S_i."""
+        w = np.maximum(self.area, 1e-12)
+        return (self.centre * w[:, None]).sum(axis=0) / w.sum()
+
+    def widths(self, m: int, across) -> np.ndarray:
+        """Every primitive's contact width (mm) along the unit vector ``across`` (its bounding
+        box's extent that way; 0 for those off the paper)."""
+        out = np.zeros(m)
+        out[self.prims] = self.extent @ np.abs(np.asarray(across, dtype=float))
+        return out
 
     def sizes(self, m: int):
         """S_i and hei_i of all m primitives (0 for those off the paper)."""
@@ -286,6 +302,8 @@ def cut_marks(brush, sec, ink_rows, ppm: float, paper_shape) -> Cut | None:
         segments=np.split(xy_sorted, np.cumsum(cnt[cuts])[:-1]),
         area=area,
         height=height,
+        centre=centroid[:, :2],
+        extent=np.stack([xmax - xmin, ymax - ymin], axis=1),
     )
 
 
@@ -545,6 +563,7 @@ class SectionSolve(NamedTuple):
 
     lam: np.ndarray  # (E,) position between rows j and j + 1
     p: np.ndarray  # (E,)
+    q: np.ndarray  # (E,)
     f2: np.ndarray  # (E,) p^2 + q^2: inside the section where <= 1
 
 
@@ -590,6 +609,9 @@ def _marks_ink(prims, win, lo, hi, ppm, rows: SurfaceRows) -> WindowsInk:
     cols = ent.cols[ok]
     inkp = rows.ink[prims, rows_k.j0 : rows_k.j1]
     wet, col = _pixel_ink(inkp, rows_k, sc, ent, slab, n_ok, sol.lam[ok], cols, ppm)
+    col *= _cover(rows_k, slab, n_ok, sol.lam[ok], sol.p[ok], sol.q[ok], ppm).astype(np.float32)[
+        :, None
+    ]
     lateral = np.clip(sol.p[ok], -1.0, 1.0)
     depth = np.sqrt(sol.f2[ok])
     rws = sc.row[ent.entry_scan[ok]]
@@ -794,7 +816,7 @@ def _section_solve(iq: IntervalQuadratics, count, x) -> SectionSolve:
     det = uu * vv - uv * uv
     p = (du * vv - dv * uv) / det
     q = (dv * uu - du * uv) / det
-    return SectionSolve(lam=lam, p=p, f2=p * p + q * q)
+    return SectionSolve(lam=lam, p=p, q=q, f2=p * p + q * q)
 
 
 def _span_edges(sc: Scanlines, ent: Entries, inside, win_w, k: int) -> np.ndarray:
@@ -855,11 +877,49 @@ def _pixel_ink(inkp, rk: ContactRows, sc: Scanlines, ent: Entries, slab, n_ok, l
     c_fac = _factor(o, (*f["cr"], *f["cv"]))
     wet = at[INK_FIELDS["wet"].start] * w_fac
     np.maximum(wet, 0.0, out=wet)
+
     col = np.empty((len(lam), 3), dtype=np.float32)
     for ch in range(3):
         np.multiply(at[INK_FIELDS["col"].start + ch], c_fac, out=col[:, ch])
     np.clip(col, 0.0, 1.0, out=col)
     return wet, col
+
+
+def _cover(rk: ContactRows, slab, n_ok, lam, p, q, ppm) -> np.ndarray:
+    """``section_cover`` of the inked pixels, from their sections' semi-axes between the rows
+    of their slabs (per interval, repeated over its inked pixels)."""
+    U0, V0 = (a[:, :-1].reshape(-1, 3)[slab] for a in (rk.U, rk.V))
+    dU, dV = (np.diff(a, axis=1).reshape(-1, 3)[slab] for a in (rk.U, rk.V))
+    L = lam[:, None]
+    U = np.repeat(U0, n_ok, axis=0) + L * np.repeat(dU, n_ok, axis=0)
+    V = np.repeat(V0, n_ok, axis=0) + L * np.repeat(dV, n_ok, axis=0)
+    return section_cover(U, V, p, q, ppm)
+
+
+def section_cover(U, V, p, q, ppm: float) -> np.ndarray:
+    """Model addition: the share of an inked pixel the section covers, from where it lies in
+    its section, tau - V^ = p U + q V (U, V the section's semi-axes, (P, 3)). The paper is the
+    horizontal line h of the section plane through tau; along it the section ends at the
+    nearest t with |(p, q) + t (alpha, beta)| = 1 (h = alpha U + beta V): the pixel is half
+    covered where that end passes its centre, wholly a pixel further in. Eq. 23's colour of the
+    pixel is scaled by it (a pixel partly under the hair takes part of its colour), so the edge
+    a section leaves is as smooth as the section, not the staircase of the pixel centres it
+    holds. The section parallel to the paper (no horizontal line) takes h along U."""
+    N = np.cross(U, V)
+    n = np.hypot(N[:, 0], N[:, 1])
+    along_u = n <= 1e-9 * np.maximum(np.einsum("ij,ij->i", U, U), 1e-12)
+    un = np.maximum(np.hypot(U[:, 0], U[:, 1]), 1e-12)
+    hx = np.where(along_u, U[:, 0] / un, N[:, 1] / np.where(along_u, 1.0, n))
+    hy = np.where(along_u, U[:, 1] / un, -N[:, 0] / np.where(along_u, 1.0, n))
+    uu = np.maximum(np.einsum("ij,ij->i", U, U), 1e-12)
+    vv = np.maximum(np.einsum("ij,ij->i", V, V), 1e-12)
+    alpha = (hx * U[:, 0] + hy * U[:, 1]) / uu
+    beta = (hx * V[:, 0] + hy * V[:, 1]) / vv
+    a = np.maximum(alpha * alpha + beta * beta, 1e-12)
+    b = p * alpha + q * beta
+    c = p * p + q * q - 1.0
+    inward = (np.sqrt(np.maximum(b * b - a * c, 0.0)) - np.abs(b)) / a  # mm to the nearer end
+    return np.clip(0.5 + inward * ppm, 0.0, 1.0)
 
 
 def _factor(o, coef):
