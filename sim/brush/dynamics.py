@@ -28,8 +28,8 @@ CAP_RATE = 12.0  # 1/s, ink drawn along a primitive's axis to drier key points (
 MAX_FLATNESS = 5.0  # bound on a/b of the middle control ellipse
 WET_FACTOR_MAX = 20.0  # bound on n / sum(wet) in Eq. 10 (a dry brush would give infinity)
 SLIP = 0.3  # share of the way hair held on the paper slides after the brush each step
-SPEND = 0.002  # per mm^2: the ink fresh paper takes from the hair that passes (lose_wetness)
-SOAK = 0.002  # per mm^2 s: the ink the paper under the hair goes on taking (lose_wetness)
+SPEND = 0.003  # per mm^2: the ink fresh paper takes from the hair that passes (lose_wetness)
+SOAK = 0.003  # per mm^2 s: the ink the paper under the hair goes on taking (lose_wetness)
 
 
 def move(brush, pose6, vel6, dt: float):

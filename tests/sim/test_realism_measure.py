@@ -2,12 +2,16 @@
 """The realism measure (sim.fitting.realism, issue 26 point 5): its image tools against
 scipy's, and its answers on images whose structure is known - a flat glyph, the same glyph
 with streaks along and across its strokes, with isotropic pixel noise, with specks around it,
-with its tone changing along the strokes."""
+with its tone changing along the strokes - and on a font against the brush's own writing of a
+character the engine was not tuned on."""
+
+import json
 
 import numpy as np
 import pytest
 
 from sim.fitting import realism as R
+from tests.paths import ROOT
 
 PAPER = np.array([0.95, 0.93, 0.87])
 INK = np.array([0.03, 0.03, 0.04])
@@ -133,3 +137,22 @@ def test_the_measure_reads_a_character_the_same_at_any_resolution():
 def test_an_empty_image_is_refused():
     with pytest.raises(ValueError, match="no ink"):
         R.realism(np.ones((50, 50, 3)))
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("name", ["口", "王"])
+def test_the_brushs_writing_beats_the_flat_font_of_an_unseen_character(name):
+    from sim.core.recording import Recording
+    from sim.writing.outline import rasterise
+    from sim.writing.writer import write_character
+
+    ch = json.loads((ROOT / "tests" / "data" / "unseen" / f"{name}.json").read_text("utf-8"))
+    n = 256
+    font = rasterise(ch, 4 * n).reshape(n, 4, n, 4).mean(axis=(1, 3))
+    template = Recording(np.zeros((1, 6)))
+    _, _, sim = write_character(ch, n, template)
+    brush = R.realism(sim.image())
+    flat = R.realism(rgb(font))
+    assert flat.score < 0.05
+    assert brush.score > flat.score + 0.05
+    assert brush.tone > 2 * flat.tone and brush.specks < 0.5  # tone at stroke scale, no spray
