@@ -57,8 +57,6 @@ _CASES = {
 # contour (measured up to 1.7 mm); a mark whose inside pixels touch the end of a span is then
 # scanned again over the cut's whole bounding box (see fill_marks)
 SPAN_MARGIN_PX = 2.0
-# a segment part this near a scanline (besides the chord error) bounds the scanline's span
-SPAN_NEAR_PX = 0.5
 # span pixels evaluated together (all primitives' marks at once, in groups of about this many)
 BATCH_PIXELS = 1 << 17
 
@@ -81,12 +79,13 @@ class Mark:
     cols: np.ndarray  # (P,)
     wet: np.ndarray  # (P,) wetness of the brush at tau (Eq. 23)
     col: np.ndarray  # (P, 3) ink density of the brush at tau (Eq. 23)
-    lateral: np.ndarray  # (P,) position across the primitive's major axis, [-1, 1]
+    lateral: np.ndarray  # (P,) across the major axis, [-1, 1] (bristles.across: mm off the path)
     depth: np.ndarray  # (P,) Eq. 23's f = |tau - V^| / |V - V^|: 0 on the axis, 1 at the surface
     shape: tuple  # window (h, w)
     segments: np.ndarray  # (M, 2, 2) the intersection curve cur_u, mm
     area_bbox: float  # S_i: area of the section's bounding box (mm^2), Eq. 10
     height: float  # hei_i: distance from the section to the tip line's midpoint (mm)
+    skip: np.ndarray | None = None  # (P,) no ink this step (Eq. 27, set by bristles.lay)
 
 
 def slice_grids(X):
@@ -131,18 +130,18 @@ def slice_grid(X) -> np.ndarray:
     return slice_grids(X[None])[0]
 
 
-def _scanline_spans(xy, owner, ppm, win, margin_px, near_px):
+def _scanline_spans(xy, owner, ppm, win, margin_px):
     """Pixel columns [lo, hi) of every pixel row of every window that can lie inside a cut.
 
     A section's boundary is its cur_u, so every inside point of a scanline has cur_u on both
     sides of it on that scanline: the pixels outside the x range of the parts of the segments
-    that come near the scanline are outside (the margins cover the grid's chords against the
-    true surface). A segment part is near when it lies within ``near_px`` of the scanline
-    (then it is widened by ``margin_px``); a row that no segment comes that near (the top and
-    bottom of a cut) takes the parts within ``margin_px`` instead. All windows at once: ``xy``
-    (M, 2, 2) segments, ``owner`` (M,) their window, ``win`` (k, 4) windows (iy0, ix0, h, w),
-    ``margin_px`` and ``near_px`` (k,). Returns lo, hi over the windows' rows stacked in
-    window order."""
+    within ``margin_px`` of the scanline, widened by ``margin_px``, are outside (the margin
+    covers the grid's chords against the true surface, and a section that reaches a little past
+    the grid's contour where it grazes the paper). (Taking only the segments that cross the
+    scanline missed, where a bent, split primitive grazed the paper, a run of inside pixels
+    that the contour of the next rows reached.) All windows at once: ``xy`` (M, 2, 2)
+    segments, ``owner`` (M,) their window, ``win`` (k, 4) windows (iy0, ix0, h, w),
+    ``margin_px`` (k,). Returns lo, hi over the windows' rows stacked in window order."""
     m = (margin_px / ppm)[owner]
     x0, y0, x1, y1 = xy[:, 0, 0], xy[:, 0, 1], xy[:, 1, 0], xy[:, 1, 1]
     ylo = np.minimum(y0, y1) - m
@@ -163,26 +162,15 @@ def _scanline_spans(xy, owner, ppm, win, margin_px, near_px):
     total = int(h.sum())
     flat = dy == 0
     ddy = np.where(flat, 1.0, dy)
-    ends = []
-    for band in (ms, (near_px / ppm)[owner][seg]):
-        # the part of the segment within the band around the scanline, widened by the margin
-        ta = np.where(flat, 0.0, (yc - band - sy0) / ddy)
-        tb = np.where(flat, 1.0, (yc + band - sy0) / ddy)
-        t0, t1 = np.minimum(ta, tb), np.maximum(ta, tb)
-        xa, xb = sx0 + np.clip(t0, 0.0, 1.0) * dx, sx0 + np.clip(t1, 0.0, 1.0) * dx
-        xlo, xhi, rows = np.minimum(xa, xb) - ms, np.maximum(xa, xb) + ms, row
-        if ends:  # the near band: only segments that reach it
-            near = (t0 <= 1.0) & (t1 >= 0.0) & (~flat | (np.abs(sy0 - yc) <= band))
-            xlo, xhi, rows = xlo[near], xhi[near], row[near]
-        lo_mm = np.full(total, np.inf)
-        hi_mm = np.full(total, -np.inf)
-        np.minimum.at(lo_mm, rows, xlo)
-        np.maximum.at(hi_mm, rows, xhi)
-        ends.append((lo_mm, hi_mm))
-    (lo_w, hi_w), (lo_n, hi_n) = ends
-    close = np.isfinite(lo_n)
-    lo_mm = np.where(close, lo_n, lo_w)
-    hi_mm = np.where(close, hi_n, hi_w)
+    # the part of the segment within the margin around the scanline, widened by the margin
+    ta = np.where(flat, 0.0, (yc - ms - sy0) / ddy)
+    tb = np.where(flat, 1.0, (yc + ms - sy0) / ddy)
+    t0, t1 = np.minimum(ta, tb), np.maximum(ta, tb)
+    xa, xb = sx0 + np.clip(t0, 0.0, 1.0) * dx, sx0 + np.clip(t1, 0.0, 1.0) * dx
+    lo_mm = np.full(total, np.inf)
+    hi_mm = np.full(total, -np.inf)
+    np.minimum.at(lo_mm, row, np.minimum(xa, xb) - ms)
+    np.maximum.at(hi_mm, row, np.maximum(xa, xb) + ms)
     seen = np.isfinite(lo_mm)
     wx0 = np.repeat(ix0, h)
     ww = np.repeat(w, h)
@@ -222,6 +210,21 @@ class Cut:
     segments: list  # (M_i, 2, 2) cur_u of each cut
     area: np.ndarray  # (k,) S_i
     height: np.ndarray  # (k,) hei_i
+    centre: np.ndarray  # (k, 2) mm: the middle of each cut's bounding box
+    extent: np.ndarray  # (k, 2) mm: each cut's bounding box's width and height
+
+    def contact(self):
+        """The middle of the hair's contact with the paper (mm): the cuts' middles, weighted
+        by their S_i."""
+        w = np.maximum(self.area, 1e-12)
+        return (self.centre * w[:, None]).sum(axis=0) / w.sum()
+
+    def widths(self, m: int, across) -> np.ndarray:
+        """Every primitive's contact width (mm) along the unit vector ``across`` (its bounding
+        box's extent that way; 0 for those off the paper)."""
+        out = np.zeros(m)
+        out[self.prims] = self.extent @ np.abs(np.asarray(across, dtype=float))
+        return out
 
     def sizes(self, m: int):
         """S_i and hei_i of all m primitives (0 for those off the paper)."""
@@ -299,6 +302,8 @@ def cut_marks(brush, sec, ink_rows, ppm: float, paper_shape) -> Cut | None:
         segments=np.split(xy_sorted, np.cumsum(cnt[cuts])[:-1]),
         area=area,
         height=height,
+        centre=centroid[:, :2],
+        extent=np.stack([xmax - xmin, ymax - ymin], axis=1),
     )
 
 
@@ -324,7 +329,7 @@ def fill_marks(cuts: list[Cut | None], ppm: float) -> list[list[Mark]]:
         rows = SurfaceRows._make(
             np.concatenate(parts) for parts in zip(*(c.rows for c in real), strict=True)
         )
-    lo, hi = _scanline_spans(xy, seg_win, ppm, win, SPAN_MARGIN_PX + chord, SPAN_NEAR_PX + chord)
+    lo, hi = _scanline_spans(xy, seg_win, ppm, win, SPAN_MARGIN_PX + chord)
     pixels, edge = _marks_ink_batched(prims, win, lo, hi, ppm, rows)
     redo = np.nonzero(edge)[0]
     if redo.size:  # the solid reaches past a span: scan those cuts' whole bounding boxes
@@ -558,6 +563,7 @@ class SectionSolve(NamedTuple):
 
     lam: np.ndarray  # (E,) position between rows j and j + 1
     p: np.ndarray  # (E,)
+    q: np.ndarray  # (E,)
     f2: np.ndarray  # (E,) p^2 + q^2: inside the section where <= 1
 
 
@@ -603,6 +609,9 @@ def _marks_ink(prims, win, lo, hi, ppm, rows: SurfaceRows) -> WindowsInk:
     cols = ent.cols[ok]
     inkp = rows.ink[prims, rows_k.j0 : rows_k.j1]
     wet, col = _pixel_ink(inkp, rows_k, sc, ent, slab, n_ok, sol.lam[ok], cols, ppm)
+    col *= _cover(rows_k, slab, n_ok, sol.lam[ok], sol.p[ok], sol.q[ok], ppm).astype(np.float32)[
+        :, None
+    ]
     lateral = np.clip(sol.p[ok], -1.0, 1.0)
     depth = np.sqrt(sol.f2[ok])
     rws = sc.row[ent.entry_scan[ok]]
@@ -807,7 +816,7 @@ def _section_solve(iq: IntervalQuadratics, count, x) -> SectionSolve:
     det = uu * vv - uv * uv
     p = (du * vv - dv * uv) / det
     q = (dv * uu - du * uv) / det
-    return SectionSolve(lam=lam, p=p, f2=p * p + q * q)
+    return SectionSolve(lam=lam, p=p, q=q, f2=p * p + q * q)
 
 
 def _span_edges(sc: Scanlines, ent: Entries, inside, win_w, k: int) -> np.ndarray:
@@ -868,11 +877,49 @@ def _pixel_ink(inkp, rk: ContactRows, sc: Scanlines, ent: Entries, slab, n_ok, l
     c_fac = _factor(o, (*f["cr"], *f["cv"]))
     wet = at[INK_FIELDS["wet"].start] * w_fac
     np.maximum(wet, 0.0, out=wet)
+
     col = np.empty((len(lam), 3), dtype=np.float32)
     for ch in range(3):
         np.multiply(at[INK_FIELDS["col"].start + ch], c_fac, out=col[:, ch])
     np.clip(col, 0.0, 1.0, out=col)
     return wet, col
+
+
+def _cover(rk: ContactRows, slab, n_ok, lam, p, q, ppm) -> np.ndarray:
+    """``section_cover`` of the inked pixels, from their sections' semi-axes between the rows
+    of their slabs (per interval, repeated over its inked pixels)."""
+    U0, V0 = (a[:, :-1].reshape(-1, 3)[slab] for a in (rk.U, rk.V))
+    dU, dV = (np.diff(a, axis=1).reshape(-1, 3)[slab] for a in (rk.U, rk.V))
+    L = lam[:, None]
+    U = np.repeat(U0, n_ok, axis=0) + L * np.repeat(dU, n_ok, axis=0)
+    V = np.repeat(V0, n_ok, axis=0) + L * np.repeat(dV, n_ok, axis=0)
+    return section_cover(U, V, p, q, ppm)
+
+
+def section_cover(U, V, p, q, ppm: float) -> np.ndarray:
+    """Model addition: the share of an inked pixel the section covers, from where it lies in
+    its section, tau - V^ = p U + q V (U, V the section's semi-axes, (P, 3)). The paper is the
+    horizontal line h of the section plane through tau; along it the section ends at the
+    nearest t with |(p, q) + t (alpha, beta)| = 1 (h = alpha U + beta V): the pixel is half
+    covered where that end passes its centre, wholly a pixel further in. Eq. 23's colour of the
+    pixel is scaled by it (a pixel partly under the hair takes part of its colour), so the edge
+    a section leaves is as smooth as the section, not the staircase of the pixel centres it
+    holds. The section parallel to the paper (no horizontal line) takes h along U."""
+    N = np.cross(U, V)
+    n = np.hypot(N[:, 0], N[:, 1])
+    along_u = n <= 1e-9 * np.maximum(np.einsum("ij,ij->i", U, U), 1e-12)
+    un = np.maximum(np.hypot(U[:, 0], U[:, 1]), 1e-12)
+    hx = np.where(along_u, U[:, 0] / un, N[:, 1] / np.where(along_u, 1.0, n))
+    hy = np.where(along_u, U[:, 1] / un, -N[:, 0] / np.where(along_u, 1.0, n))
+    uu = np.maximum(np.einsum("ij,ij->i", U, U), 1e-12)
+    vv = np.maximum(np.einsum("ij,ij->i", V, V), 1e-12)
+    alpha = (hx * U[:, 0] + hy * U[:, 1]) / uu
+    beta = (hx * V[:, 0] + hy * V[:, 1]) / vv
+    a = np.maximum(alpha * alpha + beta * beta, 1e-12)
+    b = p * alpha + q * beta
+    c = p * p + q * q - 1.0
+    inward = (np.sqrt(np.maximum(b * b - a * c, 0.0)) - np.abs(b)) / a  # mm to the nearer end
+    return np.clip(0.5 + inward * ppm, 0.0, 1.0)
 
 
 def _factor(o, coef):

@@ -51,10 +51,10 @@ from ..core.nurbs import (
     surface_control_net,
 )
 from ..core.params import BrushGeometry, InkSpec, QualityParams
-from . import dynamics
+from . import bristles, dynamics
 from . import ink as brush_ink
 from . import state as brush_state
-from .state import HAIR_BINS
+from .bristles import draw as draw_bundles
 
 __all__ = ["HairyBrush", "Sections", "angles_from_matrix", "rotation_matrix"]
 MAX_PRIMITIVES = 32  # the split stops adding primitives here (Sec. 5.5)
@@ -98,6 +98,7 @@ class HairyBrush:
         self.R = np.eye(3)
         self.state = "initial"  # Sec. 3.3: initial -> dipping -> working
         self.travel = np.array([1.0, 0.0])  # last horizontal direction of motion
+        self.trail = bristles.new_trail()  # the contact's recent path on the paper (bristles)
         self.splits = 0
         self.max_primitives = MAX_PRIMITIVES
         self._free_state(1)
@@ -114,7 +115,8 @@ class HairyBrush:
         self.b = np.full(m, d if b is None else b)
         self.loc = np.full(m, g.belly_loc)
         self.eori = np.tile([0.0, 1.0, 0.0], (m, 1))  # minor axis orientation, brush frame
-        self.hair_u = self.rng.random((m, HAIR_BINS))
+        for name, value in draw_bundles(self.rng, m).items():  # hair bundles (bristles)
+            setattr(self, name, value)
         ang = self.rng.random(m) * 2 * np.pi
         self.lay = np.stack([np.cos(ang), np.sin(ang)], axis=1)
 
@@ -268,9 +270,16 @@ class HairyBrush:
         """Ink wicks along the axis toward drier key points (module doc)."""
         dynamics.capillary(self, dt)
 
-    def redraw_streaks(self):
-        """Hair bundles whose dryness draw (Eq. 27) changes this step."""
-        dynamics.redraw_streaks(self)
+    def follow(self, contact_xy):
+        """The hair's contact with the paper is at ``contact_xy`` (mm): its path, the trail
+        the hair bundles are drawn along (``bristles``), begins anew where the hair comes
+        down on the paper (no primitive touched it the step before)."""
+        fresh = not self.touching.any()
+        self.trail = bristles.extend_trail(self.trail, contact_xy, fresh)
+
+    def step_bundles(self, speed, dt):
+        """The hair bundles' dry-brush draws and gaps after this step (``bristles``)."""
+        bristles.step(self, speed, dt)
 
     # ------------------------------------------------------------------ snapshots
     def snapshot(self) -> dict:

@@ -16,6 +16,12 @@ Glossary of the paper's symbols used as field names:
   share of it; ``eori`` its minor axis's direction in the brush frame (Eq. 6).
 - ``tiplen``: the length of the tip control line (len, Sec. 5.4).
 - ``stress``, ``gamma``: inner stress str and pressure (Eq. 10, 12).
+- ``contact``: S_i of the last step, the area of the section's cut by the paper (Eq. 10), and
+  ``sweep`` the fresh paper it passes over a second (its width across the motion times the
+  speed): what the paper takes ink from (Eq. 15 with the ink the paper takes).
+- ``hair_u``, ``bundle``, ``edge``, ``gap``: the primitive's hair bundles (``bristles``, a
+  model addition): dry-brush draws (Eq. 27), ink shares, boundaries and dry gaps; ``moist``
+  the wetness they feel on the paper.
 """
 
 from __future__ import annotations
@@ -24,9 +30,10 @@ from typing import NamedTuple
 
 import numpy as np
 
+CONTACT_EPS = 1e-6  # mm: a key point this close to psi is on the paper
+BUNDLES = 20  # hair bundles across a primitive's section (``bristles``)
 KEY = "key point"  # a field of every key point: (m, n, *shape)
 PRIMITIVE = "primitive"  # a field of every primitive: (m, *shape)
-HAIR_BINS = 48  # hair bundles across a primitive for the dry-brush draw (Eq. 27)
 
 
 class Field(NamedTuple):
@@ -56,14 +63,21 @@ FIELDS = (
     Field("tiplen", PRIMITIVE),
     Field("gamma", PRIMITIVE),
     Field("stress", PRIMITIVE),
-    Field("hair_u", PRIMITIVE, (HAIR_BINS,)),  # each hair bundle's draw for Eq. 27
+    Field("contact", PRIMITIVE),
+    Field("sweep", PRIMITIVE),
+    Field("hair_u", PRIMITIVE, (BUNDLES,)),  # each hair bundle's draw for Eq. 27 (bristles)
+    Field("bundle", PRIMITIVE, (BUNDLES,), fill=1.0),  # each bundle's share of the ink
+    Field("edge", PRIMITIVE, (BUNDLES - 1,)),  # where the bundles meet across the section
+    Field("gap", PRIMITIVE, (BUNDLES,)),  # the share of each bundle's width that lays no ink
+    Field("moist", PRIMITIVE),  # the wetness of the hair on the paper as the bundles feel it
     Field("lay", PRIMITIVE, (2,)),  # where a vertical brush at rest lays its hair
     Field("active", PRIMITIVE, dtype=int, fill=-1),  # the active point, -1 for none (Eq. 13)
     Field("touching", PRIMITIVE, dtype=bool, fill=False),  # the section reaches the paper
 )
 INK = tuple(f for f in FIELDS if f.ink)
-# the whole brush's pose, kept with the fields in snapshots
-POSE = ("travel", "B", "R")
+# the whole brush's pose, kept with the fields in snapshots (``trail``: the recent path of the
+# hair's contact with the paper, ``bristles``)
+POSE = ("travel", "B", "R", "trail")
 
 
 def _width(f: Field) -> int:

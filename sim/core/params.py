@@ -80,6 +80,9 @@ BRUSH_QUALITY = ("e", "tre", "nu", "re", "ie", "ren", "eta")
 PAPER_QUALITY = ("sm", "ab", "pw", "dry")
 
 HOVER_MM = 5.0  # how high the brush base hovers above touching height between strokes
+# The paper's per-time-slice updates (Sec. 5.2.2, Eq. 15, 16, 26) are applied at this reference
+# rate and scaled by dt * REF_RATE otherwise, so a gesture leaves the same artwork at any rate.
+REF_RATE = 30.0  # time slices per second
 MAX_PAPER_SIDE_PX = 8192
 MAX_PAPER_PIXELS = 8192 * 8192
 PAPER_CAPACITY_RANGE = (1e-3, 1e6)  # a preset's wetness capacity
@@ -203,7 +206,7 @@ class PaperSpec:
 
     color: tuple = (1.0, 1.0, 1.0)
     capacity: float = 1.0
-    fibre: float = 0.0  # the fibres' resistance to thin ink, 0..1 (model addition, paper_fibre)
+    fibre: float = 0.0  # how much the grain shows in thin ink, 0..1 (model addition, paper_grain)
 
 
 @dataclass(frozen=True)

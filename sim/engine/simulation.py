@@ -10,6 +10,7 @@ from typing import NamedTuple
 
 import numpy as np
 
+from ..brush import bristles
 from ..brush.inertia import InertiaPredictor
 from ..brush.mark import cut_marks, fill_marks
 from ..brush.primitive import HairyBrush
@@ -27,8 +28,7 @@ class PendingDeposit(NamedTuple):
     """A sample the brush has made and the paper has not taken yet (see ``run``)."""
 
     cut: object  # the solid's cut by the paper (sim.brush.mark.Cut), None when it does not touch
-    gamma: np.ndarray  # each primitive's dryness then (Eq. 27)
-    hair_u: np.ndarray  # each primitive's hair bundles' dry-brush draws then (Eq. 27)
+    bristles: bristles.BristleState  # the hair bundles then (pressure, draws, ink shares)
     step: int  # the sample's number, from 1, as the paper counts steps
 
 
@@ -123,18 +123,22 @@ class Simulation:
         cut = cut_marks(b, sec, b.rows_ink(sec), self.paper.ppm, shape)
         t0 = self._tick("cut", t0)
         area, height = cut.sizes(b.m) if cut is not None else (np.zeros(b.m), np.zeros(b.m))
+        if cut is not None:
+            b.follow(cut.contact())  # the path the hair bundles are drawn along (bristles)
         speed = float(np.linalg.norm(vel[:3]))
         b.update_stress(area, height, speed, self.dt)  # Eq. 10-12
+        across = np.array([-b.travel[1], b.travel[0]])
+        b.sweep = (cut.widths(b.m, across) if cut is not None else np.zeros(b.m)) * speed
         if cut is not None and b.state == "dipping":
             b.state = "working"
         # what the deposit of this sample needs, as it is now (Eq. 24-27)
-        self._pending.append(PendingDeposit(cut, b.gamma.copy(), b.hair_u.copy(), i + 1))
+        self._pending.append(PendingDeposit(cut, bristles.state(b, speed), i + 1))
         b.lose_wetness(self.dt)  # Eq. 15
         b.adjust_ellipse(vel, self.dt)  # Eq. 16, 17
         b.split()  # Eq. 18, 19
         b.ink_flow()  # Eq. 20
         b.capillary(self.dt)
-        b.redraw_streaks()
+        b.step_bundles(speed, self.dt)
         self.index += 1
         self._tick("brush", t0)
 
@@ -159,14 +163,18 @@ class Simulation:
         t0 = self._tick("mark pixels", t0)
         for p, marks in zip(self._pending, marks_per_step, strict=True):
             if self.surface is None:
-                self.paper.deposit(marks, p.gamma, p.hair_u, self.q, self.dt, p.step)  # Eq. 24-27
+                marks = bristles.across(marks, p.bristles, self.paper.ppm)
+                marks = bristles.lay(marks, p.bristles, self.paper.ppm)  # the hair bundles (Eq. 27)
+                self.paper.deposit(marks, self.q, self.dt, p.step)  # Eq. 24-27
                 self.last_marks = marks
                 continue
             t1 = time.perf_counter()
+            marks = bristles.across(marks, p.bristles, self.paper.ppm)  # on the chart
             groups = self.surface.splat(marks, p.step - 1) or [[]]  # texels under the marks
             self._tick("surface splat", t1)
+            groups = [bristles.lay(group, p.bristles, self.paper.ppm) for group in groups]
             for group in groups:  # far apart in the texture (a seam): a window each
-                self.paper.deposit(group, p.gamma, p.hair_u, self.q, self.dt, p.step)
+                self.paper.deposit(group, self.q, self.dt, p.step)
             self.last_marks = [mk for group in groups for mk in group]
         self._pending = []
         self._tick("paper", t0)

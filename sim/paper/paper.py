@@ -1,7 +1,8 @@
 # SPDX-License-Identifier: GPL-3.0-or-later
 """The virtual paper psi (Sec. 6): per-pixel wetness and ink, absorption and drying (Eq. 24),
 saturation spreading to the eight neighbours (Eq. 25) and colour with the stochastic dry-brush
-weight (Eq. 26, 27).
+weight (Eq. 26, 27; the draw of Eq. 27 is the brush's hair bundles', ``sim.brush.bristles``,
+given with each mark as its ``skip``).
 
 Buffers are float32, stored bottom row first (as Blender stores images). Ink is kept as density
 (0 = the paper's own colour, as Eq. 7 takes colour code 0 for the paper); the visible colour is
@@ -62,7 +63,7 @@ class Paper:
         self.last = np.zeros((self.H, self.W), dtype=np.int32)
         self.step = 0
         self.dry_per_step = float(dry_per_step)  # Eq. 24's "- dry", per sample
-        self.fibre = float(fibre)  # the fibres' resistance to thin ink (paper_fibre), 0: none
+        self.fibre = float(fibre)  # how much the grain slows thin ink (paper_grain), 0: not
         # saturation spreads one pixel ring per pass: passes scale with resolution so that the
         # halo has the same size in millimetres at any px_per_mm
         self.sat_passes = max(1, int(round(self.ppm / 4.0)))
@@ -126,8 +127,9 @@ class Paper:
     def shape(self):
         return (self.H, self.W)
 
-    def deposit(self, marks, gamma, hair_u, q, dt: float, step: int):
-        """Apply this step's marks (one per touching primitive), Eq. 24-27."""
+    def deposit(self, marks, q, dt: float, step: int):
+        """Apply this step's marks (one per touching primitive), Eq. 24-27. A mark's ``skip``
+        (Eq. 27, drawn by the brush's hair bundles) marks the pixels that take no ink."""
         self.step = step
         marks = [mk for mk in marks if mk.rows.size]
         if not marks:
@@ -150,11 +152,13 @@ class Paper:
         wet_tau = np.concatenate([mk.wet for mk in marks]).astype(np.float32, copy=False)
         col = np.concatenate([mk.col for mk in marks]).astype(np.float32, copy=False)
         col = col.reshape(-1).view(_RGB)
-        skip = _dry_brush(marks, gamma, hair_u, q)
-        if self.fibre > 0:  # model addition: thin ink is refused by the fibres (fibre_refuses)
-            skip |= self.fibre_refuses(marks, wet_tau, full)
-        # the sheet's grain (model addition, see paper_grain)
-        grain = (1.0 - GRAIN_DEPTH * paper_grain(full, self.grain_seed)).astype(np.float32)
+        skip = np.concatenate(
+            [mk.skip if mk.skip is not None else np.zeros(mk.rows.size, bool) for mk in marks]
+        )
+        # the liquid the hair offers, as the sheet's grain lets it take it (model addition,
+        # paper_grain): some pixels take a little more of it, some a little less
+        grain = paper_grain(full, self.grain_seed) - 0.5
+        offer = wet_tau * (1.0 - GRAIN_DEPTH * self.fibre * grain).astype(np.float32)
         rank, visits = _visit_ranks(locs, hw * ww)
         dried = (visits > 0).reshape(hw, ww)
         bounds = [0, loc.size]
@@ -163,7 +167,7 @@ class Paper:
             perm = np.argsort(rank, kind="stable")
             bounds = np.r_[0, np.cumsum(np.bincount(rank, minlength=top + 1))].tolist()
             loc, full, wet_tau, skip = loc[perm], full[perm], wet_tau[perm], skip[perm]
-            grain = grain[perm]
+            offer = offer[perm]
             col = np.take(col, perm)
         col = col.view(np.float32).reshape(-1, 3)
         wf = w.reshape(-1)
@@ -177,36 +181,18 @@ class Paper:
             new = ab * lam + (1 - ab) * wet_tau[sel]
             new = np.maximum(new - np.where(k == 0, drystep, 0), 0.0)
             np.put(wf, li, new)
-            cr = np.where(skip[sel], 0.0, np.minimum(new, 1.0) * grain[sel]).astype(np.float32)
+            # Eq. 26-27 (model change, see FULL_WET): where the hair bundle lays ink (Cr not
+            # 0) the pixel takes the colour the liquid offered to it can hold, and keeps the
+            # darker of that and what it had (pigment laid is not taken back)
+            held = -np.expm1(-offer[sel] / FULL_WET)
+            held = np.where(skip[sel], 0.0, held).astype(np.float32)
             old = np.take(inkv, fi).view(np.float32).reshape(-1, 3)
-            # Eq. 26 (Cr with the grain): cr col_tau + (1 - cr) col_old, as old + cr (col_tau - old)
-            old += cr[:, None] * (col[sel] - old)
+            np.maximum(old, col[sel] * held[:, None], out=old)
             np.put(inkv, fi, old.reshape(-1).view(_RGB))
         w = np.where(dried, w, np.maximum(w - drystep, 0.0))
         self._saturate_window(w, ink)
         wet[...] = w
         last[...] = step
-
-    def fibre_refuses(self, marks, wet_tau, full) -> np.ndarray:
-        """Model addition (not in the paper): where a pixel at a mark's fringe takes no ink this
-        visit because the ink offered there is thinner than the sheet's fibre resists. The
-        offer is the brush's wetness at the pixel (Eq. 23) times the hair's density there,
-        which thins over the outer HAIR_FRINGE of a section (Eq. 23's f, ``Mark.depth``): at
-        the fringe only the pixels whose fibres resist little take ink - the same pixels visit
-        after visit, since the fibres are the sheet's - so the edge is fibrous, the more so the
-        drier the brush. Under the section's full hair every pixel takes ink: a dry brush's
-        white inside the stroke is Eq. 27's, in streaks along the hair."""
-        depth = np.concatenate([mk.depth for mk in marks])
-        hair = np.clip((1.0 - depth) / HAIR_FRINGE, 0.0, 1.0)
-        offer = np.minimum(wet_tau, 1.0) * hair
-        # the field lies in [0, 1): only a fringe pixel offered less than ``fibre`` can be
-        # refused, so the field is read there alone
-        out = np.zeros(offer.shape, dtype=bool)
-        maybe = np.flatnonzero((hair < 1.0) & (offer < self.fibre))
-        rows, cols = np.divmod(full[maybe], self.W)
-        field = paper_fibre(rows, cols, self.ppm, self.grain_seed)
-        out[maybe] = offer[maybe] < self.fibre * field
-        return out
 
     def _window(self, marks) -> tuple[int, int, int, int]:
         """(y0, y1, x0, x1): the marks' pixels and the reach of saturation around them."""
@@ -291,17 +277,31 @@ class Paper:
         self.step = snap["step"]
 
 
-GRAIN_DEPTH = 0.5  # share of the ink a pixel's grain can refuse per visit (model addition)
+# Model change to Eq. 26 (not in the paper). The paper moves a pixel's colour toward the brush's
+# by Cr = wet' (the pixel's wetness of Eq. 24) per time slice: a pixel under the hair for a few
+# slices takes the ink's full colour whatever the load (every stroke as black as the ink), and
+# how many slices it gets depends on the sample rate and on where the step's mark happened to
+# end (bands across the stroke, a step apart, where the hair passes only a few times). Here a
+# pixel takes, at once, the colour the liquid offered to it can hold - the ink's colour times
+# 1 - exp(-offer / FULL_WET): more liquid, more pigment, saturating - and keeps the darker of
+# that and what it had (pigment laid is not taken back). The offer is the hair bundle's
+# (``sim.brush.bristles.lay``: Eq. 23's wetness times the bundle's share of the ink, more where
+# the hair lingers): a brush just dipped (offer about 1) lays 98% of the ink's colour, a brush
+# run low (offer 0.3) about 70% of it, a pause or a pressed turn pools darker, and Eq. 27's
+# Cr = 0 (the bundle's gap) leaves the pixel as it is. Eq. 24 still gives the pixel's wetness
+# (drying, and saturation, Eq. 25).
+FULL_WET = 0.25
+GRAIN_DEPTH = 0.25  # the grain changes the offer a pixel takes by up to +- GRAIN_DEPTH fibre / 2
 
 
 def paper_grain(index, seed: int = 0) -> np.ndarray:
     """Model addition (not in the paper): the sheet's grain, a fixed value in [0, 1) per pixel
     (a hash of the pixel's index in the sheet, so the same pixel has the same grain in every
     step, in a snapshot and in a replay; no generator is drawn, so the brush's draws are
-    unchanged). A pixel where the grain is high takes less of each visit's colour (Eq. 26's
-    Cr scaled by 1 - GRAIN_DEPTH * grain): inside a stroke, where the hair passes many times,
-    the ink still builds up to the brush's colour, unevenly; at the edge, where it passes once
-    or twice, some pixels stay pale - a ragged, fibrous edge and uneven tone on any paper."""
+    unchanged). A pixel where the grain is high takes a little less of the liquid the hair
+    offers, one where it is low a little more (times 1 - GRAIN_DEPTH fibre (grain - 1/2),
+    ``fibre`` the sheet's): where the hair is loaded every pixel still takes the ink's colour;
+    where it offers little (a dry or fast stroke) the grain shows in the grey."""
     # the seed picks the sheet (the recording's seed: the one seeded generator's, so the same
     # recording and seed give the same sheet, another seed another one)
     offset = (0x9E3779B97F4A7C15 + int(seed) * 0xD1B54A32D192ED03) % 2**64
@@ -310,48 +310,6 @@ def paper_grain(index, seed: int = 0) -> np.ndarray:
     x = (x ^ (x >> np.uint64(27))) * np.uint64(0x94D049BB133111EB)
     x = (x ^ (x >> np.uint64(31))).reshape(np.shape(index))
     return (x >> np.uint64(40)).astype(np.float64) / float(1 << 24)
-
-
-HAIR_FRINGE = 0.3  # outer share of a section's radius over which its hair thins (model addition)
-FIBRE_MM = 0.3  # spacing of the sheet's fibre field (model addition, paper_fibre)
-
-
-def paper_fibre(rows, cols, px_per_mm: float, seed: int = 0) -> np.ndarray:
-    """Model addition (not in the paper): the sheet's fibre, how much each pixel resists thin
-    ink, in [0, 1): half a field that varies smoothly over FIBRE_MM (bundles of fibres; value
-    noise on a lattice fixed in millimetres, so the same in millimetres at any px/mm), half
-    the pixel's own grain. Fixed per sheet like ``paper_grain`` (a hash, no generator drawn)."""
-    cell = FIBRE_MM * float(px_per_mm)
-    u = (np.asarray(cols, dtype=np.float64) + 0.5) / cell
-    v = (np.asarray(rows, dtype=np.float64) + 0.5) / cell
-    i, j = np.floor(u), np.floor(v)
-    fu, fv = u - i, v - j
-    fu, fv = fu * fu * (3 - 2 * fu), fv * fv * (3 - 2 * fv)
-    i, j = i.astype(np.int64) + 1, j.astype(np.int64) + 1
-    lattice_seed = int(seed) + 0x5EED
-
-    def at(a, b):
-        return paper_grain(b * (1 << 24) + a, lattice_seed)
-
-    low = at(i, j) * (1 - fu) + at(i + 1, j) * fu
-    high = at(i, j + 1) * (1 - fu) + at(i + 1, j + 1) * fu
-    smooth = low * (1 - fv) + high * fv
-    own = paper_grain(np.asarray(rows, dtype=np.int64) * (1 << 24) + cols, int(seed) + 0xF1B)
-    return 0.5 * smooth + 0.5 * own
-
-
-def _dry_brush(marks, gamma, hair_u, q) -> np.ndarray:
-    """Eq. 27 for every mark pixel: True where the colour ratio Cr is 0 (no ink is laid), with
-    probability min(ren * ab * gamma, 1) (gamma: how dry the primitive's hair is). The draw is
-    made per hair bundle across the primitive (its marginal probability is exactly Eq. 27's), so
-    dry pixels line up into the streaks of "flying white"."""
-    sizes = [mk.rows.size for mk in marks]
-    prim = np.repeat([mk.primitive for mk in marks], sizes)
-    p0 = np.minimum(q.ren * q.ab * np.asarray(gamma, dtype=float), 1.0)
-    hb = hair_u.shape[1]
-    lateral = np.concatenate([mk.lateral for mk in marks])
-    bundle = np.clip(((lateral + 1.0) * 0.5 * hb).astype(np.int64), 0, hb - 1)
-    return np.take(hair_u, prim * hb + bundle) < np.take(p0, prim)
 
 
 def _visit_ranks(locs, size: int) -> tuple[np.ndarray, np.ndarray]:

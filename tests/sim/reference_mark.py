@@ -4,7 +4,7 @@ row of the surface): the reference the fast ``sim.mark`` must agree with."""
 
 import numpy as np
 
-from sim.brush.mark import Mark, slice_grid
+from sim.brush.mark import Mark, section_cover, slice_grid
 from sim.brush.state import ink_field
 
 
@@ -61,7 +61,7 @@ def reference_marks(brush, sec, ink_rows, ppm: float, paper_shape) -> list[Mark]
             axis=1,
         )
         inside, wet, col, lateral, depth = _pixel_ink(
-            P, i, rows_c, rows_U, rows_V, rows_T, Zmin, ink_rows
+            P, i, rows_c, rows_U, rows_V, rows_T, Zmin, ink_rows, ppm
         )
         pr, pc = gy.ravel()[inside], gx.ravel()[inside]
         px = dict(rows=pr, cols=pc, wet=wet, col=col, lateral=lateral, depth=depth)
@@ -69,7 +69,7 @@ def reference_marks(brush, sec, ink_rows, ppm: float, paper_shape) -> list[Mark]
     return marks
 
 
-def _pixel_ink(P, i, rows_c, rows_U, rows_V, rows_T, Zmin, ink):
+def _pixel_ink(P, i, rows_c, rows_U, rows_V, rows_T, Zmin, ink, ppm):
     """Which of the pixels P (N, 3) on psi lie inside primitive i's solid, and their ink
     (Eq. 21-23). A pixel lies in the section plane through it between two rows of the surface
     where its signed distance to the rows' planes changes sign; that distance is affine in the
@@ -114,9 +114,9 @@ def _pixel_ink(P, i, rows_c, rows_U, rows_V, rows_T, Zmin, ink):
     n_idx, best, f = n_all[inside], best[inside], f[inside]
     lam_b = lam[n_idx, best]
     offset = d[n_idx, best]
-    lateral = np.clip(p[n_idx, best], -1.0, 1.0)
     ka = cand[n_idx, best]
     kb = ka + 1
+    lateral = np.clip(p[n_idx, best], -1.0, 1.0)
 
     def at_axis(field):  # Eq. 21 along the axis, between the two rows around V^
         fa, fb = field[ka], field[kb]
@@ -135,4 +135,6 @@ def _pixel_ink(P, i, rows_c, rows_U, rows_V, rows_T, Zmin, ink):
     col_v = col_a * (1.0 + dist_v * cr + np.sum(ov * cv, axis=1))[:, None]
     wet = (1.0 - f) * wet_a + f * wet_v  # Eq. 23
     col = (1.0 - f)[:, None] * col_a + f[:, None] * col_v
-    return inside, np.clip(wet, 0.0, None), np.clip(col, 0.0, 1.0), lateral, f
+    # the share of the pixel the section covers (model addition, sim.brush.mark.section_cover)
+    cover = section_cover(Uu[n_idx, best], Vv[n_idx, best], p[n_idx, best], q[n_idx, best], ppm)
+    return inside, np.clip(wet, 0.0, None), np.clip(col, 0.0, 1.0) * cover[:, None], lateral, f

@@ -6,13 +6,14 @@ deposit to a Paper: ``types.MethodType(reference_deposit, paper)``."""
 
 import numpy as np
 
-from sim.paper.paper import GRAIN_DEPTH, HAIR_FRINGE, paper_fibre, paper_grain
+from sim.paper.paper import FULL_WET, GRAIN_DEPTH, paper_grain
 
 _NEIGHBOURS = [(-1, -1), (-1, 0), (-1, 1), (0, -1), (0, 1), (1, -1), (1, 0), (1, 1)]
 
 
-def reference_deposit(self, marks, gamma, hair_u, q, dt: float, step: int, saturate=None):
-    """Apply this step's marks (one per touching primitive), Eq. 24-27."""
+def reference_deposit(self, marks, q, dt: float, step: int, saturate=None):
+    """Apply this step's marks (one per touching primitive), Eq. 24-27 (a mark's ``skip``:
+    Eq. 27's Cr = 0, drawn by the brush's hair bundles)."""
     saturate = saturate or reference_saturate
     self.step = step
     marks = [mk for mk in marks if mk.rows.size]
@@ -42,26 +43,17 @@ def reference_deposit(self, marks, gamma, hair_u, q, dt: float, step: int, satur
         new = np.maximum(new - np.where(first, drystep, 0), 0.0)
         dried[r, c] = True
         w[r, c] = new
-        # Eq. 27: Cr = 0 with probability min(ren * ab * gamma, 1), else wet_lambda; the draw
-        # is made per hair bundle across the primitive (its marginal probability is exactly
-        # Eq. 27's), so that dry pixels line up into the streaks of "flying white"
-        p0 = min(q.ren * q.ab * float(gamma[mk.primitive]), 1.0)
-        hb = hair_u.shape[1]
-        b = np.clip(((mk.lateral + 1.0) * 0.5 * hb).astype(np.int64), 0, hb - 1)
-        skip = hair_u[mk.primitive, b] < p0
-        # model addition: thin ink refused by the sheet's fibre (sim.paper.Paper.fibre_refuses)
-        if self.fibre > 0:
-            hair = np.clip((1.0 - mk.depth) / HAIR_FRINGE, 0.0, 1.0)
-            offer = np.minimum(mk.wet.astype(np.float32), 1.0) * hair
-            thin = offer < self.fibre * paper_fibre(r + y0, c + x0, self.ppm, self.grain_seed)
-            skip |= (hair < 1.0) & thin  # at the fringe only
-        # model addition: the sheet's grain scales Cr (sim.paper.paper_grain)
-        grain = 1.0 - GRAIN_DEPTH * paper_grain((r + y0) * self.W + (c + x0), self.grain_seed)
-        cr = np.minimum(new, 1.0).astype(np.float32) * grain.astype(np.float32)
-        cr = np.where(skip, 0.0, cr).astype(np.float32)
-        old = ink[r, c]
-        # Eq. 26: cr col_tau + (1 - cr) col_old, as old + cr (col_tau - old)
-        ink[r, c] = old + cr[:, None] * (mk.col.astype(np.float32) - old)
+        # Eq. 26-27 as sim.paper.paper changes them: where the bundle lays ink, the pixel takes
+        # the colour the liquid offered to it can hold (1 - exp(-offer / FULL_WET) of the
+        # brush's, the offer scaled by the sheet's grain) and keeps the darker
+        grain = paper_grain((r + y0) * self.W + (c + x0), self.grain_seed) - 0.5
+        offer = mk.wet.astype(np.float32) * (1.0 - GRAIN_DEPTH * self.fibre * grain).astype(
+            np.float32
+        )
+        held = (-np.expm1(-offer / FULL_WET)).astype(np.float32)
+        skip = mk.skip if mk.skip is not None else np.zeros(r.size, bool)
+        held = np.where(skip, 0.0, held).astype(np.float32)
+        ink[r, c] = np.maximum(ink[r, c], mk.col.astype(np.float32) * held[:, None])
     w = np.where(dried, w, np.maximum(w - drystep, 0.0))
     for _ in range(self.sat_passes):
         over = np.nonzero(w > self.capacity)

@@ -144,7 +144,7 @@ def test_batched_deposit_equals_one_mark_after_another():
     b = simulation(s, 1200, 6.0, 16)
     for sim in (a, b):
         sim.paper.dry_per_step = 0.004  # lazy drying on
-        sim.paper.fibre = 0.7  # the fibres refuse thin ink at the marks' edges
+        sim.paper.fibre = 0.7  # the sheet's grain
         sim.q = sim.brush.q = sim.brush.q.with_values({"ren": 1.0, "ab": 0.6})
     b.paper.deposit = lambda *args: reference_deposit(b.paper, *args, saturate=Paper._saturate)
     overlap = 0

@@ -5,12 +5,10 @@ outcomes (not on timings)."""
 import numpy as np
 import pytest
 
-import sim.paper.paper
 from sim.core.recording import Dip, Recording
 from sim.engine.simulation import Simulation
 from sim.fitting.texture import texture_stats
-from sim.image.filters import perimeter
-from sim.paper.paper import GRAIN_DEPTH, paper_grain
+from sim.paper.paper import paper_grain
 from sim.writing.strokes import stroke
 
 
@@ -38,23 +36,20 @@ def _fibre_stroke(fibre: float, wetness: float = 0.9):
     return Simulation(rec).run()
 
 
-def _stroke(monkeypatch, depth: float):
-    monkeypatch.setattr(sim.paper.paper, "GRAIN_DEPTH", depth)
-    return _fibre_stroke(0.0)  # the grain alone
-
-
-def test_paper_grain_makes_the_edge_ragged_and_keeps_the_body(monkeypatch):
-    # the same stroke, seed and draws: with the grain the band's edge is longer (ragged), the
-    # ink inside less even, and the band keeps its body
-    clean = _stroke(monkeypatch, 0.0)
-    grainy = _stroke(monkeypatch, GRAIN_DEPTH)
-    m0, m1 = clean.paper.ink[..., 0] > 0.5, grainy.paper.ink[..., 0] > 0.5
-    # (1.01: the default ink's radiation, Eq. 5's cr = -0.04 since issue 16, already pales the
-    # band towards its edge, so the grain moves fewer edge pixels across the threshold)
-    assert perimeter(m1) > 1.01 * perimeter(m0)
-    assert np.count_nonzero(m1) > 0.95 * np.count_nonzero(m0)
-    t0, t1 = texture_stats(clean.image()), texture_stats(grainy.image())
-    assert t1.ragged_edge > 1.2 * t0.ragged_edge
+def test_the_grain_shows_in_a_dry_strokes_grey_more_than_in_a_loaded_ones_black():
+    # the same stroke, seed and draws: the sheet's grain (paper_grain, scaled by the paper's
+    # fibre) changes the offer a pixel takes; where the ink is thin it shows pixel to pixel,
+    # where the hair is loaded the colour saturates and it hardly does
+    rough = {}
+    for wetness in (0.9, 0.35):
+        for fibre in (0.0, 0.8):
+            ink = _fibre_stroke(fibre, wetness).paper.ink[..., 0]
+            mid = ink[1:-1, 1:-1]
+            ring = (ink[:-2, 1:-1], ink[2:, 1:-1], ink[1:-1, :-2], ink[1:-1, 2:])
+            core = (mid > 0.3) & np.logical_and.reduce([r > 0.3 for r in ring])
+            rough[wetness, fibre] = float(np.abs(mid - 0.25 * sum(ring))[core].mean())
+    added = {w: rough[w, 0.8] - rough[w, 0.0] for w in (0.9, 0.35)}
+    assert added[0.35] > 0.005 and added[0.35] > 2 * added[0.9]
 
 
 def test_qp2_stage_adds_the_texture_term():
@@ -82,52 +77,6 @@ def test_the_papers_grain_is_the_recordings_seeds_sheet():
     np.testing.assert_array_equal(a, paper_grain(idx, 0))  # the same sheet every time
     assert np.mean(a != b) > 0.99  # another seed, another sheet
     assert 0.45 < a.mean() < 0.55 and a.min() >= 0.0 and a.max() < 1.0
-
-
-def test_paper_fibre_is_fixed_smooth_in_millimetres_and_spread():
-    from sim.paper.paper import FIBRE_MM, paper_fibre
-
-    rows, cols = np.mgrid[0:200, 0:200]
-    f = paper_fibre(rows, cols, 10.0, seed=3)
-    np.testing.assert_array_equal(f, paper_fibre(rows, cols, 10.0, seed=3))
-    assert np.mean(f != paper_fibre(rows, cols, 10.0, seed=4)) > 0.99
-    assert 0.0 <= f.min() and f.max() < 1.0 and abs(f.mean() - 0.5) < 0.03
-    # half of it varies over FIBRE_MM: neighbours correlate, far pixels do not
-    near = np.corrcoef(f[:, :-1].ravel(), f[:, 1:].ravel())[0, 1]
-    step = int(4 * FIBRE_MM * 10.0)
-    far = np.corrcoef(f[:, :-step].ravel(), f[:, step:].ravel())[0, 1]
-    assert near > 0.2 and abs(far) < 0.05
-
-
-def test_fibre_makes_a_fibrous_edge_and_keeps_the_body():
-    # the same stroke, seed and draws: fibres that resist thin ink make the band's edge
-    # fibrous (longer, ragged by the texture statistic) and leave its loaded body whole
-    clean, fibrous = _fibre_stroke(0.0), _fibre_stroke(0.7)
-    m0, m1 = clean.paper.ink[..., 0] > 0.5, fibrous.paper.ink[..., 0] > 0.5
-    assert perimeter(m1) > 1.15 * perimeter(m0)
-    assert np.count_nonzero(m1) > 0.8 * np.count_nonzero(m0)
-    t0, t1 = texture_stats(clean.image()), texture_stats(fibrous.image())
-    assert t1.ragged_edge > 1.5 * t0.ragged_edge
-    # inside the band (away from its edges) the loaded brush inks every pixel
-    ys, xs = np.nonzero(m0)
-    core = m0[int(np.median(ys)) - 3 : int(np.median(ys)) + 4, xs.min() + 60 : xs.max() - 60]
-    body = m1[int(np.median(ys)) - 3 : int(np.median(ys)) + 4, xs.min() + 60 : xs.max() - 60]
-    assert core.all() and body.mean() > 0.98
-
-
-@pytest.mark.slow
-def test_a_dry_brush_frays_more_at_the_fringe_and_keeps_its_body():
-    # the fibre refuses thin ink at the fringe only: a dry brush's fringe loses more pixels to
-    # it than a loaded one's, and its body (under the full hair) keeps every pixel it had
-    # without the fibre (a dry brush's white inside the stroke is Eq. 27's, in streaks)
-    lost = {}
-    for wetness in (0.9, 0.3):
-        bare = _fibre_stroke(0.0, wetness).paper.ink[..., 0] > 0.05
-        fibrous = _fibre_stroke(0.7, wetness).paper.ink[..., 0] > 0.05
-        assert np.count_nonzero(fibrous & ~bare) == 0  # the fibre only takes ink away
-        lost[wetness] = np.count_nonzero(bare & ~fibrous)
-        assert np.count_nonzero(fibrous) > 0.6 * np.count_nonzero(bare)  # it frays, not fades
-    assert lost[0.3] > 1.2 * lost[0.9] > 0
 
 
 @pytest.mark.slow

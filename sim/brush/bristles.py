@@ -1,0 +1,242 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
+"""Hair bundles inside a writing primitive (model addition, issue 26).
+
+The paper treats a primitive's section as one cluster whose ink varies smoothly across it
+(Eq. 21-23 with the texture function, Eq. 5) and makes the dry brush's white with a draw per
+pixel (Eq. 27). A real cluster is made of bundles of hair that hold different amounts of ink,
+run dry one after the other and each draw a line along the motion. Here every primitive's
+section is divided into BUNDLES bundles of irregular width, side by side across the path the
+brush is drawn along: a pixel's bundle is set by its signed distance from the recent path of
+the middle of the hair's contact with the paper (the cut's, Sec. 6; ``across``, the brush's
+``trail``, TRAIL points TRAIL_MM apart). Hair lying on the paper is dragged along that path,
+so the same bundle passes over the same place of the stroke step after step, along a curve as
+along a line, and a dry bundle leaves a streak along the stroke, not a stipple.
+
+Each bundle has, as fields of the brush state (``state``: snapshots carry them):
+
+- ``edge``: where the bundles meet, in units of the primitive's half width a / 2 (the middle
+  control ellipse's major axis, Eq. 6, which Eq. 16 lengthens as the belly presses flat), in
+  (-1, 1); the outermost bundles take the pixels past it;
+- ``bundle``: its share of the primitive's ink, a factor on the wetness of Eq. 23; thinner
+  toward the section's sides (their hair holds less), jittered; set at a dip;
+- ``hair_u``: its dry-brush draw. Eq. 27 says a pixel takes no ink with probability
+  min(ren ab gamma, 1); a bundle goes dry when its draw is below that probability plus
+  ren FLY times its dryness: how far its wetness (its share times ``moist``, the wetness of
+  the hair on the paper, ``contact_wetness``, followed over SETTLE_S) falls short of W_DRY,
+  a threshold that rises with the brush's speed (fast hair leaves less). A loaded bundle
+  obeys Eq. 27 alone; as the ink is spent (Eq. 15 with what the paper takes,
+  ``dynamics.lose_wetness``) the bundles with the least ink and the lowest draws go dry
+  first: streaks along the stroke, first at its sides (their bundles hold less), so a dry
+  stroke's edge frays into fibres along it while a loaded one's stays crisp. The draws are
+  redrawn at REDRAW_RATE per second;
+- ``gap``: how much of its width lays no ink, in [0, 1]: it opens from the bundle's middle
+  as the bundle goes dry and closes as it takes ink again, over RAMP_S seconds, so a streak
+  of flying white begins and ends in a point, as the hair parts and closes.
+
+The liquid the hair offers the paper (the wetness of Eq. 23 times the bundle's share) grows
+as the brush slows: hair that lingers over the paper (a pause, a pressed turn) gives it more,
+up to (1 + POOL) times at rest, so the ink pools darker there (``sim.paper.Paper.deposit``;
+past the paper's capacity it spreads, Eq. 25).
+
+All draws come from the brush's one seeded generator; a split primitive's children draw
+their own (Sec. 5.5)."""
+
+from __future__ import annotations
+
+from dataclasses import replace
+from typing import NamedTuple
+
+import numpy as np
+
+from .state import BUNDLES, CONTACT_EPS
+
+WIDTH_SPREAD = 1.2  # a bundle's width is (1 + WIDTH_SPREAD u) of the smallest's
+EDGE_THIN = 0.25  # the outermost bundles hold (1 - EDGE_THIN) of the middle's ink
+LOAD_SPREAD = 0.3  # a bundle's ink share is jittered by +- LOAD_SPREAD / 2
+W_DRY = 0.28  # a bundle's wetness below which it starts to leave flying white, at rest
+V_FLY = 120.0  # mm/s: at this speed the threshold W_DRY has doubled
+FLY = 2.5  # how strongly a bundle's dryness adds to Eq. 27's probability (times ren)
+RAMP_S = 0.12  # seconds a bundle's gap takes to open or close
+
+SETTLE_S = 0.1  # seconds over which the bundles follow the wetness of the hair on the paper
+POOL = 0.5  # the hair of a brush at rest offers (1 + POOL) times the liquid of a fast one
+V_POOL = 15.0  # mm/s: the speed at which half of POOL is left
+REDRAW_RATE = 1.5  # per second: how often a bundle's dry-brush draw changes
+TRAIL = 48  # points of the contact's recent path kept (``trail``)
+TRAIL_MM = 0.25  # mm the contact moves before the trail takes a new point
+ACROSS_BLOCK = 4096  # pixels measured against the trail at once
+
+
+class BristleState(NamedTuple):
+    """What the marks of one step need of the bundles, as they were at that step."""
+
+    bundle: np.ndarray  # (m, BUNDLES) ink shares
+    gap: np.ndarray  # (m, BUNDLES) share of each bundle's width that lays no ink
+    edge: np.ndarray  # (m, BUNDLES - 1) bundle boundaries across the section
+    radius: np.ndarray  # (m,) mm: the bundles span -radius..radius across the path
+    trail: np.ndarray  # (k, 2) mm: the contact's recent path, oldest first (``across``)
+    travel: np.ndarray  # (2,) the brush's last direction of motion over the paper
+    speed: float  # mm/s, the brush's speed over the paper
+
+
+def draw(rng: np.random.Generator, m: int) -> dict:
+    """New bundles for m primitives (at a dip, and for a split's children)."""
+    widths = 1.0 + WIDTH_SPREAD * rng.random((m, BUNDLES))
+    cum = np.cumsum(widths, axis=1)
+    bounds = -1.0 + 2.0 * cum / cum[:, -1:]
+    edge = bounds[:, :-1]
+    lo = np.concatenate([np.full((m, 1), -1.0), edge], axis=1)
+    centre = 0.5 * (lo + bounds)
+    share = (1.0 - EDGE_THIN * centre**2) * (1.0 + LOAD_SPREAD * (rng.random((m, BUNDLES)) - 0.5))
+    return {
+        "edge": edge,
+        "bundle": share,
+        "hair_u": rng.random((m, BUNDLES)),
+        "gap": np.zeros((m, BUNDLES)),
+    }
+
+
+def state(brush, speed: float) -> BristleState:
+    """The bundles as they are now (copies: the brush moves on before the paper takes them)."""
+    return BristleState(
+        brush.bundle.copy(),
+        brush.gap.copy(),
+        brush.edge.copy(),
+        0.5 * brush.a,
+        brush.trail[np.isfinite(brush.trail[:, 0])],
+        brush.travel.copy(),
+        float(speed),
+    )
+
+
+def contact_wetness(brush):
+    """(on, wet_on): which key points lie on the paper (m, n) - the active point (Eq. 13), or
+    the lowest one, always - and the mean wetness of each primitive's (m,)."""
+    m = brush.m
+    act = np.where(brush.active >= 0, brush.active, np.argmin(brush.cc[..., 2], axis=1))
+    on = brush.cc[..., 2] <= CONTACT_EPS
+    on[:, 0] = False
+    on[np.arange(m), act] = True
+    return on, np.where(on, brush.wet, 0.0).sum(axis=1) / on.sum(axis=1)
+
+
+def step(brush, speed: float, dt: float):
+    """The bundles after this step: dry-brush draws redrawn at REDRAW_RATE per second, and
+    every bundle's gap opening toward 1 where the bundle is dry (Eq. 27 with its dryness) and
+    closing toward 0 where it is not, by dt / RAMP_S."""
+    chance = 1.0 - np.exp(-REDRAW_RATE * dt)
+    again = brush.rng.random(brush.hair_u.shape) < chance
+    fresh = brush.rng.random(brush.hair_u.shape)
+    brush.hair_u = np.where(again, fresh, brush.hair_u)
+    q = brush.q
+    _, wet_on = contact_wetness(brush)
+    # the hair's wetness on the paper as the bundles feel it: followed over SETTLE_S seconds
+    # (the key points on the paper change from step to step; the hair's load does not)
+    follow = 1.0 - np.exp(-dt / SETTLE_S)
+    brush.moist = np.where(brush.moist > 0, brush.moist + follow * (wet_on - brush.moist), wet_on)
+    w = brush.moist[:, None] * brush.bundle
+    dryness = np.clip(1.0 - w / (W_DRY * (1.0 + speed / V_FLY)), 0.0, 1.0)
+    p = np.minimum(q.ren * (q.ab * brush.gamma[:, None] + FLY * dryness), 1.0)
+    dry = (brush.hair_u < p) & brush.touching[:, None]
+    ramp = min(dt / RAMP_S, 1.0)
+    brush.gap = np.clip(brush.gap + np.where(dry, ramp, -ramp), 0.0, 1.0)
+
+
+def new_trail() -> np.ndarray:
+    """An empty trail: TRAIL points, infinite until the hair has touched the paper (not NaN:
+    a snapshot's copy of it compares equal)."""
+    return np.full((TRAIL, 2), np.inf)
+
+
+def extend_trail(trail, xy, fresh: bool = False) -> np.ndarray:
+    """The trail with the contact at ``xy`` (mm): a new point once it is TRAIL_MM from the
+    last, the oldest dropped; otherwise the trail as it is. ``fresh``: the hair has just come
+    down on the paper, a new path begins."""
+    if fresh:
+        trail = new_trail()
+    last = trail[-1]
+    if np.isfinite(last[0]) and np.hypot(*(np.asarray(xy) - last)) < TRAIL_MM:
+        return trail
+    return np.concatenate([trail[1:], np.asarray(xy, dtype=float)[None]], axis=0)
+
+
+def across(marks, st: BristleState, ppm: float) -> list:
+    """The marks with ``lateral`` set to every pixel's signed distance (mm) from the recent
+    path of the hair's contact with the paper, the trail: the nearest point of its polyline
+    (its ends going on straight), positive to the left of the way it went. On a surface this is
+    done on the chart's marks, before they are splatted into the texture."""
+    path = st.trail
+    if len(path) < 2:  # the stroke's first contact: the way the brush is going
+        here = path[-1] if len(path) else np.zeros(2)
+        path = np.stack([here - st.travel, here])
+    a, d = path[:-1], np.diff(path, axis=0)  # segments a + t d, t in [0, 1]
+    dd = np.maximum(np.einsum("ij,ij->i", d, d), 1e-12)
+    lo = np.zeros(len(a))
+    hi = np.ones(len(a))
+    lo[0], hi[-1] = -np.inf, np.inf  # the hair ahead of the newest point, behind the oldest
+    out = []
+    for mk in marks:
+        if not mk.rows.size:
+            out.append(mk)
+            continue
+        x = (mk.cols + mk.ix0 + 0.5) / ppm
+        y = (mk.rows + mk.iy0 + 0.5) / ppm
+        lateral = np.empty(x.size, dtype=np.float32)
+        for at in range(0, x.size, ACROSS_BLOCK):  # (pixels, segments) a block at a time
+            rx = x[at : at + ACROSS_BLOCK, None] - a[None, :, 0]
+            ry = y[at : at + ACROSS_BLOCK, None] - a[None, :, 1]
+            t = np.clip((rx * d[:, 0] + ry * d[:, 1]) / dd, lo, hi)
+            ex, ey = rx - t * d[:, 0], ry - t * d[:, 1]
+            dist2 = ex * ex + ey * ey
+            k = np.argmin(dist2, axis=1)
+            rows = np.arange(k.size)
+            side = d[k, 0] * ry[rows, k] - d[k, 1] * rx[rows, k]
+            lateral[at : at + ACROSS_BLOCK] = np.sqrt(dist2[rows, k]) * np.where(side < 0, -1, 1)
+        out.append(replace(mk, lateral=lateral))
+    return out
+
+
+def lay(marks, st: BristleState, ppm: float) -> list:
+    """The marks as the bundles lay them: each pixel's bundle (by its offset from the path,
+    ``across``), the wetness of Eq. 23 times the bundle's share (and more where the hair
+    lingers), and the share of the pixel (a pixel wide across the path) that lies outside the
+    gaps of its bundle and of the bundle next to it, so a streak's edge is smooth, not a
+    staircase of pixels: the colour of Eq. 23 is scaled by it, and ``skip`` (Eq. 27's Cr = 0)
+    marks the pixels wholly in a gap."""
+    out = []
+    pool = np.float32(1.0 + POOL * V_POOL / (V_POOL + st.speed))
+    for mk in marks:
+        if not mk.rows.size:
+            out.append(mk)
+            continue
+        i = mk.primitive
+        px = np.float32(st.radius[i] * ppm)  # pixels per unit of the bundles' coordinate
+        bounds = np.concatenate([[-1.0], st.edge[i], [1.0]]).astype(np.float32)
+        centre = 0.5 * (bounds[:-1] + bounds[1:])
+        half = 0.5 * (bounds[1:] - bounds[:-1])
+        gap = (st.gap[i] * half).astype(np.float32)  # half width of each bundle's gap
+        u = np.clip(mk.lateral / np.float32(st.radius[i]), -1.0, 1.0)
+        b = np.searchsorted(bounds[1:-1], u)
+        near = np.where(u < centre[b], b - 1, b + 1).clip(0, BUNDLES - 1)
+
+        h = np.float32(0.5) / px  # half a pixel, in the bundles' coordinate
+        own = _in_gap(u, h, centre[b], gap[b], px)
+        beside = np.where(near == b, 0.0, _in_gap(u, h, centre[near], gap[near], px))
+        share = np.clip(1.0 - own - beside, 0.0, 1.0)
+        wet = mk.wet * st.bundle[i, b].astype(np.float32)
+        out.append(
+            replace(
+                mk,
+                wet=wet * pool,
+                col=mk.col * share.astype(np.float32)[:, None],
+                skip=share <= 0.0,
+            )
+        )
+    return out
+
+
+def _in_gap(u, h, centre, gap, px):
+    """The share of the pixels [u - h, u + h] that lies in the gaps [centre - gap, centre + gap]
+    (all in the bundles' coordinate; px pixels per unit)."""
+    lo, hi = np.maximum(u - h, centre - gap), np.minimum(u + h, centre + gap)
+    return np.maximum(hi - lo, 0.0) * px
