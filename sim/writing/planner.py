@@ -215,7 +215,6 @@ def _enter_and_leave(samples, pl, body, hover, hair, step_mm, at_turn=(False, Fa
     while b < len(pl.phase) and pl.phase[b] == LIFTING:
         b += 1
     lift = np.arange(body[-1] + 1, b)
-    lift = np.flatnonzero(pl.phase[a:b] == LIFTING) + a
     t1 = pl.tangent[body[-1]]
     f = np.arange(1, len(lift) + 1) / max(len(lift), 1)
     flick = 0.0 if at_turn[1] else 0.5 * step_mm  # into a sharp turn: lift on the corner
