@@ -65,8 +65,8 @@ def measure_band(sim: Simulation, points, tangents, reach_mm: float, before=None
 
 @dataclass
 class _Window:
-    rows: np.ndarray  # (h, w) paper rows (bottom first) of the window
-    cols: np.ndarray
+    rows: slice  # paper rows (bottom first) of the window
+    cols: slice
     inside: np.ndarray  # (h, w) the stroke's outline
 
 
@@ -84,8 +84,7 @@ def _stroke_masks(char: dict, H: int, W: int) -> list[_Window]:
             ys, xs = np.array([0]), np.array([0])
         r0, r1 = max(ys.min() - 2, 0), min(ys.max() + 3, H)
         c0, c1 = max(xs.min() - 2, 0), min(xs.max() + 3, W)
-        rr, cc = np.mgrid[r0:r1, c0:c1]
-        out.append(_Window(rr, cc, m[r0:r1, c0:c1]))
+        out.append(_Window(slice(r0, r1), slice(c0, c1), m[r0:r1, c0:c1]))
     return out
 
 
@@ -118,16 +117,15 @@ def _practise(sim, a, b, body, want, step_mm, pl, reach):
     hi = pl.target[a:b].max(axis=0) + reach + 2.0
     c0, r0 = max(int(lo[0] * ppm), 0), max(int(lo[1] * ppm), 0)
     c1, r1 = min(int(hi[0] * ppm) + 1, sim.paper.W), min(int(hi[1] * ppm) + 1, sim.paper.H)
-    rr, cc = np.mgrid[r0:r1, c0:c1]
-    times, records = [], []
-    for i in range(a, b + 1):
-        lifted = i > a and pl.phase[i - 1] == LIFTING and (i == b or pl.phase[i] != LIFTING)
-        if (i - a) % RECORD_EVERY == 0 or lifted or i == b:
-            times.append(i)
-            records.append(_coverage(sim, rr, cc))
-        if i < b:
-            sim.step()
-    times, records = np.array(times), np.stack(records)
+    window = (slice(r0, r1), slice(c0, c1))
+    i = np.arange(a + 1, b)
+    lifted = (pl.phase[i - 1] == LIFTING) & (pl.phase[i] != LIFTING)
+    times = np.union1d(np.arange(a, b + 1, RECORD_EVERY), np.r_[i[lifted], b])
+    records = []
+    for t in times:
+        sim.run(until=t)  # the deposits batched up to the record (the same ink as step by step)
+        records.append(_coverage(sim, *window))
+    records = np.stack(records)
     # the brush's mark reaches a point about half its width (plus a millimetre) ahead of time
     ahead = np.ceil((want / 2.0 + 1.0) / step_mm).astype(int) + 1
     which = np.clip(np.searchsorted(times, body - ahead, side="right") - 1, 0, len(times) - 1)
