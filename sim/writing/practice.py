@@ -18,12 +18,14 @@ from .response import Response, _coverage
 
 class Pass(NamedTuple):
     """One practice pass of a stroke: how far its ink is from the outline (lower is better),
-    the press and sideways placement it was written with, and its number."""
+    the press and sideways placement it was written with, its number, and the simulation as
+    the pass left it (a snapshot; None for a pass the simulation is still at)."""
 
     error: float
     press: np.ndarray
     side: np.ndarray
     number: int
+    state: dict | None
 
 
 def measure_band(sim: Simulation, points, tangents, reach_mm: float, before=None, laid=None):
@@ -186,7 +188,8 @@ def _ceiling(pl: Plan, body, response: Response) -> np.ndarray:
 def _practise_stroke(sim, a, b, passes, fill, own, ctx) -> None:
     """Write samples a..b (one stroke) with ``fill(a, b, press, side)``; with passes > 1,
     practise it: write, read the band, correct, take it back (a snapshot), write again; the
-    pass that best fills the stroke's own outline ``own`` stays."""
+    pass that best fills the stroke's own outline ``own`` stays: the simulation goes back to
+    where that pass left it (a snapshot taken then), the recording gets its samples again."""
     pl, response, step_mm, reach = ctx
     body = np.flatnonzero(pl.phase[a:b] == WRITING) + a
     want = pl.width[body]
@@ -197,12 +200,13 @@ def _practise_stroke(sim, a, b, passes, fill, own, ctx) -> None:
         fill(a, b, press, side)
         sim.run(until=b)
         return
-    snap = sim.snapshot()
+    hold = sim.hold()  # the stroke taken back before each new pass (the tiles it changed)
     inked_before = _coverage(sim, own.rows, own.cols)
     best = None
     for k in range(passes):
         if k:
-            sim.restore(snap)
+            sim.take_back(hold)
+            hold = sim.hold()
         fill(a, b, press, side)
         seen = _practise(sim, a, b, body, want, step_mm, pl, reach)
         got, centre, valid = measure_band(sim, pl.target[body], pl.tangent[body], reach, *seen)
@@ -211,11 +215,12 @@ def _practise_stroke(sim, a, b, passes, fill, own, ctx) -> None:
         inter = np.count_nonzero(new & own.inside)
         err = -inter / max(np.count_nonzero(new | own.inside), 1)
         if best is None or err < best.error:
-            best = Pass(err, press.copy(), side.copy(), k)
+            state = sim.snapshot() if k < passes - 1 else None
+            best = Pass(err, press.copy(), side.copy(), k, state)
         if k == passes - 1:
             break
         press, side = _correct(response, press, side, want, got, centre, valid, ceiling)
-    if best.number != k:  # the last pass was not the best: write the best again
-        sim.restore(snap)
+    sim.let_go(hold)
+    if best.number != k:  # the last pass was not the best: back to where the best left off
+        sim.restore(best.state)
         fill(a, b, best.press, best.side)
-        sim.run(until=b)
