@@ -21,7 +21,8 @@ if TYPE_CHECKING:  # the response is handed in (its module builds on this one)
 ENTRY_SAMPLES = 8
 EXIT_SAMPLES = 8
 # what the brush does at a sample of a plan (Plan.phase)
-IN_THE_AIR, ENTERING, WRITING, LIFTING = 0, 1, 2, 3
+IN_THE_AIR, ENTERING, WRITING, LIFTING, TURNING = 0, 1, 2, 3, 4
+TURN_TOUCH = 0.05  # share of the hair length the tip stays pressed with through a sharp turn
 
 
 def _smooth(v, k: int) -> np.ndarray:
@@ -36,8 +37,9 @@ def _smooth(v, k: int) -> np.ndarray:
 class Plan:
     """Per sample of a character's writing: where the ink should land (paper mm), how wide the
     stroke is there, the way of travel, and what the brush does: IN_THE_AIR, ENTERING (coming
-    down onto a stroke), WRITING, LIFTING (off the stroke's end). ``dips`` are the samples
-    before which the brush dips again."""
+    down onto a stroke), WRITING, LIFTING (off the stroke's end), TURNING (between two
+    movements of a stroke, at a sharp corner: the tip stays on the paper, lightly). ``dips``
+    are the samples before which the brush dips again."""
 
     target: np.ndarray  # (N, 2)
     width: np.ndarray  # (N,)
@@ -68,14 +70,14 @@ def _timed(dense, width, step_mm: float, slow_corners: float):
     return pts, np.interp(si, s, width)
 
 
-def _air(tg, wd, tn, ph, a, b, tang, step_mm) -> None:
-    """Travel in the air from ``a`` to ``b`` (mm)."""
+def _air(tg, wd, tn, ph, a, b, tang, step_mm, phase=IN_THE_AIR) -> None:
+    """Travel from ``a`` to ``b`` (mm), in the air or (``phase`` TURNING) on the tip."""
     k = max(int(np.linalg.norm(b - a) / (2 * step_mm)), 4)
     t = np.linspace(0.0, 1.0, k)[:, None]
     tg.append(a * (1 - t) + b * t)
     wd.append(np.zeros(k))
     tn.append(np.tile(tang, (k, 1)))
-    ph.append(np.full(k, IN_THE_AIR))
+    ph.append(np.full(k, phase))
 
 
 def plan(
@@ -88,8 +90,9 @@ def plan(
 ) -> Plan:
     """The path of the writing: each median resampled every step_mm with the outline's width,
     one movement per piece of the median between its sharp corners (``median_pieces``: a
-    hook's foot, a 折), each with an entry and a lift, travel in the air between movements.
-    Each movement is smoothed on its own, so that a corner stays a corner."""
+    hook's foot, a 折), each with an entry and a lift, the tip turning on the paper between the
+    movements of a stroke, travel in the air between strokes. Each movement is smoothed on its
+    own, so that a corner stays a corner."""
     scale = size_mm / EM
     dip_every = 0.0 if dip_every_mm is None else dip_every_mm
     tg, wd, tn, ph, dips, strokes = [], [], [], [], [], []
@@ -118,8 +121,8 @@ def plan(
             since_dip = 0.0
         since_dip += stroke_len
         for j, (p, w, t) in enumerate(moves):
-            if j:  # a sharp turn: lift, turn the tip in the air, come down on the corner
-                _air(tg, wd, tn, ph, moves[j - 1][0][-1], p[0], t[0], step_mm)
+            if j:  # a sharp turn: ease to the tip, turn on it, press again on the corner
+                _air(tg, wd, tn, ph, moves[j - 1][0][-1], p[0], t[0], step_mm, TURNING)
             tg += [np.tile(p[0], (ENTRY_SAMPLES, 1)), p, np.tile(p[-1], (EXIT_SAMPLES, 1))]
             wd += [np.full(ENTRY_SAMPLES, w[0]), w, np.full(EXIT_SAMPLES, w[-1])]
             tn += [np.tile(t[0], (ENTRY_SAMPLES, 1)), t, np.tile(t[-1], (EXIT_SAMPLES, 1))]
@@ -197,8 +200,10 @@ def _enter_and_leave(samples, pl, body, hover, hair, step_mm, at_turn=(False, Fa
     """The brush comes down moving along the movement's first direction, the tip touching where
     the body begins, and lifts off moving on along the last direction (a flick, so that hooks
     and left-falling strokes end in a point, not a blot from a lift on the spot). ``at_turn``:
-    the movement begins after / ends at a sharp corner (``median_pieces``), where the brush lifts
-    and lands on the corner itself (a flick there overshoots the corner)."""
+    the movement begins after / ends at a sharp corner (``median_pieces``): there the brush
+    eases only to its tip (``TURN_TOUCH``), on the corner itself (a flick there overshoots the
+    corner), and presses again from the tip: lifted off the paper and set down again, the
+    pressed belly landed on the corner as a round blot, and a hook began with one."""
     a = body[0] - 1
     while a >= 0 and pl.phase[a] == ENTERING:
         a -= 1
@@ -210,17 +215,19 @@ def _enter_and_leave(samples, pl, body, hover, hair, step_mm, at_turn=(False, Fa
         back = back * 0.0
     samples[entry, :2] = samples[body[0], :2] - back[:, None] * t0
     z_touch = max(samples[body[0], 2], hair - 0.2)  # the tip reaches the paper at the start
-    samples[entry, 2] = hover + (z_touch - hover) * f
+    turn_z = hair * (1.0 - TURN_TOUCH)
+    top = turn_z if at_turn[0] else hover
+    samples[entry, 2] = top + (z_touch - top) * f
     b = body[-1] + 1
     while b < len(pl.phase) and pl.phase[b] == LIFTING:
         b += 1
     lift = np.arange(body[-1] + 1, b)
-    lift = np.flatnonzero(pl.phase[a:b] == LIFTING) + a
     t1 = pl.tangent[body[-1]]
     f = np.arange(1, len(lift) + 1) / max(len(lift), 1)
     flick = 0.0 if at_turn[1] else 0.5 * step_mm  # into a sharp turn: lift on the corner
     samples[lift, :2] = samples[body[-1], :2] + (f * len(lift) * flick)[:, None] * t1
-    samples[lift, 2] = samples[body[-1], 2] + (hover - samples[body[-1], 2]) * np.sqrt(f)
+    top = turn_z if at_turn[1] else hover
+    samples[lift, 2] = samples[body[-1], 2] + (top - samples[body[-1], 2]) * np.sqrt(f)
 
 
 def _movements(items, body=None) -> list[np.ndarray]:
@@ -230,11 +237,27 @@ def _movements(items, body=None) -> list[np.ndarray]:
     return np.split(items, np.flatnonzero(np.diff(body) > 1) + 1)
 
 
+def _turn_on_the_tip(samples, pl: Plan, span, hair: float) -> None:
+    """The TURNING samples of samples a..b (``span``): the base goes straight from where the
+    lift into the corner ended to where the next entry begins, the tip on the paper
+    (``TURN_TOUCH``)."""
+    a, b = span
+    turning = np.flatnonzero(pl.phase[a:b] == TURNING) + a
+    for run in _movements(turning):
+        if run.size == 0:
+            continue
+        p0, p1 = samples[run[0] - 1, :2], samples[run[-1] + 1, :2]
+        t = (np.arange(1, len(run) + 1) / (len(run) + 1))[:, None]
+        samples[run, :2] = p0 * (1.0 - t) + p1 * t
+        samples[run, 2] = hair * (1.0 - TURN_TOUCH)
+
+
 def _fill(samples, pl: Plan, response: Response, span, press, side, brush) -> np.ndarray:
     """Samples a..b (``span``) of one stroke of plan ``pl``: for each of its movements, come
     down, write with the given press and sideways placement per body sample (the press eased at
     the entry and at sharp turns, the base leading the ink by the response's lag), lift off
-    (``_enter_and_leave``). ``brush`` is (hover, hair length, step) in mm."""
+    (``_enter_and_leave``), and turn on the tip between them (``_turn_on_the_tip``). ``brush``
+    is (hover, hair length, step) in mm."""
     a, b = span
     hover, hair, step_mm = brush
     body = np.flatnonzero(pl.phase[a:b] == WRITING) + a
@@ -249,5 +272,6 @@ def _fill(samples, pl: Plan, response: Response, span, press, side, brush) -> np
         samples[run, 2] = hair - p
         _enter_and_leave(samples, pl, run, hover, hair, step_mm, (r > 0, r < len(runs) - 1))
         j0 = j1
+    _turn_on_the_tip(samples, pl, span, hair)
     samples[a:b] = quantise(samples[a:b])  # as the saved recording will hold them
     return body

@@ -18,21 +18,19 @@ from .response import Response, _coverage
 
 class Pass(NamedTuple):
     """One practice pass of a stroke: how far its ink is from the outline (lower is better),
-    the press and sideways placement it was written with, and its number."""
+    the press and sideways placement it was written with, its number, and the simulation as
+    the pass left it (a snapshot; None for a pass the simulation is still at)."""
 
     error: float
     press: np.ndarray
     side: np.ndarray
     number: int
+    state: dict | None
 
 
-def measure_band(sim: Simulation, points, tangents, reach_mm: float, before=None, laid=None):
-    """Across the way of travel at each of ``points`` (mm): the width (mm) of the ink band
-    (coverage above half) nearest the point, the offset (mm, along the left normal) of its
-    centre from the point, and whether the reading is the brush's own there: ink that was on
-    the paper before the brush came to the point - ``before(index, rows, cols)`` says where,
-    per point - makes up less than a third of the band. The band is read on ``laid(index, rows,
-    cols)`` when given (the ink once the point's movement had lifted off), else on the paper."""
+def _probes(sim: Simulation, points, tangents, reach_mm: float):
+    """The paper pixels across the way of travel at each of ``points`` (mm), out to
+    ``reach_mm`` on either side: (rows, cols), each (n, 2k + 1), the point in the middle."""
     ppm = sim.paper.ppm
     normal = np.stack([-tangents[:, 1], tangents[:, 0]], axis=1)
     k = max(int(reach_mm * ppm), 1)
@@ -40,13 +38,21 @@ def measure_band(sim: Simulation, points, tangents, reach_mm: float, before=None
     pts = points[:, None, :] + off[None, :, None] * normal[:, None, :]
     cols = np.clip((pts[..., 0] * ppm).astype(int), 0, sim.paper.W - 1)
     rows = np.clip((pts[..., 1] * ppm).astype(int), 0, sim.paper.H - 1)
-    idx = np.arange(len(points))
-    cov = laid(idx, rows, cols) if laid is not None else _coverage(sim, rows, cols)
-    old = before(idx, rows, cols) if before is not None else np.zeros_like(cov)
-    width = np.zeros(len(points))
-    centre = np.zeros(len(points))
-    valid = np.zeros(len(points), dtype=bool)
-    for j in range(len(points)):
+    return rows, cols
+
+
+def measure_band(ppm: float, cov, old=None):
+    """Across the way of travel at each point, from the ink coverage (above half) ``cov`` read
+    at its ``_probes``: the width (mm) of the ink band nearest the point, the offset (mm, along
+    the left normal) of its centre from the point, and whether the reading is the brush's own
+    there: ink that was on the paper before the brush came to the point (``old``, at the same
+    pixels) makes up less than a third of the band."""
+    old = np.zeros_like(cov) if old is None else old
+    k = cov.shape[1] // 2
+    width = np.zeros(len(cov))
+    centre = np.zeros(len(cov))
+    valid = np.zeros(len(cov), dtype=bool)
+    for j in range(len(cov)):
         c = cov[j]
         if not c.any():
             valid[j] = True  # no ink near: a real reading of width zero
@@ -65,8 +71,8 @@ def measure_band(sim: Simulation, points, tangents, reach_mm: float, before=None
 
 @dataclass
 class _Window:
-    rows: np.ndarray  # (h, w) paper rows (bottom first) of the window
-    cols: np.ndarray
+    rows: slice  # paper rows (bottom first) of the window
+    cols: slice
     inside: np.ndarray  # (h, w) the stroke's outline
 
 
@@ -84,8 +90,7 @@ def _stroke_masks(char: dict, H: int, W: int) -> list[_Window]:
             ys, xs = np.array([0]), np.array([0])
         r0, r1 = max(ys.min() - 2, 0), min(ys.max() + 3, H)
         c0, c1 = max(xs.min() - 2, 0), min(xs.max() + 3, W)
-        rr, cc = np.mgrid[r0:r1, c0:c1]
-        out.append(_Window(rr, cc, m[r0:r1, c0:c1]))
+        out.append(_Window(slice(r0, r1), slice(c0, c1), m[r0:r1, c0:c1]))
     return out
 
 
@@ -106,43 +111,29 @@ def _movement_ends(phase, body) -> np.ndarray:
     return np.concatenate(ends)
 
 
-def _practise(sim, a, b, body, want, step_mm, pl, reach):
-    """Write samples a..b, keeping a record of the ink coverage around the stroke every few
-    samples and as each movement lifts off; returns ``before(index, rows, cols)``, the coverage
-    each body point had just before the brush's mark reached it, and ``laid(index, rows,
-    cols)``, the coverage once the point's movement had lifted off. So a stroke crossing its
-    own ink, as at a hook, reads only the band it is laying down, and the band at a 折's
-    shoulder or a hook's foot is read before the next movement lays its ink across the cut."""
-    ppm = sim.paper.ppm
-    lo = pl.target[a:b].min(axis=0) - reach - 2.0
-    hi = pl.target[a:b].max(axis=0) + reach + 2.0
-    c0, r0 = max(int(lo[0] * ppm), 0), max(int(lo[1] * ppm), 0)
-    c1, r1 = min(int(hi[0] * ppm) + 1, sim.paper.W), min(int(hi[1] * ppm) + 1, sim.paper.H)
-    rr, cc = np.mgrid[r0:r1, c0:c1]
-    times, records = [], []
-    for i in range(a, b + 1):
-        lifted = i > a and pl.phase[i - 1] == LIFTING and (i == b or pl.phase[i] != LIFTING)
-        if (i - a) % RECORD_EVERY == 0 or lifted or i == b:
-            times.append(i)
-            records.append(_coverage(sim, rr, cc))
-        if i < b:
-            sim.step()
-    times, records = np.array(times), np.stack(records)
+def _practise(sim, a, b, body, want, step_mm, pl, probes):
+    """Write samples a..b, reading the ink coverage at every body point's ``probes`` (rows,
+    cols) twice: just before the brush's mark reached the point (``old``) and once the point's
+    movement had lifted off (``cov``). So a stroke crossing its own ink, as at a hook, reads
+    only the band it is laying down, and the band at a 折's shoulder or a hook's foot is read
+    before the next movement lays its ink across the cut. The readings are taken every few
+    samples and as each movement lifts off, each at the pixels of the points that need it."""
+    rows, cols = probes
+    i = np.arange(a + 1, b)
+    lifted = (pl.phase[i - 1] == LIFTING) & (pl.phase[i] != LIFTING)
+    times = np.union1d(np.arange(a, b + 1, RECORD_EVERY), np.r_[i[lifted], b])
     # the brush's mark reaches a point about half its width (plus a millimetre) ahead of time
     ahead = np.ceil((want / 2.0 + 1.0) / step_mm).astype(int) + 1
     which = np.clip(np.searchsorted(times, body - ahead, side="right") - 1, 0, len(times) - 1)
     done = np.searchsorted(times, np.minimum(_movement_ends(pl.phase, body), b))
-
-    def at(record_of):
-        def cover(idx, rows, cols):
-            inside = (rows >= r0) & (rows < r1) & (cols >= c0) & (cols < c1)
-            rr_ = np.clip(rows - r0, 0, r1 - r0 - 1)
-            cc_ = np.clip(cols - c0, 0, c1 - c0 - 1)
-            return inside & records[record_of[idx][:, None], rr_, cc_]
-
-        return cover
-
-    return at(which), at(done)
+    old = np.zeros(rows.shape, dtype=bool)
+    cov = np.zeros(rows.shape, dtype=bool)
+    for n, t in enumerate(times):
+        sim.run(until=t)  # the deposits batched up to the reading (the same ink as step by step)
+        for out, sel in ((old, which == n), (cov, done == n)):
+            if sel.any():
+                out[sel] = _coverage(sim, rows[sel], cols[sel])
+    return old, cov
 
 
 def _correct(response, press, side, want, got, centre, valid, ceiling):
@@ -188,7 +179,8 @@ def _ceiling(pl: Plan, body, response: Response) -> np.ndarray:
 def _practise_stroke(sim, a, b, passes, fill, own, ctx) -> None:
     """Write samples a..b (one stroke) with ``fill(a, b, press, side)``; with passes > 1,
     practise it: write, read the band, correct, take it back (a snapshot), write again; the
-    pass that best fills the stroke's own outline ``own`` stays."""
+    pass that best fills the stroke's own outline ``own`` stays: the simulation goes back to
+    where that pass left it (a snapshot taken then), the recording gets its samples again."""
     pl, response, step_mm, reach = ctx
     body = np.flatnonzero(pl.phase[a:b] == WRITING) + a
     want = pl.width[body]
@@ -199,25 +191,28 @@ def _practise_stroke(sim, a, b, passes, fill, own, ctx) -> None:
         fill(a, b, press, side)
         sim.run(until=b)
         return
-    snap = sim.snapshot()
+    hold = sim.hold()  # the stroke taken back before each new pass (the tiles it changed)
     inked_before = _coverage(sim, own.rows, own.cols)
+    probes = _probes(sim, pl.target[body], pl.tangent[body], reach)
     best = None
     for k in range(passes):
         if k:
-            sim.restore(snap)
+            sim.take_back(hold)
+            hold = sim.hold()
         fill(a, b, press, side)
-        seen = _practise(sim, a, b, body, want, step_mm, pl, reach)
-        got, centre, valid = measure_band(sim, pl.target[body], pl.tangent[body], reach, *seen)
+        old, cov = _practise(sim, a, b, body, want, step_mm, pl, probes)
+        got, centre, valid = measure_band(sim.paper.ppm, cov, old)
         # the pass that best fills the stroke's own outline stays (new ink against it)
         new = _coverage(sim, own.rows, own.cols) & ~inked_before
         inter = np.count_nonzero(new & own.inside)
         err = -inter / max(np.count_nonzero(new | own.inside), 1)
         if best is None or err < best.error:
-            best = Pass(err, press.copy(), side.copy(), k)
+            state = sim.snapshot() if k < passes - 1 else None
+            best = Pass(err, press.copy(), side.copy(), k, state)
         if k == passes - 1:
             break
         press, side = _correct(response, press, side, want, got, centre, valid, ceiling)
-    if best.number != k:  # the last pass was not the best: write the best again
-        sim.restore(snap)
+    sim.let_go(hold)
+    if best.number != k:  # the last pass was not the best: back to where the best left off
+        sim.restore(best.state)
         fill(a, b, best.press, best.side)
-        sim.run(until=b)

@@ -173,3 +173,30 @@ def test_a_corner_is_pressed_firmly_not_to_the_heel(response):
     ends = _movement_ends(pl.phase, body)
     assert np.all(ends[:first] <= body[first] - 1) and np.all(ends[:first] > body[first - 1])
     assert np.all(pl.phase[ends[:first] - 1] != WRITING)
+
+
+def test_a_sharp_turn_is_made_on_the_tip_not_in_the_air(response):
+    # between the two movements of the L (a 折) the brush eases to its tip and presses again:
+    # every sample from the end of the first movement to the start of the second touches the
+    # paper, and while the tip turns it is pressed only TURN_TOUCH of the hair (before issue 26
+    # the brush rose to hover and landed the pressed belly on the corner again: a round blot)
+    from sim.core.params import HOVER_MM
+    from sim.writing.planner import TURN_TOUCH, TURNING, _fill
+
+    pl = plan(L_CHAR, 100.0, 0.5)
+    a, b = pl.strokes[0]
+    body = np.flatnonzero(pl.phase[a:b] == WRITING) + a
+    hair = _template().resolve()[1].hair_length_mm
+    samples = np.zeros((len(pl.target), 6))
+    samples[:, :2], samples[:, 2] = pl.target, hair + HOVER_MM
+    press = response.press_for(pl.width[body])
+    _fill(samples, pl, response, (a, b), press, np.zeros(len(body)), (hair + HOVER_MM, hair, 0.5))
+    first = np.flatnonzero(np.diff(body) > 1)[0]
+    between = np.arange(body[first] + 1, body[first + 1])
+    assert np.any(pl.phase[between] == TURNING)
+    z = samples[between, 2]
+    turning = samples[between[pl.phase[between] == TURNING], 2]
+    assert np.all(z < hair) and np.allclose(turning, hair * (1.0 - TURN_TOUCH), atol=1e-3)
+    # the strokes themselves are written pressed, and the brush hovers before and after
+    assert samples[body, 2].min() < hair - 2.0
+    assert samples[a, 2] > hair and samples[b - 1, 2] > hair
