@@ -20,7 +20,7 @@ CONTINUE_COS = -0.77  # two ways out of a junction continue each other within ~4
 LOOSE_COS = -0.5  # ... and a short overhang continues a stroke within 60 degrees
 SPUR = 2.0  # a chain from a free end into a junction shorter than this times its half-width
 HOOK_COS = 0.3  # ... and a hook's two ways out lie within ~70 degrees of each other
-TIP = 0.5  # a free end runs on to this times its half-width short of where the ink ends
+TIP = 0.1  # a free end runs on to this times its half-width short of where the ink ends
 ZONE = 1.3  # a junction's zone: this times the ink's half-width there, plus a pixel
 
 
