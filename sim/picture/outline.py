@@ -25,8 +25,11 @@ OUTLINE_POINT_BUDGET = DATA_OUTLINE_POINTS * 3 // 4
 MEDIAN_POINT_BUDGET = DATA_MEDIAN_POINTS * 3 // 4
 BLOT_CURL = np.radians(35.0)  # a median's end that turns more than this inside its blot
 CORNER_TURN = np.radians(55.0)  # a median that turns more than this within a stroke-width
-CORNER_HOLD = 0.7  # a corner's vertex goes out as far as the ink is this share of the legs'
+CORNER_HOLD = 0.85  # a corner's vertex goes out as far as the ink is this share of the legs'
 # half-width thick (the skeleton of a thick turn cuts across it, the writer's median goes in)
+CORNER_ALIGN = np.radians(35.0)  # the line out of a moved corner keeps this close to its leg
+CORNER_SKIP = 2.0  # ... within this many half-widths along the leg
+STEP_PX = 2.0  # a stroke's centre line has a point every this many pixels (strokes._finish)
 CORNER_HEEL = 0.6  # rad inside the way straight on that a corner's foot is looked for
 
 
@@ -181,6 +184,18 @@ def _on_leg(pts, k: int, place, way, r: float, step: int) -> int:
     return j
 
 
+def _aligned(pts, j: int, c, way, step: int, stop: int) -> int:
+    """From ``j`` on (forwards or backwards, ``step``, not past ``stop``), the first point
+    that the moved corner ``c`` reaches within CORNER_ALIGN of the leg's way: the line from a
+    corner pushed out into a 折's shoulder goes on down the leg, not back across the turn."""
+    while j != stop:
+        d = pts[j] - c
+        if d @ way >= np.cos(CORNER_ALIGN) * max(float(np.linalg.norm(d)), 1e-9):
+            return j
+        j += step
+    return j
+
+
 def into_corners(s: Stroke, dist: np.ndarray) -> Stroke:
     """The stroke's centre line taken into its sharp corners (a 折's shoulder, a hook's foot):
     the skeleton of a thick turn cuts across it, so the brush, following it, would round the
@@ -199,6 +214,9 @@ def into_corners(s: Stroke, dist: np.ndarray) -> Stroke:
         r_leg = float(np.median(rad[max(k - 10, 0) : k + 11]))
         c = _corner_point(place, u, w, CORNER_HOLD * r_leg, dist)
         i0, i1 = _on_leg(pts, k, place, -u, r_leg, -1), _on_leg(pts, k, place, w, r_leg, 1)
+        skip = int(np.ceil(CORNER_SKIP * r_leg / STEP_PX))  # at most this far down a leg
+        i0 = _aligned(pts, i0, c, -u, -1, max(last, i0 - skip))
+        i1 = _aligned(pts, i1, c, w, 1, min(len(pts) - 1, i1 + skip))
         if i0 < last or i1 <= i0 + 1:
             continue
         keep_pts += [pts[last : i0 + 1], c[None]]
@@ -210,7 +228,7 @@ def into_corners(s: Stroke, dist: np.ndarray) -> Stroke:
     radius = np.concatenate([*keep_rad, rad[last:]])
     seg = np.linalg.norm(np.diff(line, axis=0), axis=1)
     a = np.concatenate([[0.0], np.cumsum(seg)])
-    si = np.linspace(0.0, a[-1], max(int(a[-1] / 2.0), 1) + 1)
+    si = np.linspace(0.0, a[-1], max(int(a[-1] / STEP_PX), 1) + 1)
     dense = np.stack([np.interp(si, a, line[:, 0]), np.interp(si, a, line[:, 1])], axis=1)
     return Stroke(dense, np.interp(si, a, radius), s.through, s.touches, s.joints)
 

@@ -21,6 +21,7 @@ LOOSE_COS = -0.5  # ... and a short overhang continues a stroke within 60 degree
 SPUR = 2.0  # a chain from a free end into a junction shorter than this times its half-width
 HOOK_COS = 0.3  # ... and a hook's two ways out lie within ~70 degrees of each other
 HOOK_SPUR = 1.5  # ... but the farthest of a junction's spurs this long (times its half-width)
+OVERHANG_REACH = 1.3  # ... and a spur this long (times its half-width) straight on from a chain
 HOOK_CLEAR = 1.2  # ... and this many times as long as the next is a hook's tip, kept
 TIP = 0.1  # a free end runs on to this times its half-width short of where the ink ends
 ZONE = 1.3  # a junction's zone: this times the ink's half-width there, plus a pixel
@@ -224,7 +225,9 @@ def _prune_spurs(chains: list, nodes: list) -> tuple[list, set]:
     entry or turn leaves, not strokes. Where that leaves a junction with one chain, its
     farthest-reaching spur comes back when it reaches HOOK_SPUR of the junction's half-width
     and clearly farther than the others: the tip of a hook (宀's 横钩, whose shoulder is the
-    other spur), which the stroke turns into. Returns the chains and the junctions whose
+    other spur), which the stroke turns into; and a spur that runs straight on from one of
+    the junction's chains comes back as that stroke's overhang (``_overhangs``). Returns the
+    chains and the junctions whose
     spur came back (the stroke runs on through them)."""
     pruned: dict = {}
     for _ in range(3):
@@ -243,6 +246,9 @@ def _prune_spurs(chains: list, nodes: list) -> tuple[list, set]:
     hooked = set()
     for ni, spurs in pruned.items():
         if len(nodes[ni].chains) != 1:
+            for c in _overhangs(chains, nodes[ni], spurs):
+                chains.append(c)
+                _link(chains, nodes)
             continue
         reach = sorted((_length(c.pts), k) for k, c in enumerate(spurs))
         far, k = reach[-1]
@@ -252,6 +258,24 @@ def _prune_spurs(chains: list, nodes: list) -> tuple[list, set]:
             hooked.add(ni)
     _link(chains, nodes)
     return chains, hooked
+
+
+def _overhangs(chains: list, node: Node, spurs: list) -> list:
+    """The spurs pruned at a junction that run straight on from one of its chains beyond the
+    ink of the others (OVERHANG_REACH of its half-width from its centre or more): the end of a
+    stroke reaching past the stroke it meets, as 口's left side past its foot and its top, which
+    the brush must reach."""
+    out = []
+    for spur in spurs:
+        end = 0 if spur.ends[0] >= 0 else 1
+        if _length(spur.pts) < OVERHANG_REACH * node.radius:
+            continue
+        way = _exit(spur, end, node)[1]
+        for ci, e in node.chains:
+            if float(_exit(chains[ci], e, node)[1] @ way) < CONTINUE_COS:
+                out.append(spur)
+                break
+    return out
 
 
 def _exit(c: Chain, end: int, node: Node) -> tuple[int, np.ndarray]:
