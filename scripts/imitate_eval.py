@@ -79,6 +79,9 @@ def evaluate(ch: str, font: str, kind: str, out: Path, read_only: bool, ctx) -> 
         row.update(width_err=1.0, width_ratio=0.0)
         return row
     row["s"] = round(time.perf_counter() - t0, 1)
+    from sim.image.png import write_png
+
+    write_png(path.with_name(path.stem + "-ink.png"), np.where(ink, 0.0, 1.0))  # measured again
     row["strokes"] = len(im.strokes)
     row["read_iou"] = round(box_iou(im.ink.mask, truth), 4)  # the ink read off the picture
     row["iou"] = round(box_iou(ink, truth), 4)
@@ -106,6 +109,10 @@ def _imitated(path, read_only: bool, ctx):
     return coverage_mask(sim), im
 
 
+def _evaluate(task) -> dict:
+    return evaluate(*task)
+
+
 def summary(rows: list) -> dict:
     iou = np.array([r["iou"] for r in rows])
     return {
@@ -131,7 +138,9 @@ def main(argv=None) -> int:
     ap.add_argument("--per-char", type=int, default=2, help="kinds each character is shown in")
     ap.add_argument("--read-only", action="store_true", help="the outlines read, not written")
     ap.add_argument("--out", default="/tmp/picture/eval", help="folder for the pictures")
+    ap.add_argument("--workers", type=int, default=1, help="processes (each case is one)")
     args = ap.parse_args(argv)
+    kinds = args.kinds.split(",")
     fonts = [f for f in args.fonts.split(",") if f in available_fonts()]
     if not fonts:
         print(f"none of the fonts {args.fonts} is installed (see picture_real.FONTS)")
@@ -148,11 +157,22 @@ def main(argv=None) -> int:
         template = Recording(np.zeros((1, 6)))  # the command line's defaults
         ctx = (template, calibrate(template, cache_dir=cache_dir()))
     rows = []
-    for ch, font, kind in cases(chars, fonts, args.kinds.split(","), args.per_char):
-        rows.append(evaluate(ch, font, kind, out, args.read_only, ctx))
-        print("  ".join(f"{k} {v}" for k, v in rows[-1].items()), flush=True)
+    todo = [(*c, out, args.read_only, ctx) for c in cases(chars, fonts, kinds, args.per_char)]
+    if args.workers > 1:
+        import multiprocessing
+
+        pool = multiprocessing.get_context("fork").Pool(args.workers)
+        results = pool.imap(_evaluate, todo)
+    else:
+        results = map(_evaluate, todo)
+    for row in results:
+        rows.append(row)
+        print("  ".join(f"{k} {v}" for k, v in row.items()), flush=True)
+    if args.workers > 1:
+        pool.close()
+        pool.join()
     s = summary(rows)
-    for kind in args.kinds.split(","):
+    for kind in kinds:
         part = [r for r in rows if r["kind"] == kind]
         if part:
             print(f"{kind:8s}", "  ".join(f"{k} {v}" for k, v in summary(part).items()))

@@ -187,6 +187,10 @@ def pieces(mask: np.ndarray) -> int:
     return int(np.count_nonzero(area >= MIN_PIECE * box.size))
 
 
+def _widest(d: np.ndarray, y: int, x: int, r: int) -> float:
+    return float(d[max(y - r, 0) : y + r + 1, max(x - r, 0) : x + r + 1].max(initial=0.0))
+
+
 def width_error(picture: np.ndarray, imitation: np.ndarray) -> tuple[float, float]:
     """Along the picture's skeleton (away from its ends and junctions' blots: every skeleton
     pixel), the width there against the imitation's at the same place of the ink's box, in the
@@ -203,14 +207,14 @@ def width_error(picture: np.ndarray, imitation: np.ndarray) -> tuple[float, floa
     wp = 2.0 * dp[ys, xs]
     sy, sx = q.shape[0] / p.shape[0], q.shape[1] / p.shape[1]
     scale = 0.5 * (1 / sy + 1 / sx)  # imitation pixels to the picture's
-    # the imitation's widest inscribed disc within half the picture's width of the place
-    r = np.maximum((0.5 * wp * min(sy, sx)).astype(int), 1)
+    # the widest inscribed disc within half the picture's width of the place, in both (the
+    # same window in both: the imitation's ink is not exactly where the picture's is)
+    r = np.maximum((0.5 * wp).astype(int), 1)
     qy, qx = (ys * sy).astype(int), (xs * sx).astype(int)
     wi = np.empty(len(ys))
     for j in range(len(ys)):
-        y0, y1 = max(qy[j] - r[j], 0), min(qy[j] + r[j] + 1, q.shape[0])
-        x0, x1 = max(qx[j] - r[j], 0), min(qx[j] + r[j] + 1, q.shape[1])
-        wi[j] = 2.0 * float(dq[y0:y1, x0:x1].max(initial=0.0)) * scale
+        wp[j] = 2.0 * _widest(dp, ys[j], xs[j], r[j])
+        wi[j] = 2.0 * _widest(dq, qy[j], qx[j], max(int(r[j] * min(sy, sx)), 1)) * scale
     ok = wp >= 2.0
     rel = np.abs(wi[ok] - wp[ok]) / wp[ok]
     return float(np.median(rel)), float(np.median(wi[ok] / wp[ok]))
