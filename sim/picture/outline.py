@@ -27,6 +27,7 @@ BLOT_CURL = np.radians(35.0)  # a median's end that turns more than this inside 
 CORNER_TURN = np.radians(55.0)  # a median that turns more than this within a stroke-width
 CORNER_HOLD = 0.85  # a corner's vertex goes out as far as the ink is this share of the legs'
 # half-width thick (the skeleton of a thick turn cuts across it, the writer's median goes in)
+FOOT_DOWN = 0.6  # a turn whose way in goes down this steeply (image y) is a hook's foot
 CORNER_ALIGN = np.radians(35.0)  # the line out of a moved corner keeps this close to its leg
 CORNER_SKIP = 2.0  # ... within this many half-widths along the leg
 STEP_PX = 2.0  # a stroke's centre line has a point every this many pixels (strokes._finish)
@@ -118,7 +119,7 @@ def simplify(poly: np.ndarray, eps: float, closed: bool = True) -> np.ndarray:
 
 
 # ------------------------------------------------------------------ corners of a median
-def _turns(pts: np.ndarray, radius: np.ndarray) -> list[tuple[int, np.ndarray, np.ndarray]]:
+def _turns(pts: np.ndarray, radius: np.ndarray) -> list[tuple]:
     """Where the stroke's centre line turns sharply: the line simplified to within its median
     half-width (the skeleton's chamfer across a thick turn becomes one vertex), each interior
     vertex between legs of a half-width or more turning more than CORNER_TURN; for each its
@@ -200,9 +201,12 @@ def into_corners(s: Stroke, dist: np.ndarray) -> Stroke:
     """The stroke's centre line taken into its sharp corners (a 折's shoulder, a hook's foot):
     the skeleton of a thick turn cuts across it, so the brush, following it, would round the
     corner off and miss the foot, which is often the character's lowest or outermost ink. At
-    each sharp turn (``_turns``) the corner goes out from where the legs meet, straight on or
-    to the turn's outside (``_corner_point``), as far as the ink is still CORNER_HOLD of the
-    legs' half-width thick, and the line runs straight into it and out of it. (Beyond the
+    each sharp turn (``_turns``) the corner is where the legs' lines meet (a 折: the writer
+    lands its next movement on it, so a corner pushed out to the shoulder's edge leaves a notch
+    that opens 口's box); at the foot of a stroke that came down (a hook's: 竖钩, 横折钩) it
+    goes out from there, straight on
+    or to the turn's outside (``_corner_point``), as far as the ink is still CORNER_HOLD of
+    the legs' half-width thick; the line runs straight into it and out of it. (Beyond the
     paper's Sec. 9, which does not say how strokes are read off a picture: stroke data's
     medians go into their corners, and the writer presses into a corner before turning.)"""
     pts, rad = s.pts, s.radius
@@ -212,7 +216,9 @@ def into_corners(s: Stroke, dist: np.ndarray) -> Stroke:
     keep_pts, keep_rad, last = [], [], 0
     for k, place, u, w in turns:
         r_leg = float(np.median(rad[max(k - 10, 0) : k + 11]))
-        c = _corner_point(place, u, w, CORNER_HOLD * r_leg, dist)
+        c = place  # a 折: where the legs meet, the corner's centre
+        if u[1] > FOOT_DOWN:  # the foot of a stroke that came down (竖钩, 横折钩, 弯钩)
+            c = _corner_point(place, u, w, CORNER_HOLD * r_leg, dist)
         i0, i1 = _on_leg(pts, k, place, -u, r_leg, -1), _on_leg(pts, k, place, w, r_leg, 1)
         skip = int(np.ceil(CORNER_SKIP * r_leg / STEP_PX))  # at most this far down a leg
         i0 = _aligned(pts, i0, c, -u, -1, max(last, i0 - skip))
