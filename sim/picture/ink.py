@@ -19,7 +19,8 @@ MAX_PICTURE_PIXELS = 32 * 2**20
 MIN_PICTURE_SIDE = 16
 TILES = 8  # the paper's level is read in tiles of 1/TILES of the picture's side
 MIN_CONTRAST = 0.15  # darkness the darkest ink must reach over the paper
-MIN_SEPARATION = 0.8  # Otsu's between-class share of the darkness's variance
+MIN_SEPARATION = 0.7  # Otsu's between-class share of the darkness's variance (a blurred photo of
+# writing with toned ink: 0.75-0.85; a photo of a scene: 0.72, and far too much ink)
 INK_SHARE = (0.002, 0.4)  # of the em box: less is no writing, more is not writing on paper
 MAX_PIECES = 64  # separate pieces of ink (after specks are removed)
 SPECK = 2e-4  # a piece of ink smaller than this share of the em box is a speck

@@ -24,6 +24,14 @@ OUTLINE_EPS = 0.6  # px: the outline's polygons simplified this closely
 OUTLINE_POINT_BUDGET = DATA_OUTLINE_POINTS * 3 // 4
 MEDIAN_POINT_BUDGET = DATA_MEDIAN_POINTS * 3 // 4
 BLOT_CURL = np.radians(35.0)  # a median's end that turns more than this inside its blot
+CORNER_TURN = np.radians(55.0)  # a median that turns more than this within a stroke-width
+CORNER_HOLD = 0.85  # a corner's vertex goes out as far as the ink is this share of the legs'
+# half-width thick (the skeleton of a thick turn cuts across it, the writer's median goes in)
+FOOT_DOWN = 0.6  # a turn whose way in goes down this steeply (image y) is a hook's foot
+CORNER_ALIGN = np.radians(35.0)  # the line out of a moved corner keeps this close to its leg
+CORNER_SKIP = 2.0  # ... within this many half-widths along the leg
+STEP_PX = 2.0  # a stroke's centre line has a point every this many pixels (strokes._finish)
+CORNER_HEEL = 0.6  # rad inside the way straight on that a corner's foot is looked for
 
 
 # ----------------------------------------------------------------- each stroke's own ink
@@ -110,6 +118,127 @@ def simplify(poly: np.ndarray, eps: float, closed: bool = True) -> np.ndarray:
     return poly[keep]
 
 
+# ------------------------------------------------------------------ corners of a median
+def _turns(pts: np.ndarray, radius: np.ndarray) -> list[tuple]:
+    """Where the stroke's centre line turns sharply: the line simplified to within its median
+    half-width (the skeleton's chamfer across a thick turn becomes one vertex), each interior
+    vertex between legs of a half-width or more turning more than CORNER_TURN; for each its
+    index, its place (where the legs' lines meet, when that is within two half-widths of it)
+    and the ways in and out."""
+    r = float(np.median(radius))
+    simple = simplify(pts, max(r, 1.0), closed=False)
+    out = []
+    for a, v, b in zip(simple[:-2], simple[1:-1], simple[2:], strict=True):
+        u, w = v - a, b - v
+        lu, lw = float(np.linalg.norm(u)), float(np.linalg.norm(w))
+        if min(lu, lw) < r:  # a kink of the skeleton, not a turn of the stroke
+            continue
+        u, w = u / lu, w / lw
+        if np.arccos(np.clip(u @ w, -1.0, 1.0)) <= CORNER_TURN:
+            continue
+        cross = u[0] * w[1] - u[1] * w[0]
+        place = v
+        if abs(cross) > 0.2:  # the legs' lines meet: a 折 cut across by the skeleton
+            t = ((b - a)[0] * w[1] - (b - a)[1] * w[0]) / cross
+            meet = a + t * u
+            if np.linalg.norm(meet - v) <= 2.0 * r:
+                place = meet
+        k = int(np.argmin(np.linalg.norm(pts - v, axis=1)))
+        out.append((k, place, u, w))
+    return out
+
+
+def _corner_point(p, u, w, hold: float, dist: np.ndarray) -> np.ndarray:
+    """From ``p``, the farthest point of the turn's outside - the ways between going straight
+    on (``u``, into a hook's foot or a 折's shoulder; up to CORNER_HEEL inside it, where a
+    hook's heel hangs) and the outer bisector (away from both legs) - reached through ink at
+    least ``hold`` thick (the distance to the paper)."""
+    h, wd = dist.shape
+    out = (u - w) / max(float(np.linalg.norm(u - w)), 1e-9)
+    a0, a1 = np.arctan2(u[1], u[0]), np.arctan2(out[1], out[0])
+    a1 = a0 + (a1 - a0 + np.pi) % (2 * np.pi) - np.pi
+    a0 -= CORNER_HEEL * np.sign(a1 - a0)  # a hook's heel hangs a little inside the turn
+    best, far = p, 0.0
+    for ang in np.linspace(a0, a1, 11):
+        d = np.array([np.cos(ang), np.sin(ang)])
+        s = 0.0
+        while True:
+            x, y = np.round(p + (s + 1.0) * d).astype(int)
+            if not (0 <= x < wd and 0 <= y < h) or dist[y, x] < hold:
+                break
+            s += 1.0
+        if s > far:
+            best, far = p + s * d, s
+    return best
+
+
+def _on_leg(pts, k: int, place, way, r: float, step: int) -> int:
+    """The first point from ``k`` (forwards or backwards, ``step``) on the leg leaving
+    ``place`` along ``way``: a half-width or more along it and within half of one of its
+    line (past the skeleton's chamfer across the turn)."""
+    j = k
+    while 0 < j < len(pts) - 1:
+        d = pts[j] - place
+        if d @ way >= r and abs(d[0] * way[1] - d[1] * way[0]) <= 0.5 * r:
+            return j
+        j += step
+    return j
+
+
+def _aligned(pts, j: int, c, way, step: int, stop: int) -> int:
+    """From ``j`` on (forwards or backwards, ``step``, not past ``stop``), the first point
+    that the moved corner ``c`` reaches within CORNER_ALIGN of the leg's way: the line from a
+    corner pushed out into a 折's shoulder goes on down the leg, not back across the turn."""
+    while j != stop:
+        d = pts[j] - c
+        if d @ way >= np.cos(CORNER_ALIGN) * max(float(np.linalg.norm(d)), 1e-9):
+            return j
+        j += step
+    return j
+
+
+def into_corners(s: Stroke, dist: np.ndarray) -> Stroke:
+    """The stroke's centre line taken into its sharp corners (a 折's shoulder, a hook's foot):
+    the skeleton of a thick turn cuts across it, so the brush, following it, would round the
+    corner off and miss the foot, which is often the character's lowest or outermost ink. At
+    each sharp turn (``_turns``) the corner is where the legs' lines meet (a 折: the writer
+    lands its next movement on it, so a corner pushed out to the shoulder's edge leaves a notch
+    that opens 口's box); at the foot of a stroke that came down (a hook's: 竖钩, 横折钩) it
+    goes out from there, straight on
+    or to the turn's outside (``_corner_point``), as far as the ink is still CORNER_HOLD of
+    the legs' half-width thick; the line runs straight into it and out of it. (Beyond the
+    paper's Sec. 9, which does not say how strokes are read off a picture: stroke data's
+    medians go into their corners, and the writer presses into a corner before turning.)"""
+    pts, rad = s.pts, s.radius
+    turns = _turns(pts, rad)
+    if not turns:
+        return s
+    keep_pts, keep_rad, last = [], [], 0
+    for k, place, u, w in turns:
+        r_leg = float(np.median(rad[max(k - 10, 0) : k + 11]))
+        c = place  # a 折: where the legs meet, the corner's centre
+        if u[1] > FOOT_DOWN:  # the foot of a stroke that came down (竖钩, 横折钩, 弯钩)
+            c = _corner_point(place, u, w, CORNER_HOLD * r_leg, dist)
+        i0, i1 = _on_leg(pts, k, place, -u, r_leg, -1), _on_leg(pts, k, place, w, r_leg, 1)
+        skip = int(np.ceil(CORNER_SKIP * r_leg / STEP_PX))  # at most this far down a leg
+        i0 = _aligned(pts, i0, c, -u, -1, max(last, i0 - skip))
+        i1 = _aligned(pts, i1, c, w, 1, min(len(pts) - 1, i1 + skip))
+        if i0 < last or i1 <= i0 + 1:
+            continue
+        keep_pts += [pts[last : i0 + 1], c[None]]
+        keep_rad += [rad[last : i0 + 1], [r_leg]]
+        last = i1
+    if not keep_pts:
+        return s
+    line = np.vstack([*keep_pts, pts[last:]])
+    radius = np.concatenate([*keep_rad, rad[last:]])
+    seg = np.linalg.norm(np.diff(line, axis=0), axis=1)
+    a = np.concatenate([[0.0], np.cumsum(seg)])
+    si = np.linspace(0.0, a[-1], max(int(a[-1] / STEP_PX), 1) + 1)
+    dense = np.stack([np.interp(si, a, line[:, 0]), np.interp(si, a, line[:, 1])], axis=1)
+    return Stroke(dense, np.interp(si, a, radius), s.through, s.touches, s.joints)
+
+
 # -------------------------------------------------------------------- character data
 def _to_data(pts: np.ndarray, n: int) -> np.ndarray:
     return np.stack([pts[:, 0] * EM / n, TOP - pts[:, 1] * EM / n], axis=1)
@@ -181,6 +310,8 @@ def read_strokes(ink: Ink) -> tuple[list, list, dict]:
             f"the picture's ink makes {len(found)} strokes; at most {MAX_STROKES} (one character)"
         )
     strokes = [found[i] for i in writing_order(found, n, ink.mask)]
+    dist = M.edt(ink.mask)
+    strokes = [into_corners(s, dist) for s in strokes]
     regions = stroke_regions(strokes, ink.mask)
     keep = [i for i, r in enumerate(regions) if r.sum() >= 4]
     if not keep:  # every stroke's own ink is a few pixels: nothing the writer could write

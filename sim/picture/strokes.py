@@ -20,7 +20,10 @@ CONTINUE_COS = -0.77  # two ways out of a junction continue each other within ~4
 LOOSE_COS = -0.5  # ... and a short overhang continues a stroke within 60 degrees
 SPUR = 2.0  # a chain from a free end into a junction shorter than this times its half-width
 HOOK_COS = 0.3  # ... and a hook's two ways out lie within ~70 degrees of each other
-TIP = 0.5  # a free end runs on to this times its half-width short of where the ink ends
+HOOK_SPUR = 1.5  # ... but the farthest of a junction's spurs this long (times its half-width)
+OVERHANG_REACH = 1.3  # ... and a spur this long (times its half-width) straight on from a chain
+HOOK_CLEAR = 1.2  # ... and this many times as long as the next is a hook's tip, kept
+TIP = 0.1  # a free end runs on to this times its half-width short of where the ink ends
 ZONE = 1.3  # a junction's zone: this times the ink's half-width there, plus a pixel
 
 
@@ -217,9 +220,16 @@ def _merge_close_nodes(chains: list, nodes: list) -> tuple[list, list]:
     return keep, merged
 
 
-def _prune_spurs(chains: list, nodes: list) -> list:
+def _prune_spurs(chains: list, nodes: list) -> tuple[list, set]:
     """Short chains from a free end into a junction of three or more: the bumps a brush's
-    entry or turn leaves, not strokes."""
+    entry or turn leaves, not strokes. Where that leaves a junction with one chain, its
+    farthest-reaching spur comes back when it reaches HOOK_SPUR of the junction's half-width
+    and clearly farther than the others: the tip of a hook (宀's 横钩, whose shoulder is the
+    other spur), which the stroke turns into; and a spur that runs straight on from one of
+    the junction's chains comes back as that stroke's overhang (``_overhangs``). Returns the
+    chains and the junctions whose
+    spur came back (the stroke runs on through them)."""
+    pruned: dict = {}
     for _ in range(3):
         drop = set()
         for ci, c in enumerate(chains):
@@ -228,11 +238,44 @@ def _prune_spurs(chains: list, nodes: list) -> list:
             node = nodes[max(c.ends)]
             if len(node.chains) >= 3 and _length(c.pts) < SPUR * node.radius + 3:
                 drop.add(ci)
+                pruned.setdefault(max(c.ends), []).append(c)
         if not drop:
-            return chains
+            break
         chains = [c for ci, c in enumerate(chains) if ci not in drop]
         _link(chains, nodes)
-    return chains
+    hooked = set()
+    for ni, spurs in pruned.items():
+        if len(nodes[ni].chains) != 1:
+            for c in _overhangs(chains, nodes[ni], spurs):
+                chains.append(c)
+                _link(chains, nodes)
+            continue
+        reach = sorted((_length(c.pts), k) for k, c in enumerate(spurs))
+        far, k = reach[-1]
+        second = reach[-2][0] if len(reach) > 1 else 0.0
+        if far >= HOOK_SPUR * nodes[ni].radius and far >= HOOK_CLEAR * second:
+            chains.append(spurs[k])
+            hooked.add(ni)
+    _link(chains, nodes)
+    return chains, hooked
+
+
+def _overhangs(chains: list, node: Node, spurs: list) -> list:
+    """The spurs pruned at a junction that run straight on from one of its chains beyond the
+    ink of the others (OVERHANG_REACH of its half-width from its centre or more): the end of a
+    stroke reaching past the stroke it meets, as 口's left side past its foot and its top, which
+    the brush must reach."""
+    out = []
+    for spur in spurs:
+        end = 0 if spur.ends[0] >= 0 else 1
+        if _length(spur.pts) < OVERHANG_REACH * node.radius:
+            continue
+        way = _exit(spur, end, node)[1]
+        for ci, e in node.chains:
+            if float(_exit(chains[ci], e, node)[1] @ way) < CONTINUE_COS:
+                out.append(spur)
+                break
+    return out
 
 
 def _exit(c: Chain, end: int, node: Node) -> tuple[int, np.ndarray]:
@@ -456,8 +499,12 @@ def find_strokes(mask: np.ndarray, dist: np.ndarray | None = None) -> list[Strok
     dist = M.edt(mask) if dist is None else dist
     chains, nodes = skeleton_graph(mask, dist)
     chains, nodes = _merge_close_nodes(chains, nodes)
-    chains = _prune_spurs(chains, nodes)
+    chains, hooked = _prune_spurs(chains, nodes)
     partner = _pairs(chains, nodes)
+    for ni in hooked:  # the stroke turns into its hook's tip
+        a, b = nodes[ni].chains
+        if a not in partner and b not in partner:
+            partner[a], partner[b] = b, a
     used, out = set(), []
     starts = [(ci, e) for ci in range(len(chains)) for e in (0, 1) if (ci, e) not in partner]
     for ci, e in starts + [(ci, 0) for ci in range(len(chains))]:
