@@ -57,17 +57,31 @@ FINITE_SETTINGS = {
     "dip_depth": "Dip depth",
     "dip_wetness": "Dip wetness",
     "paint_press_mm": "Press",
+    "paint_angle_step": "Angle Step",
+    "paper_capacity": "Ink Capacity",
+    "paper_fibre": "Fibre",
+    "paper_color": "Paper Colour",
+    "ink_color": "Ink Colour",
 }
 
 
 def check_settings(st):
-    """One clear message for a setting that is not a number."""
+    """One clear message for a setting that is not a number (a colour: any of its channels)."""
     for name, label in FINITE_SETTINGS.items():
-        if not math.isfinite(getattr(st, name)):
+        value = getattr(st, name)
+        if not all(math.isfinite(v) for v in (value if hasattr(value, "__len__") else [value])):
             raise UserError(f"{label} is not a number: set it again in the sidebar")
     for name in QualityParams.names():
         if not math.isfinite(getattr(st.quality, name)):
             raise UserError(f"Quality value '{name}' is not a number: set it again")
+
+
+def check_number(value: float, label: str, hint: str = "set it again") -> float:
+    """``value`` if it is a finite number, else UserError naming ``label`` (an operator's own
+    property, which a script or a redo panel can set to NaN)."""
+    if not math.isfinite(value):
+        raise UserError(f"{label} is not a number: {hint}")
+    return value
 
 
 # ------------------------------------------------------------------------------ paper size

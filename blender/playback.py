@@ -13,7 +13,7 @@ from pathlib import Path
 
 import bpy
 
-from ..sim.engine.checkpoints import cache_key_of, load_checkpoints
+from ..sim.engine.checkpoints import CacheError, load_checkpoints
 from ..sim.engine.simulation import Simulation
 from ..sim.engine.timeline import Timeline
 from ..sim.writing.work.compose import check_work, work_of
@@ -27,6 +27,8 @@ class Playback:
     """The scene's simulation on a Timeline (delta snapshots, see sim.timeline): a snapshot
     every frame's worth of samples, so a step of one frame back or forth re-simulates at most
     one frame."""
+
+    cache_warning = ""  # why the farm cache next to the .blend was not used ("": it was, or none)
 
     def __init__(self, rec, key: str, samples_per_frame: float = 5.0, surface=None):
         self.key = key
@@ -85,10 +87,16 @@ def cache_folder(scene):
 
 
 def _load_cache(pb: Playback, scene):
-    """A fresh playback starts from the farm cache's checkpoints when they are current."""
+    """A fresh playback starts from the farm cache's checkpoints when they are provably this
+    scene's (every file checked); any other cache is ignored with a warning, once a playback."""
     folder = cache_folder(scene)
-    if folder is not None and cache_key_of(folder) == pb.key:
-        load_checkpoints(pb.timeline, folder)
+    if folder is None or not folder.exists():
+        return
+    try:
+        load_checkpoints(pb.timeline, folder, pb.key)
+    except CacheError as exc:
+        pb.cache_warning = f"farm cache {folder} not used: {exc}; simulating from the start"
+        print(f"Virtual Hairy Brush: {pb.cache_warning}")
 
 
 def playback_for(scene) -> Playback:

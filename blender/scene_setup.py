@@ -94,7 +94,8 @@ def follow_hair_length(st):
     if brush is None:
         return delta
     show_hair_length(st, new)
-    if abs(delta) < 1e-9 or paper is None:
+    # an old height that is not a number (a damaged .blend) moves nothing (issue 30)
+    if not math.isfinite(delta) or abs(delta) < 1e-9 or paper is None:
         return delta
     move = _basis_offset(brush, paper, delta)
     brush.location = brush.location + Vector(move)

@@ -56,7 +56,7 @@ class WriteJob(jobs.WorkerJob):
 
     def _check(self, size_mm: float) -> float:
         """The size as the settings will hold it (single precision), checked for memory."""
-        size = float(np.float32(size_mm))
+        size = float(np.float32(checks.check_number(size_mm, "Size (mm)")))
         w = max(1, round(size * self.ppm))
         checks.check_paper_pixels(w, w)
         return size

@@ -4,6 +4,8 @@ tooltip says what it overwrites, the report what it did."""
 
 from __future__ import annotations
 
+import math
+
 import bpy
 
 from ..blender import checks, recordings
@@ -15,6 +17,7 @@ from ..blender.presets import (
     apply_quality_presets,
     preset_label,
 )
+from ..blender.scene_setup import follow_hair_length
 from ..sim.core.params import ParameterError, QualityParams, load_preset
 from . import polls
 
@@ -65,6 +68,8 @@ class HAIRY_BRUSH_OT_apply_preset(bpy.types.Operator):
             return {"FINISHED"}
         hair_before = st.touch_height_mm
         setattr(st, PROPERTY[self.kind], self.name)
+        if self.kind == "brush" and not math.isfinite(st.touch_height_mm):
+            follow_hair_length(st)  # the preset was chosen already: no update ran
         # also when the preset was already chosen (no update then): restore its values
         if self.kind == "ink":
             apply_ink_preset(st)
@@ -77,8 +82,9 @@ class HAIRY_BRUSH_OT_apply_preset(bpy.types.Operator):
                 {"INFO"}, f"Paper {label}: set colour, Ink Capacity, Fibre, {_names(preset)}"
             )
             return {"FINISHED"}
+        level = "INFO" if math.isfinite(hair_before) else "WARNING"
         change = _hair_change(st, hair_before) + _recording_change(context.scene)
-        self.report({"INFO"}, f"Brush {label}: {change}; set {_names(preset)}")
+        self.report({level}, f"Brush {label}: {change}; set {_names(preset)}")
         return {"FINISHED"}
 
 
@@ -89,6 +95,8 @@ def _names(preset) -> str:
 def _hair_change(st, before: float) -> str:
     now = st.touch_height_mm
     text = f"hair length {now:g} mm (touches the paper at z = {now:g} mm)"
+    if not math.isfinite(before):
+        return text + "; the touching height was not a number: the brush empty was not moved"
     if abs(now - before) > 1e-6 and st.brush_object is not None:
         way = "up" if now > before else "down"
         text += f", brush empty moved {way} {abs(now - before):g} mm to hover as before"

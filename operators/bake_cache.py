@@ -8,7 +8,9 @@ exactly that of simulating straight to the frame. The checkpoints go next to the
 that syncs the .blend's folder carries them along, and the .blend itself stays small (inside
 it, every save and every worker's load would carry them). Each checkpoint holds only the paper
 tiles changed since the previous one. They are made for one recording and its settings: any
-change makes them stale (ignored until baked again)."""
+change makes them stale (ignored until baked again). Every file carries the key, a new bake is
+swapped in whole, and a cache that is not provably this scene's is ignored with a warning
+(``sim.engine.checkpoints``, issue 30)."""
 
 from __future__ import annotations
 

@@ -10,7 +10,7 @@ import numpy as np
 
 from ..blender import checks, keyframes, presets, recordings, runtime, surfaces, transforms
 from ..sim import surface as surf
-from ..sim.core.recording import from_dict
+from ..sim.core.recording import MAX_SAMPLES, from_dict
 from . import polls
 
 
@@ -194,6 +194,15 @@ class HAIRY_BRUSH_OT_bake_samples(bpy.types.Operator):
             return {"CANCELLED"}
         if scene.frame_end <= scene.frame_start:
             self.report({"ERROR"}, "The scene's frame range is empty")
+            return {"CANCELLED"}
+        n = _count(scene, scene.frame_start, scene.frame_end, st.sample_rate_hz)
+        if n > MAX_SAMPLES:  # known before the frames are stepped through (issue 30)
+            self.report(
+                {"ERROR"},
+                f"Frames {scene.frame_start}-{scene.frame_end} at {st.sample_rate_hz:g} Hz make "
+                f"{n:,} samples, more than a recording holds ({MAX_SAMPLES:,}): shorten the "
+                "frame range or lower Sample Rate",
+            )
             return {"CANCELLED"}
         try:
             samples, frames = self.sampled(context, st)

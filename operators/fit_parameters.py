@@ -17,7 +17,7 @@ from ..sim.fitting.samples import TRAINING_SIZE_PX, TrainingSample, character_sa
 from ..sim.fitting.search import FitSettings, fit
 from ..sim.writing.hanzi import find_char
 from . import polls
-from .add_settings_preset import PRESET_SUBDIR, HAIRY_BRUSH_OT_add_settings_preset
+from .add_settings_preset import PRESET_SUBDIR, write_settings_preset
 
 _DEFAULTS = FitSettings()  # the fit's defaults have one home (sim.fitting.search)
 
@@ -26,18 +26,8 @@ def write_user_preset(st, name: str) -> str:
     """Save the scene's settings as a Blender preset file, in the format (and the folder) of the
     add-on's own preset menu, so it appears there beside the user's other presets."""
     folder = bpy.utils.user_resource("SCRIPTS", path=os.path.join("presets", PRESET_SUBDIR))
-    os.makedirs(folder, exist_ok=True)
     safe = bpy.path.clean_name(name) or "fitted"
-    path = os.path.join(folder, safe + ".py")
-    lines = ["import bpy", *HAIRY_BRUSH_OT_add_settings_preset.preset_defines, ""]
-    for expr in HAIRY_BRUSH_OT_add_settings_preset.preset_values:
-        value = eval(expr, {"st": st})  # noqa: S307 - the preset's own attribute paths
-        if hasattr(value, "__len__") and not isinstance(value, str):
-            value = tuple(value)
-        lines.append(f"{expr} = {value!r}")
-    with open(path, "w", encoding="utf-8") as f:
-        f.write("\n".join(lines) + "\n")
-    return path
+    return write_settings_preset(st, os.path.join(folder, safe + ".py"))
 
 
 class FitJob(WorkerJob):

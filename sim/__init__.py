@@ -9,6 +9,14 @@ the mark), ``paper``, ``surface`` (writing on a 3D mesh), ``engine`` (the simula
 timeline, live painting), ``writing`` (characters from stroke data), ``picture`` (imitating a
 picture), ``fitting`` (Sec. 7.2's fit) and ``cli`` (``python -m sim``)."""
 
+import os
+
+# The engine's matrices are small: BLAS threads cost more than they give and fight the worker
+# processes of write-set and fit; each thread also maps a workspace of its own, and OpenBLAS
+# spins for ever when a mapping is refused under a memory limit (issue 30, sim/cli/memory.py).
+# One thread, unless the caller chose (this acts only if numpy is not loaded yet).
+os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
+
 from .brush.inertia import InertiaPredictor
 from .brush.primitive import HairyBrush
 from .core.frames import rotation_matrix

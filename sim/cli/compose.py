@@ -6,7 +6,6 @@ cells written and simulated on this machine's processes or a Dask cluster."""
 from __future__ import annotations
 
 import argparse
-import json
 import os
 import sys
 import time
@@ -35,7 +34,11 @@ class Mapper:
         elif workers > 1:
             from concurrent.futures import ProcessPoolExecutor
 
-            self._pool = ProcessPoolExecutor(workers)
+            from ..fitting.cluster import exit_with_parent
+
+            self._pool = ProcessPoolExecutor(  # its workers end with this process (issue 30)
+                workers, initializer=exit_with_parent, initargs=(os.getpid(),)
+            )
 
     def __call__(self, fn, tasks, done=None) -> list:
         tasks = list(tasks)
@@ -116,6 +119,7 @@ def _settings(args):
 
 
 def cmd_compose(args) -> int:
+    from ..core.files import write_json_atomic
     from ..image.png import write_png
     from ..writing.work import compose as work
 
@@ -173,8 +177,8 @@ def cmd_compose(args) -> int:
     if args.save_recording:
         rec.save(args.save_recording)
     if args.layout_out:
-        with open(args.layout_out, "w", encoding="utf-8") as fh:
-            json.dump(work.layout_items(rec, inks), fh, ensure_ascii=False, indent=1)
+        items = work.layout_items(rec, inks)
+        write_json_atomic(args.layout_out, items, ensure_ascii=False, indent=1, separators=None)
     if skipped:
         from ..writing.work.text import describe
 

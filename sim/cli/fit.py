@@ -9,7 +9,7 @@ import sys
 import time
 
 from ..core.params import ParameterError, short_repr
-from .shared import _chars, _progress, _response, _template, _whole, _writable
+from .shared import _chars, _named, _progress, _response, _template, _whole, _writable
 
 
 def cmd_fit(args) -> int:
@@ -100,9 +100,11 @@ def _add_fit(sub, size, common):
     f.add_argument("--chars", nargs="*", default=[], help="training characters (stroke data)")
     f.add_argument("--image", nargs="*", help="training images (PNG) ...")
     f.add_argument("--image-recording", nargs="*", help="... and their recordings")
-    f.add_argument("-o", "--output", required=True, help="preset JSON to write")
+    f.add_argument("-o", "--output", type=_named, required=True, help="preset JSON to write")
     f.add_argument("--size", type=size, default=TRAINING_SIZE_PX, help="training image size")
-    f.add_argument("--seed-preset", default=None, help="brush preset name or quality JSON")
+    f.add_argument(
+        "--seed-preset", type=_named, default=None, help="brush preset name or quality JSON"
+    )
     defaults = FitSettings()  # the one home of the fit's defaults
     for name, help_ in (
         ("divisions", None),

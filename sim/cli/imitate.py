@@ -5,7 +5,7 @@ from __future__ import annotations
 
 import time
 
-from .shared import _progress, _response, _template, _writable
+from .shared import _named, _progress, _response, _template, _writable
 
 
 def _progress_after_reading(frac: float, *_details) -> None:
@@ -17,8 +17,7 @@ def _progress_after_reading(frac: float, *_details) -> None:
 
 def cmd_imitate(args) -> int:
     """Read a picture of writing, write it with the brush, report how close the ink is."""
-    import json
-
+    from ..core.files import write_json_atomic
     from ..fitting.texture import score, texture_stats
     from ..image.png import write_png
     from ..picture.imitate import imitate, ink_on
@@ -44,8 +43,7 @@ def cmd_imitate(args) -> int:
     if args.recording:
         rec.save(args.recording)
     if args.char_data:
-        with open(args.char_data, "w", encoding="utf-8") as f:
-            json.dump(im.char, f, separators=(",", ":"))
+        write_json_atomic(args.char_data, im.char)
     if not args.quiet:
         ink = ink_on(im.ink.mask, args.size)  # read at most MAX_DETAIL a side
         print(
@@ -64,18 +62,23 @@ def _add_imitate(sub, size, common):
     im = sub.add_parser("imitate", help="read a picture of writing and write it with the brush")
     im.add_argument(
         "image",
+        type=_named,
         help="dark writing on a light ground: any PNG, JPEG, TIFF, ... with Pillow installed "
         "(pip install pillow); without it an 8-bit PNG",
     )
-    im.add_argument("-o", "--output", required=True)
+    im.add_argument("-o", "--output", type=_named, required=True)
     im.add_argument(
         "--size",
         type=size,
         default=512,
         help=f"image size N (the em box) written; the picture is read at N, at most {MAX_DETAIL}",
     )
-    im.add_argument("--recording", default=None, help="also save the recording it made")
-    im.add_argument("--char-data", default=None, help="also save the strokes read (JSON)")
+    im.add_argument(
+        "--recording", type=_named, default=None, help="also save the recording it made"
+    )
+    im.add_argument(
+        "--char-data", type=_named, default=None, help="also save the strokes read (JSON)"
+    )
     im.add_argument(
         "--piece",
         action="store_true",

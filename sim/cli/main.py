@@ -7,6 +7,7 @@ from __future__ import annotations
 import argparse
 import sys
 
+from ..core.files import WriteError
 from ..core.params import MAX_PAPER_SIDE_PX, ParameterError
 from ..core.recording import (
     DEFAULT_BRUSH,
@@ -20,8 +21,9 @@ from .compose import _add_compose
 from .evaluate import cmd_iou
 from .fit import _add_fit
 from .imitate import _add_imitate
+from .memory import EXIT_CODE, NotEnoughMemory, out_of_memory, reserve_workspace
 from .render import cmd_render
-from .shared import _real, _whole
+from .shared import _named, _real, _whole
 from .write import cmd_write, cmd_write_set
 
 
@@ -47,8 +49,8 @@ def _parser() -> argparse.ArgumentParser:
     ap = argparse.ArgumentParser(prog="python -m sim", description="Virtual Hairy Brush engine")
     sub = ap.add_subparsers(dest="cmd", required=True)
     r = sub.add_parser("render", help="render a recording to a PNG")
-    r.add_argument("recording")
-    r.add_argument("-o", "--output", required=True)
+    r.add_argument("recording", type=_named)
+    r.add_argument("-o", "--output", type=_named, required=True)
     r.add_argument(
         "--px-per-mm", type=_real(*PX_PER_MM_RANGE), default=None, help="override the resolution"
     )
@@ -57,11 +59,15 @@ def _parser() -> argparse.ArgumentParser:
     r.set_defaults(func=cmd_render)
 
     def common(p):
-        p.add_argument("--data", default=None, help="folder of <char>.json or graphics.txt")
-        p.add_argument("--brush", default=DEFAULT_BRUSH, help="brush preset")
-        p.add_argument("--paper", default=DEFAULT_PAPER, help="paper preset")
-        p.add_argument("--ink", default="sumi_black", help="ink preset")
-        p.add_argument("--quality", default=None, help="quality JSON (e.g. from sim fit)")
+        p.add_argument(
+            "--data", type=_named, default=None, help="folder of <char>.json or graphics.txt"
+        )
+        p.add_argument("--brush", type=_named, default=DEFAULT_BRUSH, help="brush preset")
+        p.add_argument("--paper", type=_named, default=DEFAULT_PAPER, help="paper preset")
+        p.add_argument("--ink", type=_named, default="sumi_black", help="ink preset")
+        p.add_argument(
+            "--quality", type=_named, default=None, help="quality JSON (e.g. from sim fit)"
+        )
         p.add_argument("--seed", type=seed, default=0)
         p.add_argument(
             "--size-mm", type=_real(*PAPER_MM_RANGE), default=None, help="character size (auto)"
@@ -75,19 +81,19 @@ def _parser() -> argparse.ArgumentParser:
 
     w = sub.add_parser("write", help="write a character from stroke data with the brush")
     w.add_argument("char", help="hanzi-writer JSON file, or one character (with --data)")
-    w.add_argument("-o", "--output", required=True)
+    w.add_argument("-o", "--output", type=_named, required=True)
     w.add_argument("--size", type=size, default=512, help="image size N (the em box)")
-    w.add_argument("--recording", default=None, help="also save the recording it made")
+    w.add_argument("--recording", type=_named, default=None, help="also save the recording it made")
     w.add_argument("-q", "--quiet", action="store_true")
     common(w)
     w.set_defaults(func=cmd_write)
     _add_imitate(sub, size, common)
     ws = sub.add_parser("write-set", help="write many characters to a folder (PNG + recording)")
     ws.add_argument("chars", nargs="+", help="hanzi-writer JSON files, or characters")
-    ws.add_argument("--out-dir", required=True, help="folder for NNN.png and NNN.json")
+    ws.add_argument("--out-dir", type=_named, required=True, help="folder for NNN.png and NNN.json")
     ws.add_argument("--size", type=size, default=512, help="image size N (the em box)")
     ws.add_argument("--workers", type=_whole(0, 256), default=0, help="processes (0: all)")
-    ws.add_argument("--scheduler", default=None, help="a Dask cluster, as for fit")
+    ws.add_argument("--scheduler", type=_named, default=None, help="a Dask cluster, as for fit")
     ws.add_argument("-q", "--quiet", action="store_true")
     common(ws)
     ws.set_defaults(func=cmd_write_set)
@@ -113,13 +119,28 @@ def _parser() -> argparse.ArgumentParser:
 
 
 def main(argv=None) -> int:
-    """Run a command; any bad input ends in one 'error:' line and exit code 2."""
+    """Run a command; any bad input ends in one 'error:' line and exit code 2, too little
+    memory in one line saying how much was needed and exit code 3."""
     args = _parser().parse_args(argv)
     try:
+        reserve_workspace()
         return args.func(args)
+    except NotEnoughMemory as exc:
+        print(f"error: {exc}", file=sys.stderr)
+        return EXIT_CODE
+    except MemoryError as exc:
+        print(f"error: {out_of_memory(exc)}", file=sys.stderr)
+        return EXIT_CODE
     except (RecordingError, ParameterError, ValueError) as exc:
         print(f"error: {exc}", file=sys.stderr)
         return 2
     except OSError as exc:
-        print(f"error: {exc}", file=sys.stderr)
+        print(f"error: {os_message(exc)}", file=sys.stderr)
         return 2
+
+
+def os_message(exc: OSError) -> str:
+    """A system error in plain words: what failed on which file, no error numbers."""
+    if isinstance(exc, WriteError) or not exc.strerror:
+        return str(exc)
+    return f"{exc.filename}: {exc.strerror}" if exc.filename else exc.strerror

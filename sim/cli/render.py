@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import time
 
+from .memory import RENDER_BYTES_PER_PIXEL, check_room
 from .shared import _progress, _writable
 
 
@@ -25,6 +26,8 @@ def cmd_render(args) -> int:
         rec = from_dict(d)
     if args.seed is not None:
         rec.seed = args.seed
+    w, h = rec.width_px, rec.height_px
+    check_room(w * h * RENDER_BYTES_PER_PIXEL, f"a paper of {w} x {h} px")
     t0 = time.perf_counter()
     sim = Simulation(rec).run(progress=None if args.quiet else _progress)
     write_png(args.output, image8(sim.paper, rec))  # a work's grid and seal with the ink

@@ -21,6 +21,8 @@ def _progress(frac: float) -> None:
 
 def _writable(path) -> None:
     """Refuse an output path whose folder does not exist before any long work."""
+    if not str(path).strip():
+        raise ParameterError("the output path is empty: name a file to write")
     folder = os.path.dirname(os.path.abspath(path))
     if os.path.isdir(path) or not os.path.isdir(folder):
         raise ParameterError(f"cannot write {path}: no such folder, or it is a folder")
@@ -76,6 +78,14 @@ def _chars(specs, data):
     from ..writing.hanzi import find_char
 
     return [find_char(spec, data) for spec in specs]
+
+
+def _named(text: str) -> str:
+    """An argparse type: a path or a name, which may not be empty ('' used to mean the
+    default for --quality and --data, and an unreadable message for -o)."""
+    if not text.strip():
+        raise argparse.ArgumentTypeError("is empty: give a file, folder or name")
+    return text
 
 
 def _whole(lo: int, hi: int):

@@ -45,8 +45,7 @@ def cmd_write(args) -> int:
 def cmd_write_set(args) -> int:
     """Many characters to a folder of PNGs and recordings, on this machine's processes or a
     Dask cluster (the executor of ``fit --scheduler``)."""
-    import json
-
+    from ..core.files import write_json_atomic
     from ..fitting.cluster import map_tasks
     from ..image.png import write_png
 
@@ -63,8 +62,7 @@ def cmd_write_set(args) -> int:
     done = None if args.quiet else (lambda n, total: _progress(n / total))
     for name, rgb, rec in map_tasks(write_task, tasks, workers, args.scheduler, done):
         write_png(os.path.join(args.out_dir, name + ".png"), rgb)
-        with open(os.path.join(args.out_dir, name + ".json"), "w", encoding="utf-8") as f:
-            json.dump(rec, f, separators=(",", ":"))
+        write_json_atomic(os.path.join(args.out_dir, name + ".json"), rec)
     print(f"{args.out_dir}: {len(tasks)} characters, {time.perf_counter() - t0:.1f} s")
     return 0
 

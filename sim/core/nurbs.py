@@ -199,7 +199,9 @@ class SweepLayout:
         self.station_u = 1.0 - (1.0 - k) ** 1.35
         self.knots_s = averaged_knots(self.station_u, 3)
         collocation = bspline_basis(self.knots_s, 3, self.station_u)
-        self.interp = np.linalg.inv(collocation)  # control rows = interp @ section rows
+        # control rows = interp @ section rows: the inverse by the same elimination as
+        # interpolate_cubic (no LAPACK: no BLAS workspace, the same bits on every machine)
+        self.interp = solve_collocation(collocation, np.eye(stations))
         g = np.arange(grid_s) / (grid_s - 1)
         self.grid_s = 1.0 - (1.0 - g) ** 1.35
         self.grid_t = np.arange(grid_t) / grid_t  # periodic: t = 1 is t = 0

@@ -8,13 +8,13 @@ malformed reaches the engine.
 
 from __future__ import annotations
 
-import json
 import math
 from dataclasses import dataclass, field, fields, replace
 from pathlib import Path
 
 import numpy as np
 
+from .files import write_json_atomic
 from .jsonio import decode_text, parse_json, read_json
 from .params import (
     MAX_PAPER_PIXELS,
@@ -47,6 +47,9 @@ MAX_SEED = 2**64 - 1  # PCG64 takes any non-negative integer; a recording keeps 
 MAX_RESTART = 2**32 - 1  # a restarting dip's stream number (Dip.restart)
 Z_LIMIT_MM = 1000.0
 ANGLE_LIMIT_DEG = 89.0
+# the rotation about the handle may wind on (a twisting stroke baked from keyframes); a bound
+# keeps its radians exact enough for cos/sin (issue 30: r = 1e308 became inf, then NaN ink)
+ROTATION_LIMIT_DEG = 1_000_000.0  # about 2,800 turns
 
 
 SAMPLE_DECIMALS = 5
@@ -183,7 +186,9 @@ class Recording:
         return d
 
     def save(self, path) -> None:
-        Path(path).write_text(json.dumps(self.to_dict(), separators=(",", ":")), encoding="utf-8")
+        """Write the recording as compact JSON, whole or not at all (a failure keeps the old
+        file; see ``files.write_atomic``)."""
+        write_json_atomic(path, self.to_dict())
 
 
 # ------------------------------------------------------------------------- validation
@@ -354,6 +359,11 @@ def _samples(d: dict, paper_side_mm: float) -> np.ndarray:
         i = int(np.argmax(np.any(np.abs(arr[:, 3:5]) > ANGLE_LIMIT_DEG, axis=1)))
         raise RecordingError(
             f"'samples[{i}]': deflections d, q must lie within +-{ANGLE_LIMIT_DEG} deg"
+        )
+    if np.any(np.abs(arr[:, 5]) > ROTATION_LIMIT_DEG):
+        i = int(np.argmax(np.abs(arr[:, 5]) > ROTATION_LIMIT_DEG))
+        raise RecordingError(
+            f"'samples[{i}][5]' (rotation r) must lie within +-{ROTATION_LIMIT_DEG:,.0f} deg"
         )
     return arr
 

@@ -13,6 +13,23 @@ from __future__ import annotations
 from ..core.params import ParameterError
 
 CONNECT_TIMEOUT_S = 10
+PARENT_CHECK_S = 0.5  # how often a pool's worker looks whether its parent is still there
+
+
+def exit_with_parent(parent: int) -> None:
+    """A process pool's initializer: the worker ends once ``parent`` (the pid of the process
+    that made the pool) is gone. A parent that is killed tells its pool nothing, and the
+    workers would wait for tasks for ever (issue 30: a killed write-set left them running)."""
+    import os
+    import threading
+    import time
+
+    def watch():
+        while os.getppid() == parent:
+            time.sleep(PARENT_CHECK_S)
+        os._exit(1)
+
+    threading.Thread(target=watch, name="exit-with-parent", daemon=True).start()
 
 
 def _run_with_samples(task, fn, samples, init):
@@ -50,9 +67,13 @@ def map_tasks(fn, tasks, workers: int, scheduler: str | None = None, done=None) 
     tasks = list(tasks)
     out = [None] * len(tasks)
     if scheduler is None:
+        import os
         from concurrent.futures import ProcessPoolExecutor, as_completed
 
-        with ProcessPoolExecutor(max(workers, 1)) as ex:
+        pool = ProcessPoolExecutor(
+            max(workers, 1), initializer=exit_with_parent, initargs=(os.getpid(),)
+        )
+        with pool as ex:
             futures = {ex.submit(fn, t): k for k, t in enumerate(tasks)}
             for n, fut in enumerate(as_completed(futures), 1):
                 out[futures[fut]] = fut.result()

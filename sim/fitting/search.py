@@ -28,9 +28,11 @@ from pathlib import Path
 
 import numpy as np
 
+from ..core.files import write_atomic
 from ..core.jsonio import read_json
 from ..core.params import QP1, QP2, ParameterError, QualityParams, number_within, short_repr
 from ..core.recording import MAX_SEED
+from .cluster import exit_with_parent
 from .samples import TrainingSample
 from .target import _init_worker, target_function
 
@@ -207,7 +209,9 @@ class _Pool:
         self.samples = samples
         self.ex = None
         if workers > 1:
-            self.ex = ProcessPoolExecutor(workers, initializer=_init_worker, initargs=(samples,))
+            self.ex = ProcessPoolExecutor(
+                workers, initializer=_init_pool_worker, initargs=(os.getpid(), samples)
+            )
         _init_worker(samples)
 
     def map(self, fn, tasks):
@@ -351,6 +355,12 @@ def fit(
     return FitResult(current, final, start_target, evaluations, history)
 
 
+def _init_pool_worker(parent: int, samples) -> None:
+    """A local pool's worker: it ends with its parent, and holds the training samples."""
+    exit_with_parent(parent)
+    _init_worker(samples)
+
+
 def load_quality(path) -> dict:
     """Quality values from a JSON file with a "quality" object (a fitted preset, a brush or
     paper preset, or a bare object of values); every value is checked."""
@@ -368,5 +378,5 @@ def load_quality(path) -> dict:
 def save_preset(result: FitResult, path, name: str | None = None) -> Path:
     p = Path(path)
     p.parent.mkdir(parents=True, exist_ok=True)
-    p.write_text(json.dumps(result.to_preset(name or p.stem), indent=2) + "\n", encoding="utf-8")
+    write_atomic(p, json.dumps(result.to_preset(name or p.stem), indent=2) + "\n")
     return p

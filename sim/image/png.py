@@ -14,6 +14,7 @@ import zlib
 
 import numpy as np
 
+from ..core.files import write_atomic
 from ..core.params import MAX_PAPER_PIXELS, MAX_PAPER_SIDE_PX
 
 SIGNATURE = b"\x89PNG\r\n\x1a\n"
@@ -43,7 +44,7 @@ def to_uint8(rgb) -> np.ndarray:
 
 def write_png(path, img, level: int = 6) -> None:
     """img: (H, W[, 1|2|3|4]) uint8 or float in [0, 1] (grey, grey + alpha, RGB, RGBA), top
-    row first."""
+    row first. Written whole or not at all (``write_atomic``): a failure keeps the old file."""
     a = np.asarray(img)
     if a.dtype != np.uint8:
         a = to_uint8(a)
@@ -60,11 +61,14 @@ def write_png(path, img, level: int = 6) -> None:
         raw[:, 1:] = rows
         parts.append(z.compress(raw.tobytes()))
     parts.append(z.flush())
-    with open(path, "wb") as f:
-        f.write(b"\x89PNG\r\n\x1a\n")
+
+    def write(f):
+        f.write(SIGNATURE)
         f.write(_chunk(b"IHDR", struct.pack(">IIBBBBB", w, h, 8, ctype, 0, 0, 0)))
         f.write(_chunk(b"IDAT", b"".join(parts)))
         f.write(_chunk(b"IEND", b""))
+
+    write_atomic(path, write)
 
 
 def png_header(

@@ -110,10 +110,8 @@ def calibrate(
         _CACHE[key] = _calibrate(template, speed_mm_s, presses, ppm)
         return _CACHE[key]
     path = _cache_file(key, cache_dir)
-    try:
-        d = json.loads(path.read_text())
-        resp = Response(*(np.array(d[k], dtype=float) for k in ("press", "width", "lag")), d["v"])
-    except (OSError, ValueError, KeyError, TypeError):
+    resp = _cached_response(path, template, speed_mm_s, presses)
+    if resp is None:
         resp = _calibrate(template, speed_mm_s, presses, ppm)
         d = {k: getattr(resp, f"{k}_mm").tolist() for k in ("press", "width", "lag")}
         try:
@@ -125,6 +123,35 @@ def calibrate(
             pass  # a read-only home: measure each time
     _CACHE[key] = resp
     return resp
+
+
+MAX_CACHE_BYTES = 2**20  # a response file is under a kilobyte; larger is not one of ours
+
+
+def _cached_response(path, template: Recording, speed_mm_s: float, presses: int):
+    """The response kept in ``path``, or None (measure again) on any doubt (issue 30): it must
+    be what ``calibrate`` writes - the presses exactly the calibration's depths, as many finite
+    widths (non-negative, non-decreasing) and lags, and the speed asked for."""
+    import json
+
+    try:
+        with open(path, "rb") as f:
+            data = f.read(MAX_CACHE_BYTES + 1)
+        d = json.loads(data.decode("utf-8")) if len(data) <= MAX_CACHE_BYTES else {}
+        press, width, lag = (np.array(d[k], dtype=float) for k in ("press", "width", "lag"))
+        v = d["v"]
+    except (OSError, ValueError, KeyError, TypeError, IndexError, OverflowError, RecursionError):
+        return None
+    hair = template.resolve()[1].hair_length_mm
+    want = np.linspace(*CAL_DEPTHS, presses) * hair
+    arrays = (press, width, lag)
+    if any(a.shape != want.shape or not np.isfinite(a).all() for a in arrays):
+        return None
+    if not np.allclose(press, want, rtol=0, atol=1e-9) or width.min() < 0:
+        return None
+    if np.any(np.diff(width) < 0) or type(v) not in (int, float) or v != speed_mm_s:
+        return None
+    return Response(want, width, lag, float(v))
 
 
 CAL_DEPTHS = (0.04, 0.42)  # press range of the calibration, as shares of the hair length:

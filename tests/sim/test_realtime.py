@@ -196,7 +196,7 @@ def test_checkpoints_on_disk_let_a_fresh_process_seek_anywhere_exactly(tmp_path)
     assert len(files) == len(made.snaps) > 3
     for target in (n - 5, 40, n // 2 + 7, 3):
         fresh = Timeline(Simulation(rec), every=32)  # as a render farm's worker starts
-        load_checkpoints(fresh, tmp_path / "cache")
+        load_checkpoints(fresh, tmp_path / "cache", "abc")
         sim = fresh.seek(target)
         want = Simulation(rec).run(target)
         for a in ("ink", "wet", "last"):
@@ -204,7 +204,7 @@ def test_checkpoints_on_disk_let_a_fresh_process_seek_anywhere_exactly(tmp_path)
         assert sim.rng.bit_generator.state == want.rng.bit_generator.state
     # a fresh worker stepped at most one interval of samples from the nearest checkpoint
     fresh = Timeline(Simulation(rec), every=32)
-    load_checkpoints(fresh, tmp_path / "cache")
+    load_checkpoints(fresh, tmp_path / "cache", "abc")
     steps = []
     fresh.sim.timings = {}
     real_run = fresh.sim.run
