@@ -83,8 +83,8 @@ def choices(st) -> Choices:
     import bpy
 
     w = st.work
-    if not math.isfinite(w.char_mm) or not math.isfinite(w.variation):
-        raise checks.UserError("Write Text's Size or Variation is not a number: set it again")
+    checks.check_number(w.char_mm, "Write Text's Size", "set it again in the sidebar")
+    checks.check_number(w.variation, "Write Text's Variation", "set it again in the sidebar")
     data = bpy.path.abspath(w.data_path) if w.data_path.strip() else None
     return Choices(
         w.direction,

@@ -105,6 +105,9 @@ def test_text_without_stroke_data_is_named_and_nothing_is_written(hb):
     assert st.recording is None and st.brush_object.animation_data is None
     with pytest.raises(RuntimeError, match="Type the text"):
         bpy.ops.hairy_brush.write_text(text="  ")
+    st.work.char_mm = float("nan")  # a hand-edited file
+    with pytest.raises(RuntimeError, match="Size is not a number"):
+        bpy.ops.hairy_brush.write_text(text="十")
     st.work.char_mm = 150.0  # five 150 mm characters on a 200 mm paper
     with pytest.raises(RuntimeError, match="does not fit the paper"):
         bpy.ops.hairy_brush.write_text(text="十一二三四")
