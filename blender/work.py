@@ -303,12 +303,16 @@ class WorkJob(jobs.WorkerJob):
         extra = {k: v for k, v in change.rec.extra.items() if k != recordings.SURFACE_KEY}
         rec = change.rec = replace(change.rec, extra=extra)  # flat: no surface frames
         lay = Layout.from_dict(compose.work_of(rec)["layout"])
-        if not cells_cover(rec, lay):  # strokes painted between the cells: the whole run
-            sim = Simulation(rec).run(progress=lambda f: progress(share + (1 - share) * f))
-            return change, sim.paper
-        mapper = kept_mapper(self.kept, self.fresh, progress, share, 1.0)
-        paper, _ = compose.render(rec, mapper=mapper)
-        return change, paper
+        if cells_cover(rec, lay):
+            mapper = kept_mapper(self.kept, self.fresh, progress, share, 1.0)
+            try:
+                return change, compose.render(rec, mapper=mapper)[0]
+            except ParameterError:  # a cell's restarting dip replaced (Dip Brush at its start)
+                self.fresh.clear()
+        # strokes painted between the cells, or a cell that depends on the one before: the
+        # whole run of the recording
+        sim = Simulation(rec).run(progress=lambda f: progress(share + (1 - share) * f))
+        return change, sim.paper
 
     def finish(self, context):
         change, paper = self.result

@@ -323,6 +323,20 @@ def test_esc_leaves_nothing_of_the_call_and_the_job_reports_progress(hb):
     level, message = job.finish(bpy.context)
     assert level == "INFO" and "十" in message
     assert st.recording is not None and len(layout_of(scene_rec()).cells) == 1
+    # a stroke painted after the work (samples no cell holds): the next call's paper is the
+    # whole run of the recording, still the engine's render of it
+    rec = scene_rec()
+    x, y = layout_of(rec).cells[0].x - 10.0, layout_of(rec).cells[0].y
+    stroke = np.array(
+        [[x, y - 5 * k, HAIR - (3.0 if 2 < k < 8 else -5.0), 0, 0, 0] for k in range(10)]
+    )
+    rec.samples = np.concatenate([rec.samples, stroke])
+    ext().blender.recordings.store_recording(st, rec)
+    assert bpy.ops.hairy_brush.write_text(text="一") == {"FINISHED"}
+    rec2 = scene_rec()
+    np.testing.assert_array_equal(rec2.samples[: len(rec.samples)], rec.samples)
+    assert not ext().blender.work.cells_cover(rec2, layout_of(rec2))
+    assert_shows(st, rec2)
 
 
 @pytest.mark.slow
