@@ -11,4 +11,5 @@ animation), ``surfaces`` (a mesh that is the paper), ``primitives`` (the NURBS o
 writing primitives), ``playback`` (the artwork at any frame), ``materials``, ``presets``,
 ``scene_setup`` (building the brush and paper), ``properties`` (``scene.hairy_brush``), ``jobs``
 (long work with a progress bar and Esc), ``writing`` (Write Character and Imitate Picture into
-the scene) and ``handlers`` (frame change, undo, save, load)."""
+the scene), ``work`` (a work written from text: Write Text, Sign and Seal, Write Cell Again)
+and ``handlers`` (frame change, undo, save, load)."""

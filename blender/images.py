@@ -30,15 +30,27 @@ def ensure_paper_image(st, color=(1.0, 1.0, 1.0)) -> bpy.types.Image:
     return img
 
 
-def show_paper(img, paper, index: int):
+def show_paper(img, paper, index: int, overlay=None, whole: bool = False):
     """Show ``paper`` in the image: only the tiles changed since the image was last shown from
     the same paper are converted, then the kept pixels go to Blender in one call. ``index`` (the
-    samples simulated) is kept on the image, so undo can show exactly what was seen."""
+    samples simulated) is kept on the image, so undo can show exactly what was seen.
+    ``overlay``: a work's grid and seal (sim.writing.work.overlay.Overlay), drawn as ``sim
+    render`` draws them (see WorkView). ``whole``: a paper that was not simulated in place (a
+    work put together from its cells keeps no record of its changed tiles): every pixel is
+    converted."""
     key = img.as_pointer()
     views = runtime.get().views  # paper image (as_pointer) -> the pixels it shows
     view = views.get(key)
-    if view is None or view.linear != img.is_float:
-        view = views[key] = display.PaperView(linear=img.is_float)
+    kind = WorkView if overlay is not None or whole else display.PaperView
+    if (
+        whole
+        or type(view) is not kind
+        or view.linear != img.is_float
+        or getattr(view, "overlay", None) is not overlay
+    ):
+        linear = img.is_float
+        view = display.PaperView(linear) if kind is display.PaperView else WorkView(linear, overlay)
+        views[key] = view
     view.refresh(paper)
     if tuple(img.size) != (paper.W, paper.H):
         img.scale(paper.W, paper.H)
@@ -48,6 +60,48 @@ def show_paper(img, paper, index: int):
     img[SHOWN_TAG] = int(index)
     if density_read(img, tag_reliefs(img)):
         show_density(img, paper.ink)
+
+
+class WorkView:
+    """The pixels of a paper with a work's grid under the ink and its seal over it, as
+    ``sim.writing.work.overlay.work_image8`` draws them before rounding to 8 bits (the same
+    ``Overlay.apply`` on the same visible colour; no overlay: the paper alone): brought up to
+    date a band of whole rows at a time, the rows of the tiles that changed (the overlay is
+    drawn across whole rows). A new paper (another playback, a work put together from its
+    cells) is converted whole, every pixel (not only the tiles it records as changed)."""
+
+    def __init__(self, linear: bool, overlay):
+        self.linear, self.overlay = bool(linear), overlay
+        self.pixels = None  # (H, W, 4) float32, bottom row first
+        self._paper, self._version = None, -1
+
+    def refresh(self, paper) -> int:
+        if self._paper is not paper or self.pixels is None or self.pixels.shape[:2] != paper.shape:
+            self.pixels = np.ones(paper.shape + (4,), dtype=np.float32)
+            rows = [(0, paper.H)]
+        else:
+            tiles = paper.tiles_since(self._version)
+            rows = [paper.tile_box(int(ty), 0)[0] for ty in np.unique(tiles[:, 0])]
+            rows = [(r.start, r.stop) for r in rows]
+        self._paper, self._version = paper, paper.version
+        for y0, y1 in rows:
+            for a in range(y0, y1, WORK_BAND_ROWS):
+                self._band(paper, a, min(a + WORK_BAND_ROWS, y1))
+        return sum(y1 - y0 for y0, y1 in rows) * paper.W
+
+    def _band(self, paper, y0: int, y1: int):
+        """Paper rows y0:y1 (bottom first) converted, the overlay drawn on them (top first)."""
+        top = paper.H - y1  # the band's first row counted from the top
+        vis = np.ascontiguousarray(paper.visible(paper.ink[y0:y1])[::-1], dtype=np.float32)
+        if self.overlay is not None:
+            vis = self.overlay.apply(vis, top)
+        self.pixels[y0:y1, :, :3] = display.encode(np.clip(vis[::-1], 0.0, 1.0), self.linear)
+
+    def flat(self) -> np.ndarray:
+        return self.pixels.reshape(-1)
+
+
+WORK_BAND_ROWS = 256  # rows a work's overlay is drawn on at a time
 
 
 def tag_reliefs(img) -> set:

@@ -2,7 +2,8 @@
 """The artwork at any frame: one engine Simulation per scene, moved to the sample a frame asks
 for. A move restores the nearest snapshot at or before the target (backwards or forwards) and
 steps on from there, so frame N always gives exactly the image of simulating straight to N.
-Also the NURBS surface objects that show the writing primitives (Sec. 2, 6)."""
+A work's grid and seal (sim.writing.work) are drawn on the paper image as ``sim render`` draws
+them. Also the NURBS surface objects that show the writing primitives (Sec. 2, 6)."""
 
 from __future__ import annotations
 
@@ -15,6 +16,8 @@ import bpy
 from ..sim.engine.checkpoints import CacheError, load_checkpoints
 from ..sim.engine.simulation import Simulation
 from ..sim.engine.timeline import Timeline
+from ..sim.writing.work.compose import check_work, work_of
+from ..sim.writing.work.overlay import Overlay, work_image8
 from . import checks, frames, images, primitives, recordings, runtime, surfaces
 
 MAX_SNAPSHOT_EVERY = 64  # samples
@@ -33,6 +36,13 @@ class Playback:
         every = int(min(max(round(samples_per_frame), 1), MAX_SNAPSHOT_EVERY))
         sim = Simulation(rec, surface=surface)  # surface: the mesh's SurfacePaper, or flat
         self.timeline = Timeline(sim, every, checks.SNAPSHOT_BUDGET_BYTES)
+        self.overlay = work_overlay(rec, sim.paper)
+
+    def image8(self, sim: Simulation):
+        """The paper's image as ``sim render`` writes it (a work's grid and seal with the ink):
+        RGB uint8, top row first."""
+        work = work_of(self.rec) if self.overlay is not None else None
+        return work_image8(sim.paper, work, self.rec.seed)
 
     @property
     def sim(self) -> Simulation:
@@ -40,6 +50,16 @@ class Playback:
 
     def seek(self, index: int, progress=None, should_stop=None) -> Simulation:
         return self.timeline.seek(index, progress, should_stop)
+
+
+def work_overlay(rec, paper):
+    """The grid and seal of a recording's work (sim.writing.work) on its paper, as ``sim
+    render`` draws them; None for a recording without a work or a work with neither."""
+    work = work_of(rec)
+    if work is None:
+        return None
+    over = Overlay(work, paper.W, paper.H, paper.ppm, rec.seed)
+    return over if over.boxes or over.seal is not None else None
 
 
 def cache_key(scene) -> str:
@@ -91,12 +111,13 @@ def playback_for(scene) -> Playback:
     if pb is None or pb.key != key:
         try:
             rec = recordings.recording_from_scene(scene)
+            check_work(rec)  # a work's layout and seal (drawn on the paper), as sim render does
             surface = surfaces.surface_paper(checks.settings(scene), rec)
+            per = frames.timeline(rec, scene)[1]  # frames per sample
+            pb = Playback(rec, key, samples_per_frame=1.0 / per, surface=surface)
         except checks.USER_ERRORS as exc:
             rt.failed[scene.name] = (key, str(exc))
             raise
-        per = frames.timeline(rec, scene)[1]  # frames per sample
-        pb = Playback(rec, key, samples_per_frame=1.0 / per, surface=surface)
         _load_cache(pb, scene)
         rt.playbacks[scene.name] = pb
     return pb
@@ -115,8 +136,9 @@ def show(scene, index: int, progress=None, should_stop=None) -> Simulation:
     """Put the paper image (and the primitive objects, if built) at sample ``index``; only what
     changed since the image was last shown is converted (see images.show_paper)."""
     st = checks.settings(scene)
-    sim = playback_for(scene).seek(index, progress, should_stop)
-    images.show_paper(images.ensure_paper_image(st), sim.paper, sim.index)
+    pb = playback_for(scene)
+    sim = pb.seek(index, progress, should_stop)
+    images.show_paper(images.ensure_paper_image(st), sim.paper, sim.index, pb.overlay)
     if primitives.primitive_objects(scene):
         primitives.sync_primitives(scene, sim, create=False)
     return sim

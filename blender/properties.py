@@ -31,6 +31,7 @@ from ..sim.core.recording import (
     PAPER_MM_RANGE,
     PX_PER_MM_RANGE,
 )
+from ..sim.writing.work.compose import WORK_PASSES
 from . import presets, scene_setup
 
 
@@ -85,6 +86,120 @@ class HAIRY_BRUSH_PG_quality(bpy.types.PropertyGroup):
 
     def as_dict(self) -> dict:
         return {n: float(getattr(self, n)) for n in QualityParams.names()}
+
+
+class HAIRY_BRUSH_PG_work(bpy.types.PropertyGroup):
+    """Write Text (issue 27, sim.writing.work): the text, how a new work is laid out on the
+    paper, the signature and seal, and how the characters are written."""
+
+    text: StringProperty(
+        name="Text",
+        default="",
+        description="The characters to write: on an empty recording a new work is laid out on "
+        "the paper; on a work they go on after its last character",
+    )
+    direction: EnumProperty(
+        name="Layout",
+        items=[
+            ("vertical", "Columns", "Columns from the top, read from right to left"),
+            ("horizontal", "Rows", "Rows from the left, read from top to bottom"),
+        ],
+        default="vertical",
+        description="How a new work is laid out (a work keeps its own)",
+    )
+    per_line: IntProperty(
+        name="Characters per Column",
+        default=0,
+        min=0,
+        max=1000,
+        description="Characters a column (row) of a new work holds; 0: as many as the paper holds",
+    )
+    char_mm: FloatProperty(
+        name="Size (mm)",
+        default=0.0,
+        min=0.0,
+        max=1000.0,
+        description="A new work's character size (its em box) in mm; 0: the brush's own size, "
+        "smaller when the text would not fit the paper",
+    )
+    grid: EnumProperty(
+        name="Grid",
+        items=[
+            ("none", "None", "Blank paper"),
+            ("mi", "米字格", "A practice sheet: border, centre cross and diagonals, faint red"),
+            ("tian", "田字格", "A practice sheet: border and centre cross, faint red"),
+        ],
+        default="none",
+        description="A practice grid printed under each cell of a new work",
+    )
+    new_line: BoolProperty(
+        name="New Column",
+        default=False,
+        description="Write Text on a work starts a new column (row) instead of going on in "
+        "the last one",
+    )
+    signature: StringProperty(
+        name="Signature",
+        default="",
+        description="The signature (落款): smaller characters after the text, in their own "
+        "column (row)",
+    )
+    seal: StringProperty(
+        name="Seal",
+        default="",
+        description="The characters of a vermilion name seal stamped after the signature",
+    )
+    seal_style: EnumProperty(
+        name="Seal Style",
+        items=[
+            ("baiwen", "白文", "White characters cut into the red (intaglio)"),
+            ("zhuwen", "朱文", "Red characters in a red border (relief)"),
+        ],
+        default="baiwen",
+    )
+    passes: IntProperty(
+        name="Practice Passes",
+        default=WORK_PASSES,
+        min=1,
+        max=8,
+        description="How often each stroke is written and corrected before the best pass is "
+        "kept (more: closer to the font's outline, slower)",
+    )
+    variation: FloatProperty(
+        name="Variation",
+        default=1.0,
+        min=0.0,
+        max=1.0,
+        subtype="FACTOR",
+        description="How much a character written twice varies in size, slant and pressure "
+        "(1: a hand's usual, 0: none)",
+    )
+    punctuation: EnumProperty(
+        name="Punctuation",
+        items=[
+            ("omit", "Leave Out", "Punctuation is left out, as in classical works"),
+            ("keep", "Keep", "Punctuation written as small marks in the cell's corner"),
+        ],
+        default="omit",
+    )
+    skip_missing: BoolProperty(
+        name="Skip Missing",
+        default=False,
+        description="Leave out characters that have no stroke data instead of writing nothing",
+    )
+    data_path: StringProperty(
+        name="Stroke Data",
+        default="",
+        subtype="FILE_PATH",
+        description="Your own stroke data (Make Me a Hanzi graphics.txt or a folder of "
+        "<char>.json), used before the bundled 9,574 characters; empty: the bundled set",
+    )
+    cell: IntProperty(
+        name="Cell",
+        default=1,
+        min=1,
+        description="The cell Write Cell Again writes anew (1: the first written)",
+    )
 
 
 def _is_empty(_self, obj):
@@ -275,9 +390,10 @@ class HAIRY_BRUSH_PG_settings(bpy.types.PropertyGroup):
         description="Where Bake Image Sequence writes one paper image per frame (// is the "
         ".blend's folder: save the file first)",
     )
+    work: PointerProperty(type=HAIRY_BRUSH_PG_work, name="Write Text")
 
 
-CLASSES = (HAIRY_BRUSH_PG_quality, HAIRY_BRUSH_PG_settings)
+CLASSES = (HAIRY_BRUSH_PG_quality, HAIRY_BRUSH_PG_work, HAIRY_BRUSH_PG_settings)
 
 
 def register():

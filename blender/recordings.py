@@ -14,6 +14,7 @@ import numpy as np
 from ..sim.core.jsonio import MAX_JSON_BYTES, parse_json
 from ..sim.core.params import QualityParams
 from ..sim.core.recording import Dip, Recording, RecordingError, from_dict, quantise
+from ..sim.writing.work.compose import WORK_KEY
 from . import checks
 
 RECORDING_TEXT = "HairyBrush Recording"
@@ -23,6 +24,8 @@ DIPS_TAG = "hairy_brush_dips"
 OWN_COLOR_TAG = "hairy_brush_own_colour_dips"  # and how many dips keep their own colour
 HAIR_TAG = "hairy_brush_hair_mm"  # and the hair length of the brush it was recorded with
 SURFACE_KEY = "surface"  # a recording's section of surface frames (see sim.surface)
+WORK_TAG = "hairy_brush_work"  # on a recording text: its work's cells' characters (Write Text)
+SIGNED_TAG = "hairy_brush_work_signed"  # and whether the work is signed or sealed
 
 
 def scene_overrides(st) -> dict:
@@ -118,12 +121,31 @@ def store_recording(st, rec: Recording) -> bpy.types.Text:
     text[SAMPLES_TAG] = len(rec.samples)
     text[DIPS_TAG] = len(rec.dips)
     text[OWN_COLOR_TAG] = sum(not dp.follows_ink for dp in rec.dips_or_default())
+    tag_work(text, rec)
     hair = None if own_hair_length(rec.brush) else hair_length_of(rec.brush)
     if hair is not None:  # the sidebar compares it with the brush chosen
         text[HAIR_TAG] = hair
     elif HAIR_TAG in text:
         del text[HAIR_TAG]
     return text
+
+
+def tag_work(text, rec: Recording):
+    """Keep on the text what the sidebar shows of a work (sim.writing.work): its cells'
+    characters in writing order and whether it is signed; nothing for a recording without one."""
+    work = rec.extra.get(WORK_KEY) if isinstance(rec.extra, dict) else None
+    layout = work.get("layout") if isinstance(work, dict) else None
+    cells = layout.get("cells") if isinstance(layout, dict) else None
+    if not isinstance(cells, list):
+        for tag in (WORK_TAG, SIGNED_TAG):
+            if tag in text:
+                del text[tag]
+        return
+    text[WORK_TAG] = "".join(str(c.get("char", "?"))[:1] for c in cells if isinstance(c, dict))
+    signed = bool(layout.get("seal")) or any(
+        isinstance(c, dict) and c.get("role") != "text" for c in cells
+    )
+    text[SIGNED_TAG] = int(signed)
 
 
 def recording_text(rec: Recording) -> str:

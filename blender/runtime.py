@@ -31,6 +31,10 @@ class Runtime:
     suspended: int = 0  # our own operators step frames: the frame handler does nothing
     last_error: str = ""  # the frame handler's last message (printed once, not on every frame)
     painter: object = None  # the live painting in progress (operators.paint), if any
+    # what each cell of the last work written left on the paper (blender.work): its key (the
+    # cell's own recording) -> sim.writing.work.compose.CellInk, so writing more simulates only
+    # the new cells
+    cell_inks: dict = field(default_factory=dict)
 
     current: ClassVar[Runtime | None] = None
 
@@ -39,6 +43,7 @@ class Runtime:
         self.forget_playbacks()
         self.views.clear()
         self.forget_surfaces()
+        self.cell_inks = {}
         self.last_error = ""
         self.painter = None
 

@@ -20,9 +20,12 @@ from .imitate_image import HAIRY_BRUSH_OT_imitate_image
 from .import_recording import HAIRY_BRUSH_OT_import_recording
 from .paint import HAIRY_BRUSH_OT_paint
 from .relief import HAIRY_BRUSH_OT_relief
+from .rewrite_cell import HAIRY_BRUSH_OT_rewrite_cell
 from .setup import HAIRY_BRUSH_OT_setup
+from .sign_work import HAIRY_BRUSH_OT_sign_work
 from .simulate import HAIRY_BRUSH_OT_simulate
 from .write_character import HAIRY_BRUSH_OT_write_character
+from .write_text import HAIRY_BRUSH_OT_write_text
 
 CLASSES = (
     HAIRY_BRUSH_OT_setup,
@@ -39,6 +42,9 @@ CLASSES = (
     HAIRY_BRUSH_OT_apply_to_mesh,
     HAIRY_BRUSH_OT_relief,
     HAIRY_BRUSH_OT_write_character,
+    HAIRY_BRUSH_OT_write_text,
+    HAIRY_BRUSH_OT_sign_work,
+    HAIRY_BRUSH_OT_rewrite_cell,
     HAIRY_BRUSH_OT_imitate_image,
     HAIRY_BRUSH_OT_fit_parameters,
     HAIRY_BRUSH_OT_apply_preset,

@@ -55,7 +55,7 @@ class SequenceJob(Job):
                 if sim.index < target:
                     break  # the slice's time is up inside a frame
                 path = os.path.join(self.folder, f"paper_{f:04d}.png")
-                write_png(path, sim.image8())
+                write_png(path, self.pb.image8(sim))  # a work's grid and seal as sim render's
                 self.written.append(path)
                 self.k += 1
                 if stop is not None and stop():

@@ -43,7 +43,7 @@ class SimulateJob(Job):
 
     def _show(self, sim):
         img = images.ensure_paper_image(checks.settings(self.scene))
-        images.show_paper(img, sim.paper, sim.index)
+        images.show_paper(img, sim.paper, sim.index, self.pb.overlay)
         self._last_show = time.perf_counter()
 
     def cancel(self):

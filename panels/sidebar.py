@@ -132,6 +132,73 @@ class HAIRY_BRUSH_PT_write(_Panel, bpy.types.Panel):
         layout.operator("hairy_brush.imitate_image", icon="IMAGE_DATA")
 
 
+class HAIRY_BRUSH_PT_write_text(_Panel, bpy.types.Panel):
+    """Write Text (issue 27): the text, a new work's layout, the signature and seal, one cell
+    written again. What it shows of the work comes from tags on the recording text."""
+
+    bl_label = "Write Text"
+    bl_parent_id = "HAIRY_BRUSH_PT_write"
+
+    def draw(self, context):
+        st = context.scene.hairy_brush
+        w = st.work
+        layout = self.layout
+        layout.prop(w, "text", text="")
+        text = st.recording
+        chars = text.get(recordings.WORK_TAG) if text is not None else None
+        signed = bool(text.get(recordings.SIGNED_TAG)) if text is not None else False
+        if chars is None:  # a new work: how it is laid out
+            if text is not None:
+                layout.label(text="The recording is not a work: clear it to start one", icon="INFO")
+            layout.row(align=True).prop(w, "direction", expand=True)
+            col = layout.column(align=True)
+            per = "Per Column" if w.direction == "vertical" else "Per Row"
+            col.prop(w, "per_line", text=f"Characters {per}")
+            col.prop(w, "char_mm")
+            layout.prop(w, "grid")
+        elif signed:
+            layout.label(text=f"A signed work of {len(chars)} cells", icon="INFO")
+        else:
+            layout.label(text=f"Goes on after {chars[-1:]} ({len(chars)} cells)", icon="INFO")
+            layout.prop(w, "new_line")
+        op = layout.operator("hairy_brush.write_text", icon="FONT_DATA")
+        op.text = w.text
+        op.new_line = bool(chars) and w.new_line
+        col = layout.column(align=True)
+        col.prop(w, "signature")
+        row = col.row(align=True)
+        row.prop(w, "seal")
+        row.prop(w, "seal_style", text="")
+        col.operator("hairy_brush.sign_work", icon="OUTLINER_OB_FONT")
+        if chars:
+            row = layout.row(align=True)
+            row.prop(w, "cell")
+            row.label(text=chars[min(w.cell, len(chars)) - 1])
+            row.operator("hairy_brush.rewrite_cell", text="Write Again").index = (
+                min(w.cell, len(chars)) - 1
+            )
+            op = layout.operator(
+                "hairy_brush.rewrite_cell", text="Write Cell under 3D Cursor", icon="PIVOT_CURSOR"
+            )
+            op.index = -1
+
+
+class HAIRY_BRUSH_PT_write_text_options(_Panel, bpy.types.Panel):
+    bl_label = "How the Characters Are Written"
+    bl_parent_id = "HAIRY_BRUSH_PT_write_text"
+    bl_options = {"DEFAULT_CLOSED"}
+
+    def draw(self, context):
+        w = context.scene.hairy_brush.work
+        layout = self.layout
+        col = layout.column(align=True)
+        col.prop(w, "passes")
+        col.prop(w, "variation", slider=True)
+        layout.prop(w, "punctuation")
+        layout.prop(w, "skip_missing")
+        layout.prop(w, "data_path")
+
+
 class HAIRY_BRUSH_PT_animation(_Panel, bpy.types.Panel):
     bl_label = "Animation"
     bl_order = 4
@@ -218,6 +285,8 @@ CLASSES = (
     HAIRY_BRUSH_PT_brush,
     HAIRY_BRUSH_PT_ink,
     HAIRY_BRUSH_PT_write,
+    HAIRY_BRUSH_PT_write_text,
+    HAIRY_BRUSH_PT_write_text_options,
     HAIRY_BRUSH_PT_animation,
     HAIRY_BRUSH_PT_recording,
     HAIRY_BRUSH_PT_quality,

@@ -96,6 +96,8 @@ from .query import (
     hit_at,
     normal_at,
     ray_hit,
+    uv_axes,
+    uv_hit,
 )
 from .texels import BUILD_CHUNK, PAD_TEXELS, TEXEL_TILE, TexelPoints, TexelTiles, texel_points
 
@@ -147,4 +149,6 @@ __all__ = [
     "texel_points",
     "texture_side_mm",
     "transport",
+    "uv_axes",
+    "uv_hit",
 ]

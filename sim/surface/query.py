@@ -166,6 +166,36 @@ def hit_at(surface: Surface, tri: int, point, distance: float) -> Hit:
     return Hit(int(tri), _barycentric(surface.corners[[tri]], p[None])[0], p, float(distance))
 
 
+def uv_hit(surface: Surface, uv) -> Hit | None:
+    """The surface point whose texture coordinates are ``uv`` (the UV map read backwards: a
+    layout made in the texture's space put on the mesh): in the triangle whose UV triangle
+    holds ``uv`` (the one it lies deepest in, where islands overlap), at the same barycentric
+    coordinates; None where no UV triangle covers it."""
+    t = surface.uvs
+    d1, d2, p = t[:, 1] - t[:, 0], t[:, 2] - t[:, 0], np.asarray(uv, dtype=float) - t[:, 0]
+    den = d1[:, 0] * d2[:, 1] - d1[:, 1] * d2[:, 0]
+    ok = np.abs(den) > 1e-20
+    den = np.where(ok, den, 1.0)
+    b1 = (p[:, 0] * d2[:, 1] - p[:, 1] * d2[:, 0]) / den
+    b2 = (d1[:, 0] * p[:, 1] - d1[:, 1] * p[:, 0]) / den
+    depth = np.where(ok, np.minimum(np.minimum(b1, b2), 1.0 - b1 - b2), -np.inf)
+    i = int(np.argmax(depth))
+    if depth[i] < -1e-9:
+        return None
+    bary = np.array([1.0 - b1[i] - b2[i], b1[i], b2[i]])
+    return Hit(i, bary, bary @ surface.corners[i], 0.0)
+
+
+def uv_axes(surface: Surface, tri: int) -> tuple[np.ndarray, np.ndarray]:
+    """(dP/du, dP/dv): how a triangle's points move (mm) per unit of u and of v (the UV map's
+    Jacobian inverted: the directions of the texture's x and y on the surface)."""
+    t, c = surface.uvs[tri], surface.corners[tri]
+    d = np.stack([t[1] - t[0], t[2] - t[0]], axis=1)  # (2, 2): UV edges as columns
+    e = np.stack([c[1] - c[0], c[2] - c[0]], axis=1)  # (3, 2): the same edges in 3D
+    j = e @ np.linalg.inv(d)
+    return j[:, 0], j[:, 1]
+
+
 def _barycentric(c: np.ndarray, p: np.ndarray) -> np.ndarray:
     """(T, 3) barycentric coordinates of points p (T, 3) in the triangles c (T, 3, 3)."""
     v0, v1, v2 = c[:, 1] - c[:, 0], c[:, 2] - c[:, 0], p - c[:, 0]

@@ -189,6 +189,7 @@ GLUE_ORDER = (
     "properties",
     "jobs",
     "writing",
+    "work",
     "handlers",
 )
 ADDON_CODE = ("blender", "operators", "panels")

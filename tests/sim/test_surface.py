@@ -560,3 +560,23 @@ def test_texel_tiles_built_from_two_threads_at_once_give_the_same_points():
     got = two.all()
     assert np.array_equal(got.index, ref.index) and np.array_equal(got.xyz, ref.xyz)
     assert isinstance(two._lock, type(threading.Lock()))
+
+
+def test_a_uv_point_is_found_on_the_surface_with_the_textures_axes():
+    """uv_hit reads the UV map backwards (a layout made in the texture, put on the mesh) and
+    uv_axes gives the texture's x and y on the surface: on the turned, scaled grid they are the
+    plane's point and the turned axes; on the cylinder u goes round it; off the islands None."""
+    s, rot, scale, centre = grid(angle_deg=30.0, scale=1.0 / 250.0)
+    xy = np.array([12.0, -20.0])
+    uv = np.asarray(centre) + rot @ xy * scale
+    hit = sf.uv_hit(s, uv)
+    np.testing.assert_allclose(hit.point, [*xy, 0.0], atol=1e-9)
+    du, dv = sf.uv_axes(s, hit.tri)
+    np.testing.assert_allclose(du[:2], rot[0] / scale, atol=1e-6)  # mm per unit of u
+    np.testing.assert_allclose(dv[:2], rot[1] / scale, atol=1e-6)
+    assert sf.uv_hit(s, (0.95, 0.95)) is None  # the grid's island covers 0.3 .. 0.7 only
+    c = cylinder()
+    hit = sf.uv_hit(c, (0.25, 0.5))  # a quarter round, half way up
+    np.testing.assert_allclose(hit.point, [0.0, 40.0, 60.0], atol=1e-9)
+    du, _ = sf.uv_axes(c, hit.tri)
+    assert du[0] < 0 and abs(du[1]) < 0.2 * abs(du[0]) and abs(du[2]) < 1e-9  # round it
