@@ -12,6 +12,15 @@ PAPER_MATERIAL = "HairyBrush Paper"
 INK_NODE = "HairyBrush Ink"
 
 
+def new_material(name: str) -> bpy.types.Material:
+    """A new material with its node tree (a Principled BSDF) on every Blender version: before
+    5.0, ``materials.new`` makes one without nodes until ``use_nodes`` is set."""
+    mat = bpy.data.materials.new(name)
+    if mat.node_tree is None:
+        mat.use_nodes = True
+    return mat
+
+
 def add_ink(mat, img, uv_name: str):
     """Multiply the material's base colour by the paper image read through ``uv_name``: white
     paper leaves the mesh's own shading as it was, ink darkens or tints it."""
@@ -57,8 +66,8 @@ def _socket(sockets, identifier):
 def paper_material(img) -> bpy.types.Material:
     mat = bpy.data.materials.get(PAPER_MATERIAL)
     if mat is None:
-        mat = bpy.data.materials.new(PAPER_MATERIAL)
-    if mat.node_tree is None:  # Blender < 5 creates materials without nodes
+        mat = new_material(PAPER_MATERIAL)
+    if mat.node_tree is None:  # a material of that name made elsewhere without nodes
         mat.use_nodes = True
     nodes = mat.node_tree.nodes
     tex = next((n for n in nodes if n.type == "TEX_IMAGE"), None)
@@ -78,9 +87,7 @@ def surface_material(obj, img):
     base colour (a new plain material when it has none)."""
     mats = [m for m in obj.data.materials if m is not None]
     if not mats:
-        mat = bpy.data.materials.new(f"{obj.name} Paper")
-        if mat.node_tree is None:  # Blender < 5 creates materials without nodes
-            mat.use_nodes = True
+        mat = new_material(f"{obj.name} Paper")
         obj.data.materials.append(mat)
         mats = [mat]
     for mat in mats:

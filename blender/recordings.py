@@ -38,7 +38,7 @@ def scene_overrides(st) -> dict:
         "paper": paper,
         "brush": {"preset": st.brush_preset},
         "ink": {"preset": st.ink_preset},
-        "quality": st.quality.as_dict(),
+        "quality": checks.quality_values(st),
         "seed": scene_seed(st),
     }
 

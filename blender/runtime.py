@@ -31,6 +31,11 @@ class Runtime:
     suspended: int = 0  # our own operators step frames: the frame handler does nothing
     last_error: str = ""  # the frame handler's last message (printed once, not on every frame)
     painter: object = None  # the live painting in progress (operators.paint), if any
+    # functions registered with bpy.app.timers (the frame handler's catch-up), persistent and
+    # unregistered by clear() (a file loaded, the add-on disabled): none outlives the add-on
+    # or its file, and Blender never frees one itself (Blender 4.2's bpy module crashes at exit
+    # after it freed a Python timer, at a file load or at exit; not after unregister)
+    timers: list = field(default_factory=list)
 
     current: ClassVar[Runtime | None] = None
 
@@ -41,6 +46,23 @@ class Runtime:
         self.forget_surfaces()
         self.last_error = ""
         self.painter = None
+        self.stop_timers()
+
+    def start_timer(self, fn, first_interval: float):
+        """``bpy.app.timers.register(fn)``, kept so that ``clear`` can stop it."""
+        import bpy
+
+        self.timers = [f for f in self.timers if bpy.app.timers.is_registered(f)]
+        self.timers.append(fn)
+        bpy.app.timers.register(fn, first_interval=first_interval, persistent=True)
+
+    def stop_timers(self):
+        import bpy
+
+        for fn in self.timers:
+            if bpy.app.timers.is_registered(fn):
+                bpy.app.timers.unregister(fn)
+        self.timers.clear()
 
     def forget_playbacks(self):
         """The recording was replaced, or a cache baked: the next frame change starts again."""
