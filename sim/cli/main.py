@@ -19,7 +19,7 @@ from ..core.recording import (
 from .evaluate import cmd_iou
 from .fit import _add_fit
 from .imitate import _add_imitate
-from .render import cmd_render
+from .render import add_matte_option, cmd_render
 from .shared import _real, _whole
 from .write import cmd_write, cmd_write_set
 
@@ -46,6 +46,7 @@ def _parser() -> argparse.ArgumentParser:
     )
     r.add_argument("--seed", type=seed, default=None, help="override the seed")
     r.add_argument("-q", "--quiet", action="store_true")
+    add_matte_option(r)
     r.set_defaults(func=cmd_render)
 
     def common(p):
@@ -71,6 +72,7 @@ def _parser() -> argparse.ArgumentParser:
     w.add_argument("--size", type=size, default=512, help="image size N (the em box)")
     w.add_argument("--recording", default=None, help="also save the recording it made")
     w.add_argument("-q", "--quiet", action="store_true")
+    add_matte_option(w)
     common(w)
     w.set_defaults(func=cmd_write)
     _add_imitate(sub, size, common)

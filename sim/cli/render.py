@@ -1,11 +1,31 @@
 # SPDX-License-Identifier: GPL-3.0-or-later
-"""``python -m sim render``: a recording to a PNG."""
+"""``python -m sim render``: a recording to a PNG (``--matte``: the ink alone, RGBA)."""
 
 from __future__ import annotations
 
 import time
 
 from .shared import _progress, _writable
+
+MATTE_HELP = (
+    "write the ink alone as RGBA instead of the paper: alpha = the ink's density, RGB = the "
+    "ink's colour, unpremultiplied (straight alpha), for compositing"
+)
+
+
+def add_matte_option(parser) -> None:
+    """``--matte`` on a command that writes a paper (render, write, compose)."""
+    parser.add_argument("--matte", action="store_true", help=MATTE_HELP)
+
+
+def paper_pixels(sim, matte: bool):
+    """What a command writes of a finished simulation: the paper as it shows (RGB) or its
+    ink matte (RGBA, sim.image.matte), top row first, uint8."""
+    if matte:
+        from ..image.matte import paper_matte8
+
+        return paper_matte8(sim.paper)
+    return sim.image8()
 
 
 def cmd_render(args) -> int:
@@ -25,7 +45,7 @@ def cmd_render(args) -> int:
         rec.seed = args.seed
     t0 = time.perf_counter()
     sim = Simulation(rec).run(progress=None if args.quiet else _progress)
-    write_png(args.output, sim.image8())
+    write_png(args.output, paper_pixels(sim, args.matte))
     if not args.quiet:
         dt = time.perf_counter() - t0
         print(
