@@ -46,10 +46,13 @@ def print_size_px(width_mm: float, height_mm: float, dpi: float) -> tuple[int, i
     return w, h
 
 
-def print_image(paper, width_px: int, height_px: int, matte: bool = False, bits: int = 8):
+def print_image(
+    paper, width_px: int, height_px: int, matte: bool = False, bits: int = 8, progress=None
+):
     """The paper resampled to width_px x height_px, top row first: RGB (the paper as it shows)
     or straight-alpha RGBA (the ink matte), uint8 or uint16 (``bits``). ``paper``: a
-    sim.paper.Paper, or anything with its ``ink`` (bottom row first) and ``color``."""
+    sim.paper.Paper, or anything with its ``ink`` (bottom row first) and ``color``;
+    ``progress(fraction)`` is told how far it is, a band at a time."""
     if bits not in (8, 16):
         raise PrintError(f"a print has 8 or 16 bits a channel, not {bits}")
     ink = paper.ink[::-1]  # top row first, a view
@@ -60,6 +63,8 @@ def print_image(paper, width_px: int, height_px: int, matte: bool = False, bits:
     top = (1 << bits) - 1
     out = np.empty((height_px, width_px, 4 if matte else 3), np.uint16 if bits == 16 else np.uint8)
     for y0 in range(0, height_px, BAND_ROWS):
+        if progress is not None:
+            progress(y0 / height_px)
         rows = iy[y0 : y0 + BAND_ROWS]
         lo, hi = int(rows.min()), int(rows.max()) + 1
         band = resample_rows(ink[lo:hi].astype(np.float32), rows - lo, wy[y0 : y0 + BAND_ROWS])
@@ -100,13 +105,13 @@ def write_file(path, data: bytes):
 
 
 def write_print(
-    path, paper, width_mm: float, dpi: float, matte: bool = False, bits: int = 8
+    path, paper, width_mm: float, dpi: float, matte: bool = False, bits: int = 8, progress=None
 ) -> tuple[int, int]:
     """The paper (or its matte) printed width_mm wide (the height follows the paper's aspect)
     at ``dpi`` into ``path`` (.png or .tif); returns the size in pixels."""
     height_mm = width_mm * paper.ink.shape[0] / paper.ink.shape[1]
     w, h = print_size_px(width_mm, height_mm, dpi)
     print_format(path)  # the name is checked before the work
-    img = print_image(paper, w, h, matte=matte, bits=bits)
+    img = print_image(paper, w, h, matte=matte, bits=bits, progress=progress)
     write_file(path, print_bytes(img, path, dpi))
     return w, h
