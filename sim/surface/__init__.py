@@ -42,7 +42,9 @@ anisotropic where the UVs stretch and stops at seams (ink does not bleed from on
 the next).
 
 The modules: ``mesh`` (the checked mesh), ``query`` (rays, nearest points, normals), ``chart``
-(frames and the chart), ``texels`` (the texels' 3D points), ``paper`` (SurfacePaper, the splat).
+(frames and the chart), ``geodesic`` (writing done on flat paper laid on the surface: the chart
+map, straightest walks over the mesh), ``texels`` (the texels' 3D points), ``paper``
+(SurfacePaper, the splat).
 Their public names are re-exported here.
 
 May import: ``core``, ``paper``.
@@ -60,7 +62,6 @@ from .chart import (
     follow,
     frame_parts,
     frames_from_dict,
-    lay_on,
     local_sample,
     new_frame,
     pose_from_sample,
@@ -69,6 +70,7 @@ from .chart import (
     step_to,
     transport,
 )
+from .geodesic import ChartMap, edge_neighbours, lay_on, walk
 from .mesh import (
     SMOOTH_ANGLE_DEG,
     UV_SLACK,
@@ -100,6 +102,7 @@ from .query import (
 from .texels import BUILD_CHUNK, PAD_TEXELS, TEXEL_TILE, TexelPoints, TexelTiles, texel_points
 
 __all__ = [
+    "ChartMap",
     "BUILD_CHUNK",
     "BoxGrid",
     "CHART_SHAPE",
@@ -129,6 +132,7 @@ __all__ = [
     "closest_point",
     "corner_normals",
     "develop",
+    "edge_neighbours",
     "follow",
     "frame_parts",
     "frames_from_dict",
@@ -147,4 +151,5 @@ __all__ = [
     "texel_points",
     "texture_side_mm",
     "transport",
+    "walk",
 ]
