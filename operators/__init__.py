@@ -21,6 +21,7 @@ from .fit_parameters import HAIRY_BRUSH_OT_fit_parameters
 from .imitate_image import HAIRY_BRUSH_OT_imitate_image
 from .import_recording import HAIRY_BRUSH_OT_import_recording
 from .ink_matte import HAIRY_BRUSH_OT_ink_matte
+from .open_example import HAIRY_BRUSH_OT_open_example
 from .paint import HAIRY_BRUSH_OT_paint
 from .relief import HAIRY_BRUSH_OT_relief
 from .setup import HAIRY_BRUSH_OT_setup
@@ -49,6 +50,7 @@ CLASSES = (
     HAIRY_BRUSH_OT_export_image,
     HAIRY_BRUSH_OT_export_svg,
     HAIRY_BRUSH_OT_export_grease_pencil,
+    HAIRY_BRUSH_OT_open_example,
 )
 
 register, unregister = bpy.utils.register_classes_factory(CLASSES)

@@ -164,6 +164,7 @@ class HAIRY_BRUSH_PT_recording(_Panel, bpy.types.Panel):
         row = layout.row(align=True)
         row.operator("hairy_brush.import_recording", icon="IMPORT")
         row.operator("hairy_brush.export_recording", icon="EXPORT")
+        layout.operator("hairy_brush.open_example", icon="FILE_BLEND")
 
 
 class HAIRY_BRUSH_PT_export(_Panel, bpy.types.Panel):

@@ -15,6 +15,16 @@ from tests.paths import ADDON, ROOT
 bpy = pytest.importorskip("bpy")
 
 
+@pytest.mark.slow
+def test_the_example_inside_the_extension_opens_as_calligraphy(hb):
+    assert bpy.ops.hairy_brush.open_example() == {"FINISHED"}
+    st = bpy.context.scene.hairy_brush
+    assert st.recording is not None and st.paper_width_mm == 80.0
+    grey = pixels(st.paper_image)[..., :3].mean(axis=2)
+    assert (grey < 0.2).mean() > 0.08  # the character's black strokes on the paper
+
+
+@pytest.mark.slow
 def test_the_demo_file_tells_a_user_without_the_extension_what_to_install(hb, tmp_path):
     import addon_utils
 

@@ -15,6 +15,7 @@ from sim.image.matte import paper_matte8
 from tests.blender.helpers import ext, keyframe_stroke, setup_scene
 
 bpy = pytest.importorskip("bpy")
+pytestmark = pytest.mark.slow  # each writes and simulates a stroke first (over a second)
 
 
 def written(ppm=2.0):

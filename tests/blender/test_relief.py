@@ -12,6 +12,7 @@ import pytest
 from tests.blender.helpers import ext, keyframe_stroke, select_only, setup_scene
 
 bpy = pytest.importorskip("bpy")
+pytestmark = pytest.mark.slow  # each writes and simulates a stroke first (over a second)
 
 
 def stroke_and_plane():
