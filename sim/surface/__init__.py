@@ -44,7 +44,8 @@ the next).
 The modules: ``mesh`` (the checked mesh), ``query`` (rays, nearest points, normals), ``chart``
 (frames and the chart), ``geodesic`` (writing done on flat paper laid on the surface: the chart
 map, straightest walks over the mesh), ``texels`` (the texels' 3D points), ``paper``
-(SurfacePaper, the splat).
+(SurfacePaper, the splat), ``relief`` (how a mesh carries the writing as a relief: where it is
+cut, or a bump map).
 Their public names are re-exported here.
 
 May import: ``core``, ``paper``.
