@@ -15,6 +15,7 @@ import bpy
 import numpy as np
 
 from ..blender import checks, recordings, surfaces, transforms
+from ..sim import surface as surf
 from ..sim.engine.pen import pen_strokes
 from . import polls
 
@@ -38,7 +39,12 @@ def world_strokes(scene, rec):
     """The pen strokes with their points in world coordinates (metres)."""
     st = checks.settings(scene)
     if surfaces.is_surface(st):
-        frames = np.asarray(rec.extra[recordings.SURFACE_KEY]["frames"], dtype=float)
+        frames = surf.frames_from_dict(rec.extra.get(recordings.SURFACE_KEY), len(rec.samples))
+        if frames is None:
+            raise checks.UserError(
+                "The recording has no surface frames (it was made on flat paper): there is no "
+                f"place for its strokes on '{st.paper_object.name}'"
+            )
         to_world = surfaces.surface_space(st.paper_object)
         strokes = pen_strokes(rec, frames)
     else:
@@ -114,7 +120,7 @@ class HAIRY_BRUSH_OT_export_grease_pencil(bpy.types.Operator):
             checks.require_brush_and_paper(st)
             rec = recordings.recording_from_scene(scene)
             strokes = world_strokes(scene, rec)
-        except (*checks.USER_ERRORS, KeyError) as exc:
+        except checks.USER_ERRORS as exc:
             self.report({"ERROR"}, str(exc))
             return {"CANCELLED"}
         if not strokes:

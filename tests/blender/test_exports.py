@@ -144,3 +144,42 @@ def test_the_recording_becomes_grease_pencil_strokes_with_pressure(hb):
     assert np.abs(p[:, 1]).max() < 0.005
     assert bpy.ops.hairy_brush.export_grease_pencil() == {"FINISHED"}  # again: replaced
     assert sum(o.name.startswith("HairyBrush Strokes") for o in bpy.data.objects) == 1
+
+
+def test_grease_pencil_strokes_of_writing_on_a_surface_lie_on_it(hb):
+    import math
+
+    from tests.blender.helpers import HAIR
+
+    bpy.ops.mesh.primitive_cylinder_add(vertices=48, radius=0.04, depth=0.12)
+    cyl = bpy.context.active_object
+    st = bpy.context.scene.hairy_brush
+    st.px_per_mm = 2.0
+    assert bpy.ops.hairy_brush.setup(surface=True) == {"FINISHED"}
+    b = st.brush_object
+    b.rotation_mode = "XYZ"
+    sc = bpy.context.scene
+    angles = np.radians(np.linspace(-30, 30, 16))
+    press = np.r_[-5.0, np.full(14, 3.0), -5.0]
+    for f, (a, p) in enumerate(zip(angles, press, strict=True), start=1):
+        d = (40.0 + HAIR - p) / 1000
+        b.location = (d * math.sin(a), -d * math.cos(a), 0.0)
+        b.rotation_euler = (math.pi / 2, 0.0, a)
+        b.keyframe_insert("location", frame=f)
+        b.keyframe_insert("rotation_euler", frame=f)
+    sc.frame_start, sc.frame_end = 1, 16
+    assert bpy.ops.hairy_brush.bake_samples() == {"FINISHED"}
+    assert bpy.ops.hairy_brush.export_grease_pencil() == {"FINISHED"}
+    obj = bpy.data.objects[ext().operators.export_grease_pencil.OBJECT]
+    assert obj.parent == cyl
+    if obj.type == "GREASEPENCIL":
+        pts = np.array([p.position for s in obj.data.layers[0].frames[0].drawing.strokes
+                        for p in s.points])  # fmt: skip
+    else:
+        pts = np.array([p.co for s in obj.data.layers[0].frames[0].strokes for p in s.points])
+    world = np.array(obj.matrix_world)
+    p = pts @ world[:3, :3].T + world[:3, 3]
+    r = np.hypot(p[:, 0], p[:, 1]) * 1000
+    assert len(p) > 50 and np.abs(r - 40.0).max() < 1.0  # on the cylinder's side
+    ang = np.degrees(np.arctan2(p[:, 0], -p[:, 1]))
+    assert ang.min() < -15 and ang.max() > 15  # round it, as the brush went
