@@ -141,9 +141,13 @@ def on_undo_redo(_scene, _data=None):
 
 @persistent
 def on_save_pre(_filepath="", _data=None):
+    # changed pixels, or an image that Image > Save As unpacked: the .blend keeps what is shown
     for img in bpy.data.images:
-        if images.PAPER_TAG in img and img.is_dirty:
-            images.pack_image(img)
+        if images.PAPER_TAG in img and (img.is_dirty or img.packed_file is None):
+            try:
+                images.pack_image(img)
+            except RuntimeError as exc:  # no pixels to pack (its file is gone): saved as it is
+                print(f"Virtual Hairy Brush: cannot pack '{img.name}': {exc}")
 
 
 @persistent

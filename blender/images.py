@@ -46,6 +46,7 @@ def show_paper(img, paper, index: int):
         img.scale(paper.W, paper.H)
     img.pixels.foreach_set(view.flat())
     img.update()
+    keep_packed(img)
     img[SHOWN_TAG] = int(index)
     if density_read(img, tag_reliefs(img)):
         show_density(img, paper.ink)
@@ -117,6 +118,7 @@ def write_density(dens, density):
     rgba[..., :3] = density[..., None]
     dens.pixels.foreach_set(rgba.ravel())
     dens.update()
+    keep_packed(dens)
 
 
 def density_from_image(st, img) -> np.ndarray:
@@ -157,6 +159,7 @@ def write_image(img, rgb_bottom_up: np.ndarray):
     rgba[..., 3] = 1.0
     img.pixels.foreach_set(rgba.ravel())
     img.update()
+    keep_packed(img)
 
 
 def image_rgb(img) -> np.ndarray:
@@ -165,6 +168,14 @@ def image_rgb(img) -> np.ndarray:
     img.pixels.foreach_get(a)
     rgb = a.reshape(img.size[1], img.size[0], 4)[..., :3]
     return display.linear_to_srgb(rgb).astype(np.float32) if img.is_float else rgb
+
+
+def keep_packed(img):
+    """Pack the image again when it lost its packing: Image > Save As points the datablock at
+    the file it wrote and unpacks it, and Cycles reads an unpacked file image from its file, not
+    from the pixels the paper shows. Costs one encoding, once after such a save."""
+    if img.packed_file is None and img.source == "FILE":
+        pack_image(img)
 
 
 def pack_image(img):

@@ -1,7 +1,13 @@
 # SPDX-License-Identifier: GPL-3.0-or-later
 """The NURBS surface objects that show the writing primitives (Sec. 2, 6): built once from the
-engine's net shape, their control points set from the engine at every shown sample, parented
-to the brush empty."""
+engine's net shape, their control points set from the engine at every shown sample, in the
+paper object's space (parented to it).
+
+They are a viewport aid: their collection is hidden from final renders when it is made (the
+sidebar's Show in Renders, or the collection's render switch, shows them). Their points are
+placed from the engine's pose alone, never from the brush empty's matrix: while Blender renders
+an animation, the frame handler sees the original objects' matrices of the frame the render
+started from, not of the frame being rendered."""
 
 from __future__ import annotations
 
@@ -63,26 +69,31 @@ def _new_surface_curve(name: str, shape) -> bpy.types.Curve:
     return cu
 
 
+def primitive_collection():
+    """The primitives' collection (None before they are built)."""
+    return bpy.data.collections.get(PRIMITIVE_COLLECTION)
+
+
 def _collection(scene):
-    coll = bpy.data.collections.get(PRIMITIVE_COLLECTION)
+    coll = primitive_collection()
     if coll is None:
         coll = bpy.data.collections.new(PRIMITIVE_COLLECTION)
+        coll.hide_render = True  # a viewport aid: not in F12 renders unless the artist asks
     if coll.name not in scene.collection.children:
         scene.collection.children.link(coll)
     return coll
 
 
 def sync_primitives(scene, sim: Simulation, create: bool = True) -> int:
-    """Show each writing primitive of the brush as a NURBS surface object parented to the brush
-    empty; control points, weights and knots come from the engine (``HairyBrush.surface_nets``).
-    Splitting adds objects; merged primitives hide theirs. Returns the number shown."""
+    """Show each writing primitive of the brush as a NURBS surface object parented to the paper
+    object; control points, weights and knots come from the engine (``HairyBrush.surface_nets``)
+    in the paper's local space, so they are right whatever frame the objects' matrices were last
+    evaluated at. Splitting adds objects; merged primitives hide theirs. Returns the number
+    shown."""
     st = checks.settings(scene)
-    brush_obj, paper_obj = checks.require_brush_and_paper(st)
+    _brush_obj, paper_obj = checks.require_brush_and_paper(st)
     nets, _breaks = sim.brush.surface_nets()
-    to_local = np.linalg.inv(np.array(brush_obj.matrix_world)) @ transforms.engine_to_world(
-        st, paper_obj
-    )
-    co = placement.primitive_points(nets, to_local).astype(np.float32)
+    co = placement.primitive_points(nets, transforms.engine_to_paper_local(st)).astype(np.float32)
     objs = primitive_objects(scene)
     if len(objs) < len(co) and (create or objs):
         coll = _collection(scene)
@@ -99,15 +110,15 @@ def sync_primitives(scene, sim: Simulation, create: bool = True) -> int:
             obj = bpy.data.objects.new(name, cu)
             obj[PRIMITIVE_TAG] = i
             coll.objects.link(obj)
-            obj.parent = brush_obj
+            obj.parent = paper_obj
             objs.append(obj)
     for i, obj in enumerate(objs):
         shown = i < len(co)
         obj.hide_viewport = obj.hide_render = not shown
         if not shown:
             continue
-        if obj.parent is not brush_obj:
-            obj.parent = brush_obj
+        if obj.parent is not paper_obj:
+            obj.parent = paper_obj
         obj.matrix_parent_inverse.identity()
         obj.matrix_basis.identity()
         obj.data.splines[0].points.foreach_set("co", co[i].ravel())

@@ -204,7 +204,8 @@ class HAIRY_BRUSH_PG_settings(bpy.types.PropertyGroup):
         min=0.0,
         max=1.0,
         default=(0.03, 0.03, 0.04),
-        description="Colour of the ink the next dip loads",
+        description="Colour of the ink: every dip loads it, so a new colour recolours the "
+        "recording (except dips given their own colour with Dip in Own Colour)",
     )
     dip_wetness: FloatProperty(
         name="Ink Wetness",

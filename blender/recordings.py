@@ -6,19 +6,22 @@ after an import."""
 from __future__ import annotations
 
 import json
+from dataclasses import replace
 
 import bpy
 import numpy as np
 
 from ..sim.core.jsonio import MAX_JSON_BYTES, parse_json
 from ..sim.core.params import QualityParams
-from ..sim.core.recording import Dip, Recording, RecordingError, from_dict
+from ..sim.core.recording import Dip, Recording, RecordingError, from_dict, quantise
 from . import checks
 
 RECORDING_TEXT = "HairyBrush Recording"
 PAINTED_KEY = "painted_samples"  # in a recording's "blender" extra: samples painted live
 SAMPLES_TAG = "hairy_brush_samples"  # on a recording text: its samples and dips when stored
 DIPS_TAG = "hairy_brush_dips"
+OWN_COLOR_TAG = "hairy_brush_own_colour_dips"  # and how many dips keep their own colour
+HAIR_TAG = "hairy_brush_hair_mm"  # and the hair length of the brush it was recorded with
 SURFACE_KEY = "surface"  # a recording's section of surface frames (see sim.surface)
 
 
@@ -37,7 +40,8 @@ def scene_overrides(st) -> dict:
     return {
         "paper": paper,
         "brush": {"preset": st.brush_preset},
-        "ink": {"preset": st.ink_preset},
+        # Ink Colour: what every dip that follows the ink loads (see sim.core.recording.Dip)
+        "ink": {"preset": st.ink_preset, "color": [float(c) for c in st.ink_color]},
         "quality": checks.quality_values(st),
         "seed": scene_seed(st),
     }
@@ -57,18 +61,51 @@ def read_recording_dict(st) -> dict:
 
 def recording_from_scene(scene) -> Recording:
     """The stored recording, rendered with the scene's current settings (another preset, size
-    or resolution re-renders the same strokes)."""
+    or resolution re-renders the same strokes). With a brush of another hair length than the
+    one it was recorded with, its samples are re-placed (see ``hair_shift``)."""
     st = checks.settings(scene)
     d = read_recording_dict(st)
+    recorded = None
     if isinstance(d, dict):
+        recorded = d.get("brush") if isinstance(d.get("brush"), dict) else {}
         over = scene_overrides(st)
-        if isinstance(d.get("brush"), dict):  # the recording's own geometry overrides stay
-            over["brush"] = {**d["brush"], **over["brush"]}
+        over["brush"] = {**recorded, **over["brush"]}  # its own geometry overrides stay
         d.update(over)
     try:
-        return from_dict(d)
+        rec = from_dict(d)
     except RecordingError as exc:
         raise checks.UserError(f"Recording '{st.recording.name}': {exc}") from None
+    shift = hair_shift(recorded, rec) if recorded is not None else 0.0
+    if shift:  # as a stored recording holds them, so what is painted on replays bit for bit
+        rec.samples[:, 2] = quantise(rec.samples[:, 2] + shift)
+    return rec
+
+
+def hair_length_of(brush: dict) -> float | None:
+    """The hair length (mm) of a recording's 'brush' section (its preset and its own geometry);
+    None when it names no brush this extension has."""
+    try:
+        return Recording(np.zeros((1, 6)), brush=brush).resolve()[1].hair_length_mm
+    except RecordingError:
+        return None
+
+
+def own_hair_length(brush: dict) -> bool:
+    """Whether a recording's 'brush' section gives its own hair length (its samples then
+    stay whatever brush preset is chosen)."""
+    geometry = brush.get("geometry")
+    return isinstance(geometry, dict) and "hair_length_mm" in geometry
+
+
+def hair_shift(recorded_brush: dict, rec: Recording) -> float:
+    """How far (mm) the samples of a recording made with ``recorded_brush`` move up for the
+    brush ``rec`` is rendered with: the change of hair length, so every sample hovers above or
+    presses into the touching height as far as it was recorded to (a sample's z is the brush
+    base's height; the brush empty and its keyframes move as much, scene_setup.
+    follow_hair_length). 0 when the hair length is the same (the recording's own
+    'brush.geometry' keeps it) or the recorded brush is unknown."""
+    before = hair_length_of(recorded_brush)
+    return 0.0 if before is None else rec.resolve()[1].hair_length_mm - before
 
 
 def store_recording(st, rec: Recording) -> bpy.types.Text:
@@ -80,6 +117,12 @@ def store_recording(st, rec: Recording) -> bpy.types.Text:
     # counted here, so the sidebar shows them without reading the text
     text[SAMPLES_TAG] = len(rec.samples)
     text[DIPS_TAG] = len(rec.dips)
+    text[OWN_COLOR_TAG] = sum(not dp.follows_ink for dp in rec.dips_or_default())
+    hair = None if own_hair_length(rec.brush) else hair_length_of(rec.brush)
+    if hair is not None:  # the sidebar compares it with the brush chosen
+        text[HAIR_TAG] = hair
+    elif HAIR_TAG in text:
+        del text[HAIR_TAG]
     return text
 
 
@@ -137,6 +180,7 @@ def copy_settings_from_recording(st, rec: Recording):
         setattr(st.quality, name, value)
     st.paper_color, st.paper_capacity = _paper.color, _paper.capacity
     st.paper_fibre = _paper.fibre
+    st.ink_color = _ink.color  # after the ink preset, which sets its own
     st.seed_of_recording = str(rec.seed) if rec.seed > checks.MAX_INT_PROPERTY else ""
 
 
@@ -172,5 +216,19 @@ def settings_recording(scene) -> Recording:
     return new_recording(scene, [[0.0, 0.0, 100.0, 0.0, 0.0, 0.0]])
 
 
-def current_dip(st, before_sample: int) -> Dip:
-    return Dip(before_sample, float(st.dip_depth), tuple(st.ink_color), float(st.dip_wetness))
+def current_dip(st, before_sample: int, color=None) -> Dip:
+    """A dip of the sidebar's depth and wetness that loads the scene's Ink Colour, whatever
+    it becomes later; or, given a ``color``, keeps that colour (a second ink)."""
+    own = color is not None
+    return Dip(
+        before_sample,
+        float(st.dip_depth),
+        tuple(float(c) for c in (color if own else st.ink_color)),
+        float(st.dip_wetness),
+        follows_ink=not own,
+    )
+
+
+def following_ink(dips) -> list:
+    """The dips, each loading the scene's Ink Colour (the writer's dips, made in the ink)."""
+    return [replace(dp, follows_ink=True) for dp in dips]

@@ -92,7 +92,9 @@ class WriteJob(jobs.WorkerJob):
         st = checks.settings(scene)
         if self.on_surface is None:
             st.paper_width_mm = st.paper_height_mm = size  # the paper plane follows
-            rec = recordings.new_recording(scene, rec.samples, dips=rec.dips)
+            rec = recordings.new_recording(
+                scene, rec.samples, dips=recordings.following_ink(rec.dips)
+            )
             last = keyframes.keyframe_samples(
                 scene, st, rec.samples, rec.sample_rate_hz, scene.frame_start
             )
@@ -102,6 +104,7 @@ class WriteJob(jobs.WorkerJob):
                 scene, st, mats, rec.sample_rate_hz, scene.frame_start
             )
             surfaces.keep_surface_paper(self.on_surface.digest, self.on_surface.paper)
+            rec.dips = recordings.following_ink(rec.dips)  # written in the scene's ink
         scene.frame_end = math.ceil(last)
         recordings.store_recording(st, rec)
         runtime.get().forget_playbacks()

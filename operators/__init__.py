@@ -18,6 +18,7 @@ from .export_image import HAIRY_BRUSH_OT_export_image
 from .export_recording import HAIRY_BRUSH_OT_export_recording
 from .export_svg import HAIRY_BRUSH_OT_export_svg
 from .fit_parameters import HAIRY_BRUSH_OT_fit_parameters
+from .follow_ink import HAIRY_BRUSH_OT_follow_ink
 from .imitate_image import HAIRY_BRUSH_OT_imitate_image
 from .import_recording import HAIRY_BRUSH_OT_import_recording
 from .ink_matte import HAIRY_BRUSH_OT_ink_matte
@@ -34,6 +35,7 @@ CLASSES = (
     HAIRY_BRUSH_OT_simulate,
     HAIRY_BRUSH_OT_paint,
     HAIRY_BRUSH_OT_dip,
+    HAIRY_BRUSH_OT_follow_ink,
     HAIRY_BRUSH_OT_build_primitives,
     HAIRY_BRUSH_OT_bake_sequence,
     HAIRY_BRUSH_OT_bake_cache,

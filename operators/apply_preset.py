@@ -6,7 +6,7 @@ from __future__ import annotations
 
 import bpy
 
-from ..blender import checks
+from ..blender import checks, recordings
 from ..blender.presets import (
     PRESET_INFO,
     QUALITY_LABELS,
@@ -77,9 +77,8 @@ class HAIRY_BRUSH_OT_apply_preset(bpy.types.Operator):
                 {"INFO"}, f"Paper {label}: set colour, Ink Capacity, Fibre, {_names(preset)}"
             )
             return {"FINISHED"}
-        self.report(
-            {"INFO"}, f"Brush {label}: {_hair_change(st, hair_before)}; set {_names(preset)}"
-        )
+        change = _hair_change(st, hair_before) + _recording_change(context.scene)
+        self.report({"INFO"}, f"Brush {label}: {change}; set {_names(preset)}")
         return {"FINISHED"}
 
 
@@ -94,3 +93,27 @@ def _hair_change(st, before: float) -> str:
         way = "up" if now > before else "down"
         text += f", brush empty moved {way} {abs(now - before):g} mm to hover as before"
     return text
+
+
+def _recording_change(scene) -> str:
+    """What the new brush does to the stored recording's samples (recordings.hair_shift)."""
+    st = checks.settings(scene)
+    if st.recording is None:
+        return ""
+    try:
+        stored = recordings.read_recording_dict(st)
+        rec = recordings.recording_from_scene(scene)
+    except checks.USER_ERRORS:
+        return ""  # Simulate says what is wrong with it
+    brush = stored.get("brush") if isinstance(stored.get("brush"), dict) else {}
+    hair = recordings.hair_length_of(brush)
+    if recordings.own_hair_length(brush):
+        return f"; the recording keeps its own hair length ({hair:g} mm): its samples stay"
+    shift = recordings.hair_shift(brush, rec)
+    if hair is None or abs(shift) < 1e-9:
+        return "; the recording's samples stay (recorded with this hair length)"
+    way = "higher" if shift > 0 else "lower"
+    return (
+        f"; the recording's samples are placed {abs(shift):g} mm {way} than recorded (with a "
+        f"{hair:g} mm brush), to press and hover as recorded"
+    )

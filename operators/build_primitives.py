@@ -12,7 +12,8 @@ from . import polls
 
 class HAIRY_BRUSH_OT_build_primitives(bpy.types.Operator):
     """Show each writing primitive of the brush, at the current frame, as a NURBS surface
-    object parented to the brush empty (the engine's own control points, weights and knots)"""
+    object on the paper (the engine's own control points, weights and knots); a viewport aid,
+    hidden from final renders unless Primitives in Renders is on"""
 
     bl_idname = "hairy_brush.build_primitives"
     bl_label = "Build Primitive Surfaces"

@@ -1,5 +1,6 @@
 # SPDX-License-Identifier: GPL-3.0-or-later
-"""hairy_brush.imitate_image: read a picture of writing (an image datablock or a PNG file),
+"""hairy_brush.imitate_image: read a picture of writing (an image datablock or a picture file
+Blender can load: PNG of any kind, JPEG, TIFF, OpenEXR, ...),
 recover its strokes, their order and widths (``sim.picture``), write it with the brush as Write
 Character does and keyframe the brush empty along the writing, so it plays back and renders.
 From the sidebar it runs as a modal job (progress bar, Esc stops it; the scene changes only at
@@ -14,14 +15,17 @@ from bpy_extras.io_utils import ImportHelper
 from ..blender import checks
 from ..blender.jobs import JobOperator
 from ..blender.writing import ImitateJob
-from ..sim.image.png import SIGNATURE
+from ..sim.image.png import SIGNATURE, PNGError, png_header
+from ..sim.paper.display import linear_to_srgb
 from ..sim.picture.imitate import MAX_DETAIL, PASSES
-from ..sim.picture.ink import MAX_PICTURE_PIXELS, PictureError, load_picture
+from ..sim.picture.ink import MAX_PICTURE_PIXELS, MAX_PICTURE_SIDE, ROWS, PictureError
 from . import polls
 
 
 def image_grey(image: bpy.types.Image) -> np.ndarray:
-    """An image datablock's pixels as a picture (H, W, 4) floats, top row first."""
+    """An image datablock's pixels as a picture (H, W, C) floats, top row first, as they look:
+    a float image (16-bit PNG, OpenEXR, a render) holds linear light, encoded to sRGB here as a
+    byte image's pixels already are (an image of data, Non-Color, is read as it is)."""
     w, h = (int(v) for v in image.size)
     if w == 0 or h == 0 or not image.has_data and not _loads(image):
         raise PictureError(f"image '{image.name}' has no pixels (is its file missing?)")
@@ -29,9 +33,15 @@ def image_grey(image: bpy.types.Image) -> np.ndarray:
         raise PictureError(
             f"image '{image.name}' is {w} x {h} px; at most {MAX_PICTURE_PIXELS} pixels"
         )
-    buf = np.empty(w * h * image.channels, dtype=np.float32)
+    c = image.channels
+    buf = np.empty(w * h * c, dtype=np.float32)
     image.pixels.foreach_get(buf)
-    return buf.reshape(h, w, image.channels)[::-1]
+    pic = buf.reshape(h, w, c)[::-1]
+    if image.is_float and not image.colorspace_settings.is_data:
+        colour = slice(0, 3 if c >= 3 else 1)  # alpha stays as it is
+        for y in range(0, h, ROWS):  # a few rows at a time: no full-size float64 copy
+            pic[y : y + ROWS, :, colour] = linear_to_srgb(pic[y : y + ROWS, :, colour])
+    return pic
 
 
 def _loads(image) -> bool:
@@ -43,13 +53,21 @@ def _loads(image) -> bool:
 
 
 def file_picture(path: str) -> np.ndarray:
-    """A picture file: a PNG by the engine's bounded reader, any other format Blender reads
-    (JPEG, TIFF, ...) through a temporary image datablock."""
-    with open(path, "rb") as f:
-        if f.read(len(SIGNATURE)) == SIGNATURE:
-            return load_picture(path)
+    """A picture file read through Blender's own image loading (any PNG, JPEG, TIFF, OpenEXR,
+    ... Blender reads), in a temporary image datablock removed once its pixels are read. A
+    PNG's size is checked from its header first (a huge one is refused before Blender
+    decodes it)."""
     try:
-        img = bpy.data.images.load(path)
+        with open(path, "rb") as f:
+            png = f.read(len(SIGNATURE)) == SIGNATURE
+        if png:
+            png_header(path, MAX_PICTURE_SIDE, MAX_PICTURE_PIXELS, any_kind=True)
+    except OSError as exc:
+        raise PictureError(f"cannot read {path}: {exc.strerror or exc}") from None
+    except PNGError as exc:
+        raise PictureError(str(exc)) from None
+    try:
+        img = bpy.data.images.load(path, check_existing=False)
     except RuntimeError as exc:
         raise PictureError(f"{path} is not a picture Blender can read ({exc})") from None
     try:
@@ -70,12 +88,12 @@ class HAIRY_BRUSH_OT_imitate_image(JobOperator, bpy.types.Operator, ImportHelper
 
     filename_ext = ".png"
     filter_glob: bpy.props.StringProperty(
-        default="*.png;*.jpg;*.jpeg;*.tif;*.tiff;*.bmp;*.webp", options={"HIDDEN"}
+        default="*.png;*.jpg;*.jpeg;*.tif;*.tiff;*.exr;*.bmp;*.webp", options={"HIDDEN"}
     )
     image: bpy.props.StringProperty(
         name="Image",
         default="",
-        description="An image datablock to imitate (its name); empty: the chosen PNG file",
+        description="An image datablock to imitate (its name); empty: the chosen picture file",
     )
     size_mm: bpy.props.FloatProperty(
         name="Size (mm)",

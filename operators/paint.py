@@ -24,13 +24,14 @@ from ..blender import (
     presets,
     primitives,
     recordings,
+    runtime,
     surfaces,
     transforms,
 )
 from ..sim import surface as surf
 from ..sim.core import placement
 from ..sim.core.params import HOVER_MM
-from ..sim.engine.live import LiveBrush, LiveEvent
+from ..sim.engine.live import UNDO_KEY, LiveBrush, LiveEvent
 from ..sim.engine.simulation import Simulation
 from . import polls
 
@@ -128,7 +129,8 @@ def keep_stroke(scene, live: LiveBrush):
 class HAIRY_BRUSH_OT_paint(bpy.types.Operator):
     """Paint with the brush: move the mouse over the paper, hold the left button to press,
     wheel = press depth, Q/W E/R C/V = tilt and twist (Shift x4, left button x2), D = dip;
-    release or Enter keeps the stroke, Esc or right-click cancels"""
+    release or Enter keeps the stroke, Ctrl+Z takes back this stroke (or, before pressing, the
+    last one kept), Esc or right-click cancels"""
 
     bl_idname = "hairy_brush.paint"
     bl_label = "Paint"
@@ -167,7 +169,7 @@ class HAIRY_BRUSH_OT_paint(bpy.types.Operator):
         wm.modal_handler_add(self)
         context.workspace.status_text_set(
             "Hold LMB: press | Wheel: depth | Q/W E/R C/V: d q r | D: dip | "
-            "Enter/release: keep | Esc/RMB: cancel"
+            "Enter/release: keep | Ctrl+Z: undo stroke | Esc/RMB: cancel"
         )
         return {"RUNNING_MODAL"}
 
@@ -175,7 +177,7 @@ class HAIRY_BRUSH_OT_paint(bpy.types.Operator):
         """The stroke's state (also used by tests, which have no window to run a modal in)."""
         st = checks.settings(context.scene)
         self._img = img
-        self._live = live
+        self._live = runtime.get().painter = live  # the painting in progress, while it lasts
         self._brush_mw = st.brush_object.matrix_world.copy() if st.brush_object else None
         self._last_draw = 0.0
         self._refresh_s = 0.0  # what the last refresh cost
@@ -189,7 +191,7 @@ class HAIRY_BRUSH_OT_paint(bpy.types.Operator):
             return {"PASS_THROUGH"}
         now = time.perf_counter()  # the sample clock: when the event is handled
         if event.type == "D" and event.value == "PRESS":
-            self._live.dip(st.dip_depth, st.ink_color, st.dip_wetness, time=now)
+            self._live.dip(st.dip_depth, st.ink_color, st.dip_wetness, now, follows_ink=True)
             return {"RUNNING_MODAL"}
         xy = None
         if event.type in ("MOUSEMOVE", "INBETWEEN_MOUSEMOVE", "LEFTMOUSE"):
@@ -204,6 +206,7 @@ class HAIRY_BRUSH_OT_paint(bpy.types.Operator):
             bool(getattr(event, "is_tablet", False)),
             bool(event.shift),
             now,
+            bool(event.ctrl or event.oskey),
         )
         return self.step(context, ev)
 
@@ -216,8 +219,14 @@ class HAIRY_BRUSH_OT_paint(bpy.types.Operator):
             if ev.type == "TIMER":
                 self._live.advance(ENGINE_BUDGET_S)
                 self.show(context, final=False)
+            elif ev.type == UNDO_KEY:  # the stroke was taken back: show the paper without it
+                self._last_draw = 0.0
+                self.show(context, final=False)
             return {"RUNNING_MODAL"}
         self._finish(context)
+        if state == "UNDO":  # nothing painted yet: Blender's undo takes back the last stroke
+            self.show(context, final=True)
+            return {"CANCELLED", "PASS_THROUGH"}
         if state == "CANCELLED":
             self.show(context, final=True)
             return {"CANCELLED"}
@@ -252,6 +261,7 @@ class HAIRY_BRUSH_OT_paint(bpy.types.Operator):
             primitives.sync_primitives(scene, sim, create=False)
 
     def _finish(self, context):
+        runtime.get().painter = None
         if self._timer is not None:
             context.window_manager.event_timer_remove(self._timer)
             context.workspace.status_text_set(None)

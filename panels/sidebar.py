@@ -7,7 +7,7 @@ from __future__ import annotations
 
 import bpy
 
-from ..blender import checks, recordings, surfaces, transforms
+from ..blender import checks, primitives, recordings, surfaces, transforms
 from ..blender.presets import HAIR_LENGTH_MM, QUALITY_GROUPS, preset_label
 
 
@@ -100,7 +100,21 @@ class HAIRY_BRUSH_PT_ink(_Panel, bpy.types.Panel):
         col.prop(st, "ink_color")
         col.prop(st, "dip_wetness", slider=True)
         col.prop(st, "dip_depth", slider=True)
-        layout.operator("hairy_brush.dip", text="Dip Brush at Current Frame", icon="MOD_FLUIDSIM")
+        col = layout.column(align=True)
+        col.operator("hairy_brush.dip", text="Dip Brush at Current Frame", icon="MOD_FLUIDSIM")
+        op = col.operator("hairy_brush.dip", text="Dip in Own Colour...", icon="COLOR")
+        op.own_color = True
+        text = st.recording
+        if text is None:
+            return
+        # dips stored before dips could follow the ink kept the colour they were recorded with
+        own = text.get(recordings.OWN_COLOR_TAG, text.get(recordings.DIPS_TAG))
+        if own:
+            layout.label(text=f"{own} dip(s) keep their own colour;", icon="INFO")
+            layout.label(text="Ink Colour recolours the others")
+            layout.operator("hairy_brush.follow_ink", icon="COLOR")
+        elif own == 0:
+            layout.label(text="Ink Colour recolours the whole recording", icon="INFO")
 
 
 class HAIRY_BRUSH_PT_write(_Panel, bpy.types.Panel):
@@ -134,6 +148,9 @@ class HAIRY_BRUSH_PT_animation(_Panel, bpy.types.Panel):
         layout.operator("hairy_brush.simulate", icon="BRUSH_DATA")
         layout.prop(st, "sync_frames")
         layout.operator("hairy_brush.build_primitives", icon="SURFACE_NSURFACE")
+        coll = primitives.primitive_collection()
+        if coll is not None:  # a viewport aid, hidden from final renders unless asked
+            layout.prop(coll, "hide_render", text="Primitives in Renders", invert_checkbox=True)
         col = layout.column(align=True)
         col.prop(st, "sequence_dir")
         col.operator("hairy_brush.bake_sequence", icon="RENDER_ANIMATION")
@@ -161,6 +178,11 @@ class HAIRY_BRUSH_PT_recording(_Panel, bpy.types.Panel):
                 layout.label(text="Not counted: stored outside the extension", icon="INFO")
             else:
                 layout.label(text=f"{n} samples, {text.get(recordings.DIPS_TAG, 0)} dips")
+            hair, now = text.get(recordings.HAIR_TAG), HAIR_LENGTH_MM.get(st.brush_preset)
+            if hair is not None and now is not None and abs(now - hair) > 1e-6:
+                layout.label(
+                    text=f"Recorded with {hair:g} mm hair: placed {now - hair:+g} mm", icon="INFO"
+                )
         row = layout.row(align=True)
         row.operator("hairy_brush.import_recording", icon="IMPORT")
         row.operator("hairy_brush.export_recording", icon="EXPORT")

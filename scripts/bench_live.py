@@ -194,7 +194,7 @@ def main(argv=None) -> int:
     rows.append(("  random jump (median, worst s)", f"{med(jump):.3f}, {max(jump):.3f}"))
     from importlib import import_module
 
-    bench = import_module(ADDON + ".sim.bench")
+    bench = import_module(ADDON + ".sim.cli.bench")
     rate, _m = bench.samples_per_second(bench.long_stroke(), 4096, 4096 / PAPER_MM, 16, 3)
     res["samples_per_s_16p_4096"] = round(rate, 1)
     rows.append(("engine alone, 16 primitives, 4096 px (samples/s)", f"{rate:.0f}"))

@@ -62,7 +62,11 @@ def _add_imitate(sub, size, common):
     from ..picture.imitate import MAX_DETAIL, PASSES
 
     im = sub.add_parser("imitate", help="read a picture of writing and write it with the brush")
-    im.add_argument("image", help="dark writing on a light ground: PNG (JPEG etc. with Pillow)")
+    im.add_argument(
+        "image",
+        help="dark writing on a light ground: any PNG, JPEG, TIFF, ... with Pillow installed "
+        "(pip install pillow); without it an 8-bit PNG",
+    )
     im.add_argument("-o", "--output", required=True)
     im.add_argument(
         "--size",

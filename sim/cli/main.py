@@ -16,6 +16,7 @@ from ..core.recording import (
     PX_PER_MM_RANGE,
     RecordingError,
 )
+from .compose import _add_compose
 from .evaluate import cmd_iou
 from .fit import _add_fit
 from .imitate import _add_imitate
@@ -27,7 +28,14 @@ from .write import cmd_write, cmd_write_set
 def cmd_bench(args) -> int:
     from .bench import main as bench
 
-    bench(quick=args.quick)
+    bench(quick=args.quick, work_only=args.work)
+    return 0
+
+
+def cmd_speed(args) -> int:
+    from .speed import main as speed
+
+    speed(args.repeats, baseline=args.baseline, against=args.against)
     return 0
 
 
@@ -91,9 +99,18 @@ def _parser() -> argparse.ArgumentParser:
     common(m)
     m.set_defaults(func=cmd_iou)
     _add_fit(sub, size, common)
+    _add_compose(sub, seed)
     b = sub.add_parser("bench", help="speed benchmark: a table, then one JSON line")
-    b.add_argument("--quick", action="store_true", help="one repetition instead of three")
+    b.add_argument("--quick", action="store_true", help="one repetition instead of five")
+    b.add_argument("--work", action="store_true", help="only the composed work's line")
     b.set_defaults(func=cmd_bench)
+    sp = sub.add_parser(
+        "speed", help="what users wait for, beside the previous version measured in the same run"
+    )
+    sp.add_argument("--repeats", type=_whole(1, 50), default=3, help="runs of each version")
+    sp.add_argument("--against", default=None, help="the previous version: a git revision")
+    sp.add_argument("--baseline", default=None, help="the previous version: a checkout")
+    sp.set_defaults(func=cmd_speed)
     return ap
 
 

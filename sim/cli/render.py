@@ -18,13 +18,18 @@ def add_matte_option(parser) -> None:
     parser.add_argument("--matte", action="store_true", help=MATTE_HELP)
 
 
-def paper_pixels(sim, matte: bool):
-    """What a command writes of a finished simulation: the paper as it shows (RGB) or its
-    ink matte (RGBA, sim.image.matte), top row first, uint8."""
+def paper_pixels(sim, matte: bool, rec=None):
+    """What a command writes of a finished simulation: the paper as it shows (RGB; with
+    ``rec``, a work's grid and seal with the ink) or its ink matte (RGBA, sim.image.matte: the
+    ink alone, no grid or seal), top row first, uint8."""
     if matte:
         from ..image.matte import paper_matte8
 
         return paper_matte8(sim.paper)
+    if rec is not None:
+        from ..writing.work.compose import image8
+
+        return image8(sim.paper, rec)
     return sim.image8()
 
 
@@ -32,9 +37,11 @@ def cmd_render(args) -> int:
     from ..core.recording import load
     from ..engine.simulation import Simulation
     from ..image.png import write_png
+    from ..writing.work.compose import check_work
 
     _writable(args.output)
     rec = load(args.recording)
+    check_work(rec)  # a work's layout and seal, before any simulation
     if args.px_per_mm is not None:
         from ..core.recording import from_dict
 
@@ -45,7 +52,7 @@ def cmd_render(args) -> int:
         rec.seed = args.seed
     t0 = time.perf_counter()
     sim = Simulation(rec).run(progress=None if args.quiet else _progress)
-    write_png(args.output, paper_pixels(sim, args.matte))
+    write_png(args.output, paper_pixels(sim, args.matte, rec))  # a work: grid and seal too
     if not args.quiet:
         dt = time.perf_counter() - t0
         print(

@@ -44,6 +44,7 @@ PAPER_MM_RANGE = (1.0, 5000.0)  # a side of the paper
 PX_PER_MM_RANGE = (0.1, 200.0)
 MAX_DIPS = 10_000  # a dip before every stroke of a long artwork, with room to spare
 MAX_SEED = 2**64 - 1  # PCG64 takes any non-negative integer; a recording keeps 64 bits
+MAX_RESTART = 2**32 - 1  # a restarting dip's stream number (Dip.restart)
 Z_LIMIT_MM = 1000.0
 ANGLE_LIMIT_DEG = 89.0
 
@@ -66,20 +67,40 @@ class RecordingError(ValueError):
 @dataclass
 class Dip:
     """A dip before a sample; a field a recording leaves out is the paper's default dip's: "a
-    full dip in black ink" (depth 1, black), as wet as the default ink loads."""
+    full dip in black ink" (depth 1, black), as wet as the default ink loads.
+
+    ``follows_ink`` (added beyond the paper): the dip loads the recording's ink colour (its
+    'ink' section's colour, else its ink preset's), so a new ink colour recolours the work;
+    ``color`` is then only the colour it had when recorded (what an engine that does not know
+    the field loads). False, as for every dip of a recording that leaves the field out: the dip
+    keeps its own colour (a second ink)."""
 
     before_sample: int
     depth: float = 1.0
     color: tuple = (0.0, 0.0, 0.0)
     wetness: float = InkSpec.wetness
+    follows_ink: bool = False
+    # a dip that starts a cell of a composed work (sim.writing.work): the brush is made new and
+    # its random draws come from the stream (seed, restart) from then on, so that the cell's
+    # writing depends on nothing before it (Simulation._restart); None: an ordinary dip
+    restart: int | None = None
+
+    def color_with(self, ink: InkSpec) -> tuple:
+        """The colour this dip loads with the recording's resolved ``ink``."""
+        return tuple(ink.color) if self.follows_ink else tuple(self.color)
 
     def to_dict(self):
-        return {
+        d = {
             "before_sample": self.before_sample,
             "depth": self.depth,
             "color": list(self.color),
             "wetness": self.wetness,
         }
+        if self.follows_ink:  # left out otherwise: older recordings' text stays as it was
+            d["follows_ink"] = True
+        if self.restart is not None:
+            d["restart"] = self.restart
+        return d
 
 
 @dataclass
@@ -127,14 +148,17 @@ class Recording:
             q = QualityParams().with_values(values)
             geom = _geometry_override(geometry_from_preset(bp), self.brush.get("geometry"))
             paper = replace(paper_from_preset(pp), **self.paper_overrides)
-            return q, geom, paper, ink_from_preset(ip)
+            ink = ink_from_preset(ip)
+            if "color" in self.ink:  # the recording's own ink colour (see Dip.follows_ink)
+                ink = replace(ink, color=tuple(float(c) for c in self.ink["color"]))
+            return q, geom, paper, ink
         except ParameterError as exc:
             raise RecordingError(str(exc)) from None
 
     def dips_or_default(self) -> list:
         if self.dips:
             return self.dips
-        return [Dip(0)]  # the default dip (see Dip)
+        return [Dip(0)]  # the default dip (see Dip): black, whatever the ink colour
 
     def to_dict(self) -> dict:
         d = {
@@ -291,6 +315,8 @@ def _presets_and_quality(d: dict):
     for name, sec in (("brush", brush), ("ink", ink)):
         if "preset" in sec and not isinstance(sec["preset"], str):
             raise RecordingError(f"'{name}.preset' must be a preset name")
+    if "color" in ink:
+        ink = {**ink, "color": list(_color(ink["color"], "ink.color"))}
     quality = _obj(d, "quality", "quality", required=False) or {}
     known = QualityParams.names()
     for k, v in quality.items():
@@ -349,23 +375,30 @@ def _dips(d: dict, n_samples: int) -> list:
         bs = _num(dp["before_sample"], f"'{where}.before_sample'", 0, n_samples, integer=True)
         depth = _num(dp.get("depth", Dip.depth), f"'{where}.depth'", 0.0, 1.0)
         wet = _num(dp.get("wetness", Dip.wetness), f"'{where}.wetness'", 0.0, 1.0)
-        col = dp.get("color", list(Dip.color))
-        if not isinstance(col, list) or len(col) != 3:
-            raise RecordingError(f"'{where}.color' must be [r, g, b]")
-        col = tuple(_num(c, f"'{where}.color[{k}]'", 0.0, 1.0) for k, c in enumerate(col))
-        dips.append(Dip(bs, depth, col, wet))
+        col = _color(dp.get("color", list(Dip.color)), f"{where}.color")
+        follows = dp.get("follows_ink", False)
+        if not isinstance(follows, bool):
+            raise RecordingError(f"'{where}.follows_ink' must be true or false")
+        restart = dp.get("restart")
+        if restart is not None:
+            restart = _num(restart, f"'{where}.restart'", 0, MAX_RESTART, integer=True)
+        dips.append(Dip(bs, depth, col, wet, follows, restart))
     dips.sort(key=lambda x: x.before_sample)
     return dips
+
+
+def _color(col, where: str) -> tuple:
+    """An [r, g, b] colour of a recording, each in [0, 1]."""
+    if not isinstance(col, list) or len(col) != 3:
+        raise RecordingError(f"'{where}' must be [r, g, b]")
+    return tuple(_num(c, f"'{where}[{k}]'", 0.0, 1.0) for k, c in enumerate(col))
 
 
 def _paper_overrides(paper: dict) -> dict:
     """The 'paper' section's own colour, capacity and fibre, checked."""
     out = {}
     if "color" in paper:
-        col = paper["color"]
-        if not isinstance(col, list) or len(col) != 3:
-            raise RecordingError("'paper.color' must be [r, g, b]")
-        out["color"] = tuple(_num(c, f"'paper.color[{k}]'", 0.0, 1.0) for k, c in enumerate(col))
+        out["color"] = _color(paper["color"], "paper.color")
     if "capacity" in paper:
         out["capacity"] = _num(paper["capacity"], "'paper.capacity'", *PAPER_CAPACITY_RANGE)
     if "fibre" in paper:

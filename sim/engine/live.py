@@ -7,6 +7,25 @@ pressed); q/w, e/r, c/v decrease/increase d, q and r. Holding the left button do
 step; the paper multiplies it by four with the right button, which Blender reserves for
 cancelling, so Shift does that here. A tablet's pressure drives z and its tilt drives d and q.
 
+Added beyond the paper, so that painting by hand reads as a brush does (issue 29):
+
+- the pointer is where the hair's tip touches: a tilted brush (a tablet's tilt, or the keys)
+  turns about the tip, its base placed up the tilted hair, so tilting never lifts the tip off
+  the paper nor moves the mark sideways (the paper's mouse sets the base, which a tilt of 40
+  degrees lifts a quarter of the hair length);
+- the pen's pressure is read from every pointer event, not only from those flagged as a
+  tablet's (Blender reports pressure 1 for a mouse; a tablet whose events are not flagged had
+  its pressure ignored, so a pressure ramp swelled only as the belly does). The press stays the
+  paper's, Press x pressure: on a ramp 0.15 -> 1 at 100 mm/s it widens evenly (wolf_kaishu,
+  Press 4 mm: from a hairline to 3.3 mm; an offset to the first touch, p^1.5 or p^2 were
+  measured too and read less evenly across the brushes);
+- each stroke lands and lifts: before the brush goes down it hovers LAND_S where it lands (the
+  inertia predictor of Eq. 9 carries a jump from the last stroke's end on for about ten samples,
+  so a brush lowered at once drags ink from there), and after the stroke it rises in place and
+  hovers LIFT_S, so consecutive strokes are separated by a lift and leave nothing between them;
+- Ctrl+Z takes back the stroke being painted and painting goes on; with nothing painted yet it
+  ends painting (``handle`` returns 'UNDO') so that the caller takes back the last stroke kept.
+
 Event names and values are Blender's (``event.type``/``event.value``), so the Blender operator
 passes its events straight through, and tests drive this class with the same sequences.
 
@@ -27,6 +46,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from ..core.frames import rotation_matrix
 from ..core.params import HOVER_MM
 from ..core.recording import Dip, quantise
 from .simulation import BATCH_STEPS, Simulation
@@ -37,6 +57,9 @@ ANGLE_LIMIT = 80.0
 ANGLE_KEYS = {"Q": (0, -1), "W": (0, +1), "E": (1, -1), "R": (1, +1), "C": (2, -1), "V": (2, +1)}
 KEEP_KEYS = {"RET", "NUMPAD_ENTER"}
 CANCEL_KEYS = {"ESC", "RIGHTMOUSE"}
+UNDO_KEY = "Z"  # with Ctrl (Cmd): take back the stroke
+LAND_S = 0.1  # the brush hovers this long where it lands before it goes down (see above)
+LIFT_S = 0.1  # and rises in place and hovers this long after the stroke
 
 
 @dataclass
@@ -46,9 +69,10 @@ class LiveEvent:
     paper_xy: tuple | None = None  # mm on the paper under the cursor; None when off the paper
     pressure: float = 1.0
     tilt: tuple = (0.0, 0.0)
-    is_tablet: bool = False
+    is_tablet: bool = False  # kept for the record: pressure and tilt are read from any pointer
     shift: bool = False
     time: float | None = None  # when it was handled (s, monotonic); None: a TIMER is one period
+    ctrl: bool = False  # Ctrl (or Cmd) held
 
 
 POINTER_EVENTS = ("MOUSEMOVE", "INBETWEEN_MOUSEMOVE", "LEFTMOUSE")
@@ -77,13 +101,15 @@ class LiveBrush:
         self.angles = np.zeros(3)  # key offsets of d, q, r
         self.tilt = np.zeros(2)
         self.pressure = 1.0
-        self.tablet = False
         self.down = False
         self.left_held = False
+        self.pressed = False  # the button went down in this stroke
         self.state = "RUNNING"
         self._buf = np.array(sim.rec.samples, dtype=float, copy=True)
         self._n = self.n0
         self.period = 1.0 / sim.rec.sample_rate_hz
+        self.land = max(1, round(LAND_S / self.period))  # samples of a landing
+        self.lift = max(1, round(LIFT_S / self.period))  # and of a lift
         self._t0 = None  # the stroke's start on the clock (the first event's time)
         self._t = 0.0  # the clock's time of the last event handled
         self._anchor = (0.0, self.x, self.y)  # the pointer at the last sample: (time, x, y)
@@ -91,15 +117,20 @@ class LiveBrush:
 
     # ------------------------------------------------------------------ the current pose
     def pose(self) -> np.ndarray:
-        if self.down:
-            press = self.press_mm * (self.pressure if self.tablet else 1.0)
-            z = self.L - press
-        else:
-            z = self.L + HOVER_MM
+        """The sample: the hair's tip under the pointer, pressed ``press()`` into the paper or
+        hovering HOVER_MM above it, the base up the (tilted) hair from there."""
         d = self.angles[0] + self.tilt[0] * MAX_TILT_DEG
         q = self.angles[1] + self.tilt[1] * MAX_TILT_DEG
         d, q = np.clip([d, q], -ANGLE_LIMIT, ANGLE_LIMIT)
-        return np.array([self.x, self.y, z, d, q, self.angles[2]])
+        r = self.angles[2]
+        up = rotation_matrix(d, q, r)[:, 2]  # from the tip up the unbent hair to the base
+        tip = np.array([self.x, self.y, -self.press() if self.down else HOVER_MM])
+        return np.r_[tip + self.L * up, d, q, r]
+
+    def press(self) -> float:
+        """How far the tip is pressed into the paper (mm): Press x the pen's pressure (1 with
+        a mouse)."""
+        return self.press_mm * self.pressure
 
     @property
     def new_samples(self) -> np.ndarray:
@@ -181,13 +212,16 @@ class LiveBrush:
             self._moves.append((now, float(ev.paper_xy[0]), float(ev.paper_xy[1])))
         if t not in ("MOUSEMOVE", "INBETWEEN_MOUSEMOVE"):  # moves only tell where the pointer is
             self._produce_until(now)
-        if ev.is_tablet and t in POINTER_EVENTS:
-            self.tablet = True
+        if t in POINTER_EVENTS:  # a mouse reports pressure 1 and no tilt
             self.pressure = float(np.clip(ev.pressure, 0.0, 1.0))
             self.tilt = np.clip(np.asarray(ev.tilt, dtype=float), -1.0, 1.0)
+        if t == UNDO_KEY and v == "PRESS" and ev.ctrl:
+            return self.undo(now)
         if t == "LEFTMOUSE":
             if v == "PRESS":
-                self.left_held = self.down = True
+                if not self.down:
+                    self._land()
+                self.left_held = self.down = self.pressed = True
             elif v == "RELEASE" and self.down:
                 return self.keep()
         elif t in KEEP_KEYS and v == "PRESS":
@@ -204,32 +238,72 @@ class LiveBrush:
             self.angles[axis] = np.clip(self.angles[axis] + sign * step, -limit, limit)
         return self.state
 
-    def dip(self, depth: float, color, wetness: float, time: float | None = None):
+    def dip(
+        self,
+        depth: float,
+        color,
+        wetness: float,
+        time: float | None = None,
+        follows_ink: bool = False,
+    ):
         """A dip before the next sample, recorded like any other dip event; samples due by
-        ``time`` come before it."""
+        ``time`` come before it. ``follows_ink``: it loads the recording's ink colour (see
+        ``Dip``), ``color`` being the colour that is now."""
         if time is not None:
             self._produce_until(self._clock(LiveEvent("D", time=time)))
         rec = self.sim.rec
         if not rec.dips:  # keep the implicit default dip at the start
             rec.dips = list(self.sim.dips)
-        dp = Dip(self._n, float(depth), tuple(float(c) for c in color), float(wetness))
+        dp = Dip(self._n, float(depth), tuple(float(c) for c in color), float(wetness), follows_ink)
         rec.dips.append(dp)
         self.sim.dips = rec.dips
 
+    def _land(self):
+        """The landing: ``land`` samples hovering where the brush goes down, inserted before
+        the press; the stroke's clock moves back as much, so the samples still come when due."""
+        self.down = False
+        for _ in range(self.land):
+            self._append(self.pose())
+        self._t0 -= self.land * self.period
+
     def keep(self) -> str:
-        """The stroke is kept: the engine catches up with the clock, the recording is final."""
+        """The stroke is kept: the brush lifts in place (``lift`` samples hovering), the engine
+        catches up with the clock, the recording is final."""
+        if self.down:
+            self.down = False
+            for _ in range(self.lift):
+                self._append(self.pose())
         self.advance()
         self.sim.rec.samples = self._buf[: self._n].copy()
         self.sim.let_go(self._hold)
         self.state = "FINISHED"
         return self.state
 
-    def cancel(self) -> str:
+    def undo(self, now: float) -> str:
+        """Ctrl+Z: the stroke painted so far is taken back and painting goes on, the brush
+        hovering under the pointer, the clock starting again now; with nothing painted yet,
+        painting ends: 'UNDO' (the caller takes back the last stroke kept before)."""
+        if not self.pressed:
+            self.cancel()
+            return "UNDO"
+        self._back()
+        self.down = self.left_held = self.pressed = False
+        self._t0 = self._t = now
+        self._anchor = (now, self.x, self.y)
+        self._moves = []
+        self._hold = self.sim.hold()
+        return self.state
+
+    def _back(self):
+        """The simulation and the recording exactly as at the stroke's start; the hold ends."""
         self.sim.take_back(self._hold)
         self.sim.rec.samples = self._buf[: self.n0].copy()
-        self.sim.rec.dips = self._dips0
-        self.sim.dips = self._sim_dips0
+        self.sim.rec.dips = list(self._dips0)
+        self.sim.dips = list(self._sim_dips0)
         self._n = self.n0
+
+    def cancel(self) -> str:
+        self._back()
         self.state = "CANCELLED"
         return self.state
 

@@ -83,8 +83,24 @@ class Simulation:
 
     def _dip_now(self):
         for dp in self._dips_at.get(self.index, ()):
-            self.brush.dip(self.ink, dp.depth, dp.color, dp.wetness)
+            if dp.restart is not None:
+                self._restart(dp.restart)
+            self.brush.dip(self.ink, dp.depth, dp.color_with(self.ink), dp.wetness)
             self.predictor.reset()
+
+    def _restart(self, stream: int):
+        """A dip that starts a cell of a composed work (``Dip.restart``, sim.writing.work): the
+        calligrapher re-forms the brush on the inkstone, so it is as new - its hair gathered into
+        one primitive, at rest over the sample - and its random draws come from the stream
+        (seed, stream) of the one seeded generator from now on. What follows depends on nothing
+        before it: the cells of a work can be simulated side by side, bit for bit as in one
+        run, and one cell can be written again without changing the others. (Beyond the
+        paper: its brush carries every state from sample to sample.)"""
+        self.rng.bit_generator.state = np.random.PCG64([self.rec.seed, stream]).state
+        fresh = HairyBrush(self.geometry, self.q, self.rng)
+        s = self._sample(self.index)
+        fresh.place(np.r_[s[:2], max(s[2], self.geometry.hair_length_mm + HOVER_MM), s[3:]])
+        self.brush.restore(fresh.snapshot())
 
     def step(self):
         """Process one 6-DOF sample: the brush moves and the paper takes its marks."""

@@ -25,6 +25,11 @@ class PNGError(ValueError):
     """A PNG file is unreadable, damaged, too large, or of a kind this reader does not take."""
 
 
+class PNGKindError(PNGError):
+    """A PNG of a kind this reader does not take (16-bit, interlaced): Pillow and Blender read
+    it."""
+
+
 def _chunk(tag: bytes, data: bytes) -> bytes:
     return struct.pack(">I", len(data)) + tag + data + struct.pack(">I", zlib.crc32(tag + data))
 
@@ -96,17 +101,23 @@ def png_bytes(img, bits: int = 8, dpi: float | None = None, level: int = 6) -> b
     return SIGNATURE + head + _chunk(b"IDAT", b"".join(parts)) + _chunk(b"IEND", b"")
 
 
-def png_header(path, max_side: int = MAX_PAPER_SIDE_PX, max_pixels: int = MAX_PAPER_PIXELS):
-    """(width, height, colour type) from a PNG's header, checked, without reading the rest."""
+def png_header(
+    path,
+    max_side: int = MAX_PAPER_SIDE_PX,
+    max_pixels: int = MAX_PAPER_PIXELS,
+    any_kind: bool = False,
+):
+    """(width, height, colour type) from a PNG's header, checked, without reading the rest;
+    ``any_kind``: a 16-bit or interlaced PNG passes too (its size is what is checked)."""
     try:
         with open(path, "rb") as f:
             head = f.read(33)
     except OSError as exc:
         raise PNGError(f"cannot read image {path}: {exc.strerror or exc}") from None
-    return _ihdr(head, path, max_side, max_pixels)
+    return _ihdr(head, path, max_side, max_pixels, any_kind)
 
 
-def _ihdr(head: bytes, path, max_side: int, max_pixels: int):
+def _ihdr(head: bytes, path, max_side: int, max_pixels: int, any_kind: bool = False):
     if head[:8] != SIGNATURE:
         raise PNGError(f"{path}: not a PNG file")
     if len(head) < 33 or head[8:16] != b"\x00\x00\x00\rIHDR":
@@ -116,8 +127,10 @@ def _ihdr(head: bytes, path, max_side: int, max_pixels: int):
     w, h, depth, ctype, comp, filt, interlace = struct.unpack(">IIBBBBB", head[16:29])
     if ctype not in CHANNELS:
         raise PNGError(f"{path}: PNG colour type {ctype} does not exist")
-    if depth != 8 or interlace or comp or filt:
-        raise PNGError(
+    if comp or filt:
+        raise PNGError(f"{path}: unknown PNG compression or filter method")
+    if not any_kind and (depth != 8 or interlace):
+        raise PNGKindError(
             f"{path}: only 8-bit non-interlaced PNG is supported (this one: {depth}-bit"
             f"{', interlaced' if interlace else ''})"
         )

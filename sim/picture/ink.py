@@ -98,42 +98,84 @@ def _without_seals(lum: np.ndarray, coloured: np.ndarray, neutral_dark: int) -> 
         lum[coloured] = np.quantile(lum[~coloured], 0.9, overwrite_input=True)  # the paper's
 
 
+EXR_MAGIC = b"\x76\x2f\x31\x01"
+PILLOW_HINT = "pip install pillow"
+
+
 def load_picture(path) -> np.ndarray:
-    """A picture file's luminance: a PNG by ``sim.image.png`` (bounded; PNGError for a damaged or
-    huge file), any other format (JPEG, ...) by Pillow when it is installed (optional)."""
-    from ..image.png import SIGNATURE, read_png
+    """A picture file's luminance, read by Pillow when it is installed (the command line's
+    optional dependency: PNG of any depth, palette, grey, alpha or interlace, JPEG, TIFF, BMP,
+    WebP, ...); without it only an 8-bit non-interlaced PNG, by ``sim.image.png``, and anything
+    else is refused naming ``pip install pillow``. A PNG's size is checked from its header
+    before anything is decoded. (Inside Blender, Blender's own image loading reads pictures:
+    operators/imitate_image.py.)"""
+    from ..image.png import SIGNATURE, PNGKindError, png_header, read_png
 
     try:
         with open(path, "rb") as f:
             head = f.read(len(SIGNATURE))
     except OSError as exc:
         raise PictureError(f"cannot read {path}: {exc.strerror or exc}") from None
-    if head == SIGNATURE:
+    if head.startswith(EXR_MAGIC):
+        raise PictureError(
+            f"{path} is OpenEXR: Imitate Picture in Blender reads it; for the command line save "
+            "it as PNG or TIFF"
+        )
+    png = head == SIGNATURE
+    if png:
+        png_header(path, MAX_PICTURE_SIDE, MAX_PICTURE_PIXELS, any_kind=True)
+    image = _pillow()
+    if image is not None:
+        return grey_of(_read_pillow(image, path), str(path))
+    if not png:
+        raise PictureError(
+            f"{path} is not a PNG; other formats (JPEG, TIFF, ...) need Pillow ({PILLOW_HINT})"
+        )
+    try:
         return grey_of(read_png(path, MAX_PICTURE_SIDE, MAX_PICTURE_PIXELS), str(path))
-    return grey_of(_read_other(path), str(path))
+    except PNGKindError as exc:
+        raise PictureError(f"{exc}; Pillow reads it ({PILLOW_HINT})") from None
 
 
-def _read_other(path) -> np.ndarray:
-    """A non-PNG picture through Pillow, its size checked before it is decoded."""
+def _pillow():
+    """Pillow's Image module, or None when Pillow is not installed."""
     try:
         from PIL import Image
     except ImportError:
-        raise PictureError(
-            f"{path} is not a PNG; other formats (JPEG, ...) need Pillow (pip install pillow)"
-        ) from None
+        return None
+    return Image
+
+
+def _read_pillow(image, path) -> np.ndarray:
+    """A picture through Pillow, its size checked before it is decoded: (H, W[, C]) uint8, or
+    floats in [0, 1] for a 16-bit or float grey picture (Pillow keeps those in 32-bit modes)."""
     try:
-        with Image.open(path) as im:
+        with image.open(path) as im:
             w, h = im.size
             if max(w, h) > MAX_PICTURE_SIDE or w * h > MAX_PICTURE_PIXELS:
                 raise PictureError(
                     f"{path} is {w} x {h} px; at most {MAX_PICTURE_SIDE} a side and "
                     f"{MAX_PICTURE_PIXELS} pixels"
                 )
-            return np.asarray(im.convert("RGBA"))
-    except (OSError, ValueError, SyntaxError) as exc:
+            return _pillow_array(im)
+    except (OSError, ValueError, SyntaxError, image.DecompressionBombError) as exc:
         if isinstance(exc, PictureError):
             raise
         raise PictureError(f"{path} is not a picture this can read: {exc}") from None
+
+
+def _pillow_array(im) -> np.ndarray:
+    """A Pillow image's pixels in a form ``grey_of`` reads."""
+    if im.mode.startswith("I;16") or im.mode == "I":  # 16-bit grey (PNG, TIFF)
+        return np.asarray(im, dtype=np.float32) / np.float32(65535.0)
+    if im.mode == "F":  # float grey (TIFF)
+        return np.asarray(im, dtype=np.float32)
+    if im.mode in ("1", "L"):
+        return np.asarray(im.convert("L"))
+    if im.mode in ("LA", "La"):
+        return np.asarray(im.convert("LA"))
+    alpha = "A" in im.getbands() or "transparency" in im.info
+    return np.asarray(im.convert("RGBA" if alpha else "RGB"))
 
 
 def _paper(grey: np.ndarray) -> float:

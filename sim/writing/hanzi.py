@@ -6,6 +6,8 @@ Coordinates in the data: a 1024-unit em box, y up, with image y = 900 - y_data. 
 
 from __future__ import annotations
 
+import json
+import re
 from pathlib import Path
 
 import numpy as np
@@ -113,13 +115,15 @@ def load_char(path) -> dict:
 
 
 DATA_DIR = Path(__file__).resolve().parents[2] / "data" / "hanzi"
+# all of hanzi-writer-data 2.0.1 (sim.writing.bundle; scripts/build_hanzi_bundle.py rebuilds it)
+BUNDLE = DATA_DIR / "hanzi-writer-data.bin"
 
 
 def find_char(spec: str, data=None) -> dict:
-    """Character data from a path to a hanzi-writer JSON file, or from a character looked up in
-    ``data``: a folder of hanzi-writer-data files (``<char>.json``) or Make Me a Hanzi's
-    ``graphics.txt`` (one JSON object per line with a "character" key). Without ``data`` the
-    characters bundled with the add-on are searched. Raises CharacterError."""
+    """Character data from a path to a hanzi-writer JSON file, or from a character looked up
+    (``lookup``) in the user's ``data`` - a folder of hanzi-writer-data files (``<char>.json``)
+    or Make Me a Hanzi's ``graphics.txt`` (one JSON object per line with a "character" key) -
+    and then in the bundled set. Raises CharacterError."""
     if not isinstance(spec, str) or not spec:
         raise CharacterError("give a character, or a character data file")
     p = Path(spec)
@@ -127,35 +131,104 @@ def find_char(spec: str, data=None) -> dict:
         return load_char(p)
     if len(spec) != 1:
         raise CharacterError(f"{spec!r} is neither a character data file nor a single character")
-    src = Path(data) if data else DATA_DIR
-    if src.is_dir():
-        f = src / f"{spec}.json"
-        if not f.is_file():
-            raise CharacterError(f"no data for {spec!r} in {src} (looked for {f.name})")
-        return load_char(f)
-    if src.is_file():
-        return _graphics_line(src, spec)
-    raise CharacterError(f"character data {src} does not exist")
+    char = lookup(spec, data)
+    if char is None:
+        where = f"{data} nor in the bundled set" if data else "the bundled set"
+        raise CharacterError(f"no data for {spec!r} in {where}")
+    return char
 
 
-def _graphics_line(src: Path, spec: str) -> dict:
+def lookup(char: str, data=None) -> dict | None:
+    """The checked data of one character: the user's ``data`` (a folder of ``<char>.json`` or a
+    graphics.txt) wins; then the bundled set (``BUNDLE``; the sixteen files of ``DATA_DIR``
+    when it is absent). None when neither has it; a damaged file raises CharacterError."""
+    if data:
+        src = Path(data)
+        if src.is_dir():
+            f = src / f"{char}.json"
+            if f.is_file():
+                return load_char(f)
+        elif src.is_file():
+            found = _graphics_line(src, char)
+            if found is not None:
+                return found
+        else:
+            raise CharacterError(f"character data {src} does not exist")
+    return _builtin(char)
+
+
+_BUNDLES: dict = {}
+_CHECKED: set = set()  # characters of the bundle whose data has passed check_char
+
+
+def _builtin(char: str) -> dict | None:
+    """A character of the bundled set, checked once per process (the bundle does not change)."""
+    from .bundle import Bundle, BundleError
+
+    if not BUNDLE.is_file():
+        f = DATA_DIR / f"{char}.json"
+        return load_char(f) if len(char) == 1 and f.is_file() else None
+    bundle = _BUNDLES.setdefault(BUNDLE, Bundle(BUNDLE))
+    try:
+        d = bundle.get(char)
+    except BundleError as exc:
+        raise CharacterError(str(exc)) from None
+    if d is not None and char not in _CHECKED:
+        check_char(d, f"{BUNDLE.name}: {char!r}")
+        _CHECKED.add(char)
+    return d
+
+
+def _graphics_line(src: Path, spec: str) -> dict | None:
     """The checked data of ``spec`` from Make Me a Hanzi's graphics.txt (a JSON object a line),
-    read a bounded line at a time."""
-    key = f'"character":"{spec}"'.encode()
+    found through an index of the file's lines made once (``_graphics_index``); None when the
+    file has no line for it."""
+    n, offset = _graphics_index(src).get(spec, (0, -1))
+    if n == 0:
+        return None
+    where = f"{src} line {n}"
     try:
         with open(src, "rb") as fh:
-            for n, line in enumerate(iter(lambda: fh.readline(MAX_CHAR_BYTES + 1), b""), 1):
-                where = f"{src} line {n}"
-                if len(line) > MAX_CHAR_BYTES:
-                    raise CharacterError(f"{where} is longer than {MAX_CHAR_BYTES} bytes")
-                if key not in line.replace(b" ", b""):
-                    continue
-                d = parse_json(decode_text(line, where, CharacterError), where, CharacterError)
-                if isinstance(d, dict) and d.get("character") == spec:
-                    return check_char(d, where)
+            fh.seek(offset)
+            line = fh.readline(MAX_CHAR_BYTES + 1)
     except OSError as exc:
         raise CharacterError(f"cannot read character data {src}: {exc.strerror or exc}") from None
-    raise CharacterError(f"no data for {spec!r} in {src}")
+    d = parse_json(decode_text(line, where, CharacterError), where, CharacterError)
+    if not isinstance(d, dict) or d.get("character") != spec:
+        raise CharacterError(f"{where}: not the data of {spec!r} (the file changed?)")
+    return check_char(d, where)
+
+
+_CHAR_KEY = re.compile(rb'"character"\s*:\s*("(?:[^"\\]|\\.)*")')
+_INDEXES: dict = {}
+
+
+def _graphics_index(src: Path) -> dict:
+    """{character: (line number, byte offset)} of a graphics.txt, read a bounded line at a
+    time once per version of the file (the first line of a character wins)."""
+    try:
+        st = src.stat()
+        key = (str(src.resolve()), st.st_size, st.st_mtime_ns)
+        if key in _INDEXES:
+            return _INDEXES[key]
+        index, offset = {}, 0
+        with open(src, "rb") as fh:
+            for n, line in enumerate(iter(lambda: fh.readline(MAX_CHAR_BYTES + 1), b""), 1):
+                if len(line) > MAX_CHAR_BYTES:
+                    raise CharacterError(f"{src} line {n} is longer than {MAX_CHAR_BYTES} bytes")
+                m = _CHAR_KEY.search(line)
+                if m:
+                    try:
+                        c = json.loads(m.group(1).decode("utf-8"))
+                    except ValueError:
+                        c = None
+                    if isinstance(c, str):
+                        index.setdefault(c, (n, offset))
+                offset += len(line)
+    except OSError as exc:
+        raise CharacterError(f"cannot read character data {src}: {exc.strerror or exc}") from None
+    _INDEXES[key] = index
+    return index
 
 
 def to_paper(points, size_mm: float, origin=(0.0, 0.0)) -> np.ndarray:

@@ -99,7 +99,7 @@ def test_primitive_surfaces_match_the_engine(hb):
     to_world = ext().blender.transforms.engine_to_world(st, st.paper_object)
     dg = bpy.context.evaluated_depsgraph_get()
     for obj, net in zip(objs, nets, strict=False):
-        assert obj.parent == st.brush_object
+        assert obj.parent == st.paper_object
         sp = obj.data.splines[0]
         shape = pb.sim.brush.layout.bezier_net_shape()
         want = (shape.points_u, shape.points_v, shape.order_u, shape.order_v)

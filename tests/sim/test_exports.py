@@ -90,11 +90,11 @@ def test_render_matte_writes_rgba_with_the_inks_density_as_alpha(tmp_path):
     np.testing.assert_allclose(over_white, paper / color, atol=3 / 255)
 
 
-def test_write_has_the_matte_option_too():
+def test_write_and_compose_have_the_matte_option_too():
     from sim.cli.main import _parser
 
-    args = _parser().parse_args(["write", "永", "-o", "x.png", "--matte"])
-    assert args.matte is True
+    assert _parser().parse_args(["write", "永", "-o", "x.png", "--matte"]).matte is True
+    assert _parser().parse_args(["compose", "永", "-o", "x.png", "--matte"]).matte is True
 
 
 # ----------------------------------------------------------------------------- prints

@@ -4,6 +4,7 @@
 import numpy as np
 import pytest
 
+from sim.core.frames import rotation_matrix
 from sim.core.params import HOVER_MM
 from sim.core.recording import Recording
 from sim.engine.live import LiveBrush, LiveEvent
@@ -53,9 +54,11 @@ def test_wheel_sets_the_press_and_the_button_puts_the_brush_down():
 def test_tablet_pressure_and_tilt_drive_z_d_q():
     live = LiveBrush(fresh(), press_mm=8.0)
     live.handle(LiveEvent("LEFTMOUSE", "PRESS", (30.0, 30.0), 0.25, (0.5, -0.25), True))
-    x, y, z, d, q, _ = live.pose()
-    assert z == pytest.approx(live.L - 2.0)
-    assert (d, q) == pytest.approx((30.0, -15.0))
+    pose = live.pose()
+    assert tuple(pose[3:5]) == pytest.approx((30.0, -15.0))
+    # the tip under the pointer, pressed Press x pressure into the paper
+    tip = pose[:3] - live.L * rotation_matrix(*pose[3:])[:, 2]
+    assert tip == pytest.approx([30.0, 30.0, -2.0])
 
 
 def test_a_stroke_writes_and_release_keeps_it():
@@ -66,7 +69,11 @@ def test_a_stroke_writes_and_release_keeps_it():
         state = live.handle(ev)
     assert state == "RUNNING"
     assert live.handle(LiveEvent("LEFTMOUSE", "RELEASE", (80.0, 50.0))) == "FINISHED"
-    assert len(live.sim.rec.samples) == 61 and len(live.new_samples) == 60
+    n = live.land + 60 + live.lift  # it lands, writes, and lifts in place
+    assert len(live.sim.rec.samples) == 1 + n and len(live.new_samples) == n
+    hover = live.L + HOVER_MM
+    assert np.all(live.new_samples[: live.land, :3] == [20.0, 50.0, hover])
+    assert np.all(live.new_samples[-live.lift :, :3] == [80.0, 50.0, hover])
     inked = np.abs(live.sim.paper.rgb() - before).max(axis=2) > 0.1
     assert inked.sum() > 300
     # the kept recording replays to the same image
@@ -111,5 +118,5 @@ def test_a_dip_while_painting_is_recorded():
         live.handle(ev)
     live.handle(LiveEvent("RET"))
     dips = live.sim.rec.dips
-    assert [d.before_sample for d in dips] == [0, 11]
+    assert [d.before_sample for d in dips] == [0, live.land + 11]
     assert dips[1].color == (0.1, 0.2, 0.9)

@@ -49,7 +49,7 @@ def timed_drag(live, t0, speed_mm_s, seconds, hitch=None, ui_hz=60.0):
 def test_samples_are_uniform_in_time_and_on_the_pointers_path(hitch):
     live = LiveBrush(fresh(), press_mm=5.0)
     assert timed_drag(live, 1000.0, 100.0, 1.2, hitch) == "FINISHED"
-    s = live.new_samples
+    s = live.new_samples[live.land : -live.lift]  # between the landing and the lift
     assert len(s) == 144  # 1.2 s at 120 Hz, whatever the UI loop did
     assert np.all(s[:, 1] == 50.0)
     assert s[0, 0] == pytest.approx(20.0 + 100.0 / RATE, abs=0.5)
@@ -66,10 +66,11 @@ def test_the_engine_falls_behind_and_catches_up_on_release():
     live.handle(LiveEvent("LEFTMOUSE", "PRESS", (20.0, 50.0), time=0.0))
     live.handle(LiveEvent("MOUSEMOVE", "NOTHING", (60.0, 50.0), time=0.5))
     live.handle(LiveEvent("TIMER", "NOTHING", time=0.5))
-    assert live.behind == 60 and live.sim.index == 1  # produced, not simulated yet
-    assert live.advance(budget_s=0.0) == 60 - 8  # one batch at least
+    due = live.land + 60  # the landing, then the clock's samples
+    assert live.behind == due and live.sim.index == 1  # produced, not simulated yet
+    assert live.advance(budget_s=0.0) == due - 8  # one batch at least
     live.handle(LiveEvent("LEFTMOUSE", "RELEASE", (60.0, 50.0), time=0.6))
-    assert live.behind == 0 and len(live.sim.rec.samples) == 1 + 72
+    assert live.behind == 0 and len(live.sim.rec.samples) == 1 + live.land + 72 + live.lift
     replay = Simulation(live.sim.rec).run()
     np.testing.assert_array_equal(replay.paper.ink, live.sim.paper.ink)
     np.testing.assert_array_equal(replay.paper.wet, live.sim.paper.wet)
