@@ -84,6 +84,12 @@ def check_number(value: float, label: str, hint: str = "set it again") -> float:
     return value
 
 
+def quality_values(st) -> dict:
+    """The scene's eleven quality values by name (a plain function, not a method of the
+    PropertyGroup: Blender 4.2 crashes at exit when a PropertyGroup has methods)."""
+    return {n: float(getattr(st.quality, n)) for n in QualityParams.names()}
+
+
 # ------------------------------------------------------------------------------ paper size
 def paper_pixels(st) -> tuple[int, int]:
     w = max(1, int(round(st.paper_width_mm * st.px_per_mm)))

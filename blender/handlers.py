@@ -96,7 +96,7 @@ def _catch_up_later(scene_name: str, frame: float, target: int):
         return 0.01
 
     wm.progress_begin(0, 100)
-    bpy.app.timers.register(slice_, first_interval=0.01)
+    runtime.get().start_timer(slice_, first_interval=0.01)
 
 
 @persistent

@@ -7,6 +7,7 @@ from __future__ import annotations
 import bpy
 import numpy as np
 
+from ..sim.image.matte import ink_matte
 from ..sim.paper import display
 from . import checks, runtime
 
@@ -14,6 +15,7 @@ PAPER_IMAGE = "HairyBrush Paper"
 PAPER_TAG = "hairy_brush_paper"
 SHOWN_TAG = "hairy_brush_shown"  # on the paper image: how many samples it shows
 DENSITY_TAG = "hairy_brush_density"  # on the paper image: its ink density image (relief)
+MATTE_TAG = "hairy_brush_matte"  # on the paper image: its ink matte image (issue 29.4)
 
 
 def ensure_paper_image(st, color=(1.0, 1.0, 1.0)) -> bpy.types.Image:
@@ -60,6 +62,7 @@ def show_paper(img, paper, index: int, overlay=None, whole: bool = False):
     img[SHOWN_TAG] = int(index)
     if density_read(img, tag_reliefs(img)):
         show_density(img, paper.ink)
+    show_matte(img, paper.ink)
 
 
 class WorkView:
@@ -190,6 +193,7 @@ def show_blank(st):
     img[SHOWN_TAG] = 0
     if density_read(img, tag_reliefs(img)):
         show_density(img)
+    show_matte(img)
     return img
 
 
@@ -236,3 +240,36 @@ def pack_image(img):
         img.filepath_raw = f"//{img.name}{ext}"
     img.file_format = fmt
     img.pack()
+
+
+def matte_image(img, create: bool = False):
+    """The paper image's ink matte image (straight-alpha RGBA: alpha the ink's density, RGB its
+    colour; sim.image.matte), which follows the paper image from then on; None when there is
+    none and ``create`` is False."""
+    name = img.get(MATTE_TAG)
+    matte = bpy.data.images.get(name) if isinstance(name, str) else None
+    if matte is None and create:
+        w, h = img.size
+        matte = bpy.data.images.new(f"{img.name} Ink Matte", w, h, alpha=True, float_buffer=True)
+        matte.alpha_mode = "STRAIGHT"
+        matte[PAPER_TAG] = 1  # packed on save with the paper
+        img[MATTE_TAG] = matte.name
+    return matte
+
+
+def show_matte(img, ink=None):
+    """Fill the paper image's matte image (if it has one) from the engine's ``Paper.ink``
+    (bottom row first, Blender's order; None: the blank paper): the matte's colour is
+    sRGB-encoded like the paper's, so a float image holds it decoded to linear light."""
+    matte = matte_image(img)
+    if matte is None:
+        return
+    if ink is None:
+        ink = np.zeros((img.size[1], img.size[0], 3), np.float32)
+    h, w = ink.shape[:2]
+    if tuple(matte.size) != (w, h):
+        matte.scale(w, h)
+    rgba = ink_matte(ink)
+    rgba[..., :3] = display.encode(rgba[..., :3], linear=matte.is_float)
+    matte.pixels.foreach_set(rgba.ravel())
+    matte.update()

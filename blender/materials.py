@@ -1,6 +1,7 @@
 # SPDX-License-Identifier: GPL-3.0-or-later
-"""Materials that show the paper image: the paper plane's own, and ink multiplied over a mesh's
-materials through its UV map (Apply to Mesh, a surface paper)."""
+"""Materials that show the paper image: the paper plane's own, ink multiplied over a mesh's
+materials through its UV map (Apply to Mesh, a surface paper), and the relief as a bump map in
+a mesh's materials (Carve/Emboss on a mesh too coarse to carry it, issue 29.7)."""
 
 from __future__ import annotations
 
@@ -10,6 +11,15 @@ from . import checks
 
 PAPER_MATERIAL = "HairyBrush Paper"
 INK_NODE = "HairyBrush Ink"
+
+
+def new_material(name: str) -> bpy.types.Material:
+    """A new material with its node tree (a Principled BSDF) on every Blender version: before
+    5.0, ``materials.new`` makes one without nodes until ``use_nodes`` is set."""
+    mat = bpy.data.materials.new(name)
+    if mat.node_tree is None:
+        mat.use_nodes = True
+    return mat
 
 
 def add_ink(mat, img, uv_name: str):
@@ -57,8 +67,8 @@ def _socket(sockets, identifier):
 def paper_material(img) -> bpy.types.Material:
     mat = bpy.data.materials.get(PAPER_MATERIAL)
     if mat is None:
-        mat = bpy.data.materials.new(PAPER_MATERIAL)
-    if mat.node_tree is None:  # Blender < 5 creates materials without nodes
+        mat = new_material(PAPER_MATERIAL)
+    if mat.node_tree is None:  # a material of that name made elsewhere without nodes
         mat.use_nodes = True
     nodes = mat.node_tree.nodes
     tex = next((n for n in nodes if n.type == "TEX_IMAGE"), None)
@@ -78,10 +88,70 @@ def surface_material(obj, img):
     base colour (a new plain material when it has none)."""
     mats = [m for m in obj.data.materials if m is not None]
     if not mats:
-        mat = bpy.data.materials.new(f"{obj.name} Paper")
-        if mat.node_tree is None:  # Blender < 5 creates materials without nodes
-            mat.use_nodes = True
+        mat = new_material(f"{obj.name} Paper")
         obj.data.materials.append(mat)
         mats = [mat]
     for mat in mats:
         add_ink(mat, img, obj.data.uv_layers.active.name)
+
+
+BUMP_NODE = "HairyBrush Relief Bump"
+
+
+def add_relief_bump(mat, img, uv_name: str, distance_m: float, emboss: bool):
+    """The relief in the material: a Bump node whose height is the paper image's value read
+    through ``uv_name`` (it follows the paper image), into the Principled BSDF's Normal (after
+    a normal map already there). Ink is dark: its value is low, so a carve is the value as it
+    is, an emboss the value inverted; ``distance_m`` is the bump of full ink."""
+    if mat.node_tree is None:
+        mat.use_nodes = True
+    nt = mat.node_tree
+    bsdf = next((n for n in nt.nodes if n.type == "BSDF_PRINCIPLED"), None)
+    if bsdf is None:
+        raise checks.UserError(f"Material '{mat.name}' has no Principled BSDF for the relief")
+    bump = nt.nodes.get(BUMP_NODE)
+    if bump is None:
+        x, y = bsdf.location.x, bsdf.location.y
+        uv = nt.nodes.new("ShaderNodeUVMap")
+        uv.name = uv.label = BUMP_NODE + " UV"
+        uv.location = x - 900, y - 500
+        tex = nt.nodes.new("ShaderNodeTexImage")
+        tex.name = tex.label = BUMP_NODE + " Height"
+        tex.location = x - 700, y - 500
+        grey = nt.nodes.new("ShaderNodeRGBToBW")
+        grey.name = BUMP_NODE + " Value"
+        grey.location = x - 420, y - 500
+        bump = nt.nodes.new("ShaderNodeBump")
+        bump.name = bump.label = BUMP_NODE
+        bump.location = x - 250, y - 500
+        normal = bsdf.inputs["Normal"]
+        if normal.is_linked:  # the material's own normal map goes on under the relief
+            nt.links.new(normal.links[0].from_socket, bump.inputs["Normal"])
+        nt.links.new(uv.outputs["UV"], tex.inputs["Vector"])
+        nt.links.new(tex.outputs["Color"], grey.inputs["Color"])
+        nt.links.new(grey.outputs["Val"], bump.inputs["Height"])
+        nt.links.new(bump.outputs["Normal"], normal)
+    nt.nodes[BUMP_NODE + " UV"].uv_map = uv_name
+    nt.nodes[BUMP_NODE + " Height"].image = img
+    bump.invert = emboss
+    bump.inputs["Strength"].default_value = 1.0
+    bump.inputs["Distance"].default_value = distance_m
+
+
+def remove_relief_bump(mat) -> bool:
+    """Take the relief's bump out of the material (the normal map under it, if any, goes back
+    to the BSDF); True when there was one."""
+    nt = mat.node_tree
+    if nt is None or BUMP_NODE not in nt.nodes:
+        return False
+    bump = nt.nodes[BUMP_NODE]
+    under = bump.inputs["Normal"].links[0].from_socket if bump.inputs["Normal"].is_linked else None
+    targets = [lk.to_socket for lk in bump.outputs["Normal"].links]
+    for suffix in ("", " UV", " Height", " Value"):
+        node = nt.nodes.get(BUMP_NODE + suffix)
+        if node is not None:
+            nt.nodes.remove(node)
+    if under is not None:
+        for sock in targets:
+            nt.links.new(under, sock)
+    return True

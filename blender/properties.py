@@ -80,12 +80,10 @@ def _quality_annotations():
 
 
 class HAIRY_BRUSH_PG_quality(bpy.types.PropertyGroup):
-    """Qp = (Qp1, Qp2), Eq. 1: every value in [0, 1]."""
+    """Qp = (Qp1, Qp2), Eq. 1: every value in [0, 1]. Read them with checks.quality_values: a
+    PropertyGroup holds properties only (Blender 4.2 crashes at exit when one has methods)."""
 
     __annotations__ = _quality_annotations()
-
-    def as_dict(self) -> dict:
-        return {n: float(getattr(self, n)) for n in QualityParams.names()}
 
 
 class HAIRY_BRUSH_PG_work(bpy.types.PropertyGroup):

@@ -45,7 +45,7 @@ def scene_overrides(st) -> dict:
         "brush": {"preset": st.brush_preset},
         # Ink Colour: what every dip that follows the ink loads (see sim.core.recording.Dip)
         "ink": {"preset": st.ink_preset, "color": [float(c) for c in st.ink_color]},
-        "quality": st.quality.as_dict(),
+        "quality": checks.quality_values(st),
         "seed": scene_seed(st),
     }
 

@@ -35,6 +35,11 @@ class Runtime:
     # cell's own recording) -> sim.writing.work.compose.CellInk, so writing more simulates only
     # the new cells
     cell_inks: dict = field(default_factory=dict)
+    # functions registered with bpy.app.timers (the frame handler's catch-up), persistent and
+    # unregistered by clear() (a file loaded, the add-on disabled): none outlives the add-on
+    # or its file, and Blender never frees one itself (Blender 4.2's bpy module crashes at exit
+    # after it freed a Python timer, at a file load or at exit; not after unregister)
+    timers: list = field(default_factory=list)
 
     current: ClassVar[Runtime | None] = None
 
@@ -46,6 +51,23 @@ class Runtime:
         self.cell_inks = {}
         self.last_error = ""
         self.painter = None
+        self.stop_timers()
+
+    def start_timer(self, fn, first_interval: float):
+        """``bpy.app.timers.register(fn)``, kept so that ``clear`` can stop it."""
+        import bpy
+
+        self.timers = [f for f in self.timers if bpy.app.timers.is_registered(f)]
+        self.timers.append(fn)
+        bpy.app.timers.register(fn, first_interval=first_interval, persistent=True)
+
+    def stop_timers(self):
+        import bpy
+
+        for fn in self.timers:
+            if bpy.app.timers.is_registered(fn):
+                bpy.app.timers.unregister(fn)
+        self.timers.clear()
 
     def forget_playbacks(self):
         """The recording was replaced, or a cache baked: the next frame change starts again."""

@@ -13,11 +13,16 @@ from .bake_samples import HAIRY_BRUSH_OT_bake_samples
 from .bake_sequence import HAIRY_BRUSH_OT_bake_sequence
 from .build_primitives import HAIRY_BRUSH_OT_build_primitives
 from .dip import HAIRY_BRUSH_OT_dip
+from .export_grease_pencil import HAIRY_BRUSH_OT_export_grease_pencil
+from .export_image import HAIRY_BRUSH_OT_export_image
 from .export_recording import HAIRY_BRUSH_OT_export_recording
+from .export_svg import HAIRY_BRUSH_OT_export_svg
 from .fit_parameters import HAIRY_BRUSH_OT_fit_parameters
 from .follow_ink import HAIRY_BRUSH_OT_follow_ink
 from .imitate_image import HAIRY_BRUSH_OT_imitate_image
 from .import_recording import HAIRY_BRUSH_OT_import_recording
+from .ink_matte import HAIRY_BRUSH_OT_ink_matte
+from .open_example import HAIRY_BRUSH_OT_open_example
 from .paint import HAIRY_BRUSH_OT_paint
 from .relief import HAIRY_BRUSH_OT_relief
 from .rewrite_cell import HAIRY_BRUSH_OT_rewrite_cell
@@ -49,6 +54,11 @@ CLASSES = (
     HAIRY_BRUSH_OT_fit_parameters,
     HAIRY_BRUSH_OT_apply_preset,
     HAIRY_BRUSH_OT_add_settings_preset,
+    HAIRY_BRUSH_OT_ink_matte,
+    HAIRY_BRUSH_OT_export_image,
+    HAIRY_BRUSH_OT_export_svg,
+    HAIRY_BRUSH_OT_export_grease_pencil,
+    HAIRY_BRUSH_OT_open_example,
 )
 
 register, unregister = bpy.utils.register_classes_factory(CLASSES)

@@ -45,10 +45,10 @@ class HAIRY_BRUSH_OT_apply_to_mesh(bpy.types.Operator):
             for o in meshes:
                 uv = o.data.uv_layers.active.name
                 if not o.data.materials:
-                    o.data.materials.append(bpy.data.materials.new(f"{o.name} Material"))
+                    o.data.materials.append(materials.new_material(f"{o.name} Material"))
                 for slot in o.material_slots:
                     if slot.material is None:
-                        slot.material = bpy.data.materials.new(f"{o.name} Material")
+                        slot.material = materials.new_material(f"{o.name} Material")
                     done += materials.add_ink(slot.material, img, uv)
         except checks.USER_ERRORS as exc:
             self.report({"ERROR"}, str(exc))

@@ -39,7 +39,7 @@ class FitJob(WorkerJob):
     def __init__(self, st, make_samples, settings: FitSettings, preset_name: str):
         self.st = st
         self.preset_name = preset_name
-        seed_quality = st.quality.as_dict()
+        seed_quality = checks.quality_values(st)
         super().__init__(
             lambda progress: fit(make_samples(), seed_quality, settings, progress=progress)
         )

@@ -253,6 +253,29 @@ class HAIRY_BRUSH_PT_recording(_Panel, bpy.types.Panel):
         row = layout.row(align=True)
         row.operator("hairy_brush.import_recording", icon="IMPORT")
         row.operator("hairy_brush.export_recording", icon="EXPORT")
+        layout.operator("hairy_brush.open_example", icon="FILE_BLEND")
+
+
+class HAIRY_BRUSH_PT_export(_Panel, bpy.types.Panel):
+    """The writing out of Blender (issue 29.4): the ink matte, prints, the outline as SVG, the
+    recording as Grease Pencil strokes."""
+
+    bl_label = "Export"
+    bl_parent_id = "HAIRY_BRUSH_PT_animation"
+    bl_options = {"DEFAULT_CLOSED"}
+
+    def draw(self, context):
+        layout = self.layout
+        col = layout.column(align=True)
+        col.operator("hairy_brush.ink_matte", icon="IMAGE_RGB_ALPHA")
+        op = col.operator(
+            "hairy_brush.bake_sequence", text="Bake Paper and Ink Matte", icon="RENDER_ANIMATION"
+        )
+        op.content = "BOTH"
+        col = layout.column(align=True)
+        col.operator("hairy_brush.export_image", icon="IMAGE_DATA")
+        col.operator("hairy_brush.export_svg", icon="OUTLINER_OB_CURVE")
+        layout.operator("hairy_brush.export_grease_pencil", icon="OUTLINER_OB_GREASEPENCIL")
 
 
 class HAIRY_BRUSH_PT_quality(_Panel, bpy.types.Panel):
@@ -290,4 +313,5 @@ CLASSES = (
     HAIRY_BRUSH_PT_animation,
     HAIRY_BRUSH_PT_recording,
     HAIRY_BRUSH_PT_quality,
+    HAIRY_BRUSH_PT_export,
 )

@@ -3,7 +3,11 @@
 private Blender user folder (out/blender_user) as a user would, set up a scene, write 永 with a
 keyframed brush, bake and simulate, then save the paper (out/demo.png), the recording
 (out/demo_recording.json), the scene (out/demo.blend) and a Cycles render of the calligraphy
-mapped onto a curved hanging scroll (out/demo_render.png)."""
+mapped onto a curved hanging scroll (out/demo_render.png).
+
+demo.blend says what it needs: opened without the extension, a text editor beside the viewport
+shows "README - Virtual Hairy Brush" (which zip to install, and how); the paper image is packed,
+so the writing shows in the material even then."""
 
 from __future__ import annotations
 
@@ -17,17 +21,55 @@ ROOT = Path(__file__).resolve().parent.parent
 OUT = ROOT / "out"
 sys.path.insert(0, str(ROOT))
 sys.path.insert(0, str(ROOT / "scripts"))
-OUT.mkdir(exist_ok=True)
-# Blender reads its user folders at import time: keep the user's own Blender untouched.
-os.environ["BLENDER_USER_RESOURCES"] = str(OUT / "blender_user")
+if __name__ == "__main__":
+    # Blender reads its user folders at import time: keep the user's own Blender untouched.
+    os.environ["BLENDER_USER_RESOURCES"] = str(OUT / "blender_user")
 
 import bpy  # noqa: E402
 import numpy as np  # noqa: E402
-from build_extension import build  # noqa: E402
+from build_extension import build, read_manifest  # noqa: E402
 
 from sim.image.png import write_png  # noqa: E402
 
 CHAR = "永"
+README = "README - Virtual Hairy Brush"
+
+
+def readme_text() -> str:
+    """What a user who opens the demo's .blend needs to know, first of all without the
+    extension."""
+    m = read_manifest()
+    return f"""This scene was made with the Blender extension {m["name"]} (id {m["id"]},
+version {m["version"]}, Blender {m["blender_version_min"]} or later).
+
+Without the extension you still see the writing: the paper image is packed in this file and
+the paper plane's material shows it.
+
+To simulate, scrub the animation, write or paint more, install the extension:
+  1. Get {m["id"]}-{m["version"]}.zip (python scripts/build_extension.py makes it from the
+     repository; it needs only Python 3.11).
+  2. Edit > Preferences > Get Extensions > Install from Disk, and pick the zip.
+  3. Open this file again: everything is in View3D > Sidebar > Brush.
+"""
+
+
+def add_readme(bpy) -> bpy.types.Text:
+    """The README text, shown in a text editor split off the largest area of every window's
+    screen (what a user sees when the file opens with its UI)."""
+    text = bpy.data.texts.get(README) or bpy.data.texts.new(README)
+    text.from_string(readme_text())
+    for win in bpy.context.window_manager.windows:
+        screen = win.screen
+        shown = [a for a in screen.areas if a.type == "TEXT_EDITOR"]
+        if not shown:
+            big = max(screen.areas, key=lambda a: a.width * a.height)
+            before = set(screen.areas)
+            with bpy.context.temp_override(window=win, screen=screen, area=big):
+                bpy.ops.screen.area_split(direction="VERTICAL", factor=0.3)
+            shown = [a for a in screen.areas if a not in before] or [big]
+            shown[0].type = "TEXT_EDITOR"
+        shown[0].spaces.active.text = text
+    return text
 
 
 def install():
@@ -105,6 +147,8 @@ def render(st):
     scene.collection.objects.link(scroll)
     scroll.location = (0.6, 0.0, 0.0)
     silk = bpy.data.materials.new("Scroll Silk")
+    if silk.node_tree is None:  # Blender before 5.0 makes materials without nodes
+        silk.use_nodes = True
     bsdf = next(n for n in silk.node_tree.nodes if n.type == "BSDF_PRINCIPLED")
     bsdf.inputs["Base Color"].default_value = (0.93, 0.88, 0.76, 1.0)
     bsdf.inputs["Roughness"].default_value = 0.8
@@ -125,6 +169,8 @@ def render(st):
     light.rotation_euler = (math.radians(40), 0.0, math.radians(-20))
     scene.collection.objects.link(light)
     world = bpy.data.worlds.new("World")
+    if world.node_tree is None:  # Blender before 5.0 makes worlds without nodes
+        world.use_nodes = True
     scene.world = world
     bg = world.node_tree.nodes.get("Background") if world.node_tree else None
     if bg is not None:
@@ -141,9 +187,11 @@ def render(st):
 
 
 def main():
+    OUT.mkdir(exist_ok=True)
     install()
     st = write_character()
     render(st)
+    add_readme(bpy)
     bpy.ops.wm.save_as_mainfile(filepath=str(OUT / "demo.blend"))
     print(f"wrote {OUT / 'demo.blend'}")
 

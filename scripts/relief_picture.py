@@ -36,6 +36,7 @@ def main() -> int:
     st.px_per_mm = 8.0
     assert bpy.ops.hairy_brush.setup() == {"FINISHED"}
     assert bpy.ops.hairy_brush.simulate() == {"FINISHED"}
+    sc.frame_set(sc.frame_end)  # Follow Frames: a render shows the paper at its frame
     w, h = st.paper_width_mm / 1000, st.paper_height_mm / 1000
     bpy.ops.mesh.primitive_grid_add(x_subdivisions=600, y_subdivisions=600, size=1.0)
     tablet = bpy.context.active_object

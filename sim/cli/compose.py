@@ -12,6 +12,7 @@ import time
 
 from ..core.params import ParameterError
 from ..core.recording import DEFAULT_BRUSH, DEFAULT_PAPER
+from .render import add_matte_option
 from .shared import _progress, _real, _response, _template, _whole, _writable
 
 DEFAULT_CHAR_PX = 256
@@ -173,7 +174,12 @@ def cmd_compose(args) -> int:
         paper, inks = work.render(rec, mapper=mapper, progress=stage(0.85, 1.0))
     finally:
         mapper.close()
-    write_png(args.output, work.image8(paper, rec))
+    if args.matte:  # the ink alone (sim.image.matte): no grid, no seal
+        from ..image.matte import paper_matte8
+
+        write_png(args.output, paper_matte8(paper))
+    else:
+        write_png(args.output, work.image8(paper, rec))
     if args.save_recording:
         rec.save(args.save_recording)
     if args.layout_out:
@@ -289,4 +295,5 @@ def _add_compose(sub, seed):
         help="write on a Dask cluster: 'local' or a scheduler's address (tcp://host:8786)",
     )
     c.add_argument("-q", "--quiet", action="store_true")
+    add_matte_option(c)
     c.set_defaults(func=cmd_compose)

@@ -22,7 +22,7 @@ from .evaluate import cmd_iou
 from .fit import _add_fit
 from .imitate import _add_imitate
 from .memory import EXIT_CODE, NotEnoughMemory, out_of_memory, reserve_workspace
-from .render import cmd_render
+from .render import add_matte_option, cmd_render
 from .shared import _named, _real, _whole
 from .write import cmd_write, cmd_write_set
 
@@ -56,6 +56,7 @@ def _parser() -> argparse.ArgumentParser:
     )
     r.add_argument("--seed", type=seed, default=None, help="override the seed")
     r.add_argument("-q", "--quiet", action="store_true")
+    add_matte_option(r)
     r.set_defaults(func=cmd_render)
 
     def common(p):
@@ -85,6 +86,7 @@ def _parser() -> argparse.ArgumentParser:
     w.add_argument("--size", type=size, default=512, help="image size N (the em box)")
     w.add_argument("--recording", type=_named, default=None, help="also save the recording it made")
     w.add_argument("-q", "--quiet", action="store_true")
+    add_matte_option(w)
     common(w)
     w.set_defaults(func=cmd_write)
     _add_imitate(sub, size, common)

@@ -8,6 +8,7 @@ import os
 import time
 
 from ..core.params import ParameterError
+from .render import paper_pixels
 from .shared import _chars, _progress, _response, _template, _writable
 
 
@@ -30,7 +31,7 @@ def cmd_write(args) -> int:
         passes=args.passes,
         progress=None if args.quiet else _progress,
     )
-    write_png(args.output, sim.image8())
+    write_png(args.output, paper_pixels(sim, args.matte))
     if args.recording:
         rec.save(args.recording)
     if not args.quiet:

@@ -71,6 +71,40 @@ def write_png(path, img, level: int = 6) -> None:
     write_atomic(path, write)
 
 
+def png_bytes(img, bits: int = 8, dpi: float | None = None, level: int = 6) -> bytes:
+    """A whole PNG file's bytes, for prints (issue 29.4): img (H, W[, 1|2|3|4]) grey, grey +
+    alpha, RGB or RGBA, top row first, as uint8 (``bits`` 8) or uint16 (``bits`` 16), or float
+    in [0, 1] (rounded to the depth); ``dpi`` goes in a pHYs chunk (pixels per metre, as PNG
+    keeps it) so that print and layout programs place it at its size."""
+    a = np.asarray(img)
+    if bits not in (8, 16):
+        raise ValueError(f"a PNG holds 8 or 16 bits a sample, not {bits}")
+    top = (1 << bits) - 1
+    if a.dtype.kind == "f":
+        a = np.floor(np.clip(a, 0.0, 1.0) * top + 0.5)
+    a = a.astype(">u2" if bits == 16 else np.uint8)
+    if a.ndim == 2:
+        a = a[..., None]
+    h, w, c = a.shape
+    row = w * c * (bits // 8)
+    z = zlib.compressobj(level)
+    parts = []
+    band = max(1, (1 << 22) // max(row, 1))
+    for y0 in range(0, h, band):
+        rows = a[y0 : y0 + band].reshape(-1, w * c).view(np.uint8)
+        raw = np.zeros((rows.shape[0], 1 + row), dtype=np.uint8)  # filter byte 0 per row
+        raw[:, 1:] = rows
+        parts.append(z.compress(raw.tobytes()))
+    parts.append(z.flush())
+    head = _chunk(
+        b"IHDR", struct.pack(">IIBBBBB", w, h, bits, {1: 0, 2: 4, 3: 2, 4: 6}[c], 0, 0, 0)
+    )
+    if dpi is not None:
+        ppm = int(round(float(dpi) / 0.0254))
+        head += _chunk(b"pHYs", struct.pack(">IIB", ppm, ppm, 1))
+    return SIGNATURE + head + _chunk(b"IDAT", b"".join(parts)) + _chunk(b"IEND", b"")
+
+
 def png_header(
     path,
     max_side: int = MAX_PAPER_SIDE_PX,

@@ -42,7 +42,10 @@ anisotropic where the UVs stretch and stops at seams (ink does not bleed from on
 the next).
 
 The modules: ``mesh`` (the checked mesh), ``query`` (rays, nearest points, normals), ``chart``
-(frames and the chart), ``texels`` (the texels' 3D points), ``paper`` (SurfacePaper, the splat).
+(frames and the chart), ``geodesic`` (writing done on flat paper laid on the surface: the chart
+map, straightest walks over the mesh), ``texels`` (the texels' 3D points), ``paper``
+(SurfacePaper, the splat), ``relief`` (how a mesh carries the writing as a relief: where it is
+cut, or a bump map).
 Their public names are re-exported here.
 
 May import: ``core``, ``paper``.
@@ -60,7 +63,6 @@ from .chart import (
     follow,
     frame_parts,
     frames_from_dict,
-    lay_on,
     local_sample,
     new_frame,
     pose_from_sample,
@@ -69,6 +71,7 @@ from .chart import (
     step_to,
     transport,
 )
+from .geodesic import ChartMap, edge_neighbours, lay_on, walk
 from .mesh import (
     SMOOTH_ANGLE_DEG,
     UV_SLACK,
@@ -102,6 +105,7 @@ from .query import (
 from .texels import BUILD_CHUNK, PAD_TEXELS, TEXEL_TILE, TexelPoints, TexelTiles, texel_points
 
 __all__ = [
+    "ChartMap",
     "BUILD_CHUNK",
     "BoxGrid",
     "CHART_SHAPE",
@@ -131,6 +135,7 @@ __all__ = [
     "closest_point",
     "corner_normals",
     "develop",
+    "edge_neighbours",
     "follow",
     "frame_parts",
     "frames_from_dict",
@@ -151,4 +156,5 @@ __all__ = [
     "transport",
     "uv_axes",
     "uv_hit",
+    "walk",
 ]

@@ -136,23 +136,6 @@ def start_frame(surface: Surface, hit: Hit, xy, first_t) -> np.ndarray:
     return quantise(np.r_[np.asarray(xy, dtype=float), hit.point, transport(first_t, n), n])
 
 
-def lay_on(surface: Surface, start, samples, near=None, progress=None):
-    """Writing done on flat paper (samples (N, 6) in mm, on the chart whose position ``start``
-    has) laid on the surface: each sample's frame follows the previous one (``follow``, from
-    ``start`` for the first) over the surface to its chart position, in steps of at most
-    LAY_STEP_MM, so a jump in the air between strokes also goes round the surface. The
-    samples stay as they are (their height and tilts are then against each frame's normal);
-    returns their frames (N, FRAME_WIDTH)."""
-    xy = np.asarray(samples, dtype=float)[:, :2]
-    frames = np.empty((len(xy), FRAME_WIDTH))
-    prev = np.asarray(start, dtype=float)
-    for i, target in enumerate(xy):
-        prev = frames[i] = step_to(surface, prev, target, near)
-        if progress is not None and i % 64 == 0:
-            progress(i / len(xy))
-    return frames
-
-
 def step_to(surface: Surface, prev, target, near=None) -> np.ndarray:
     """The frame at chart position ``target`` followed from the frame ``prev`` over the surface
     in steps of at most LAY_STEP_MM (lay_on's and live painting's)."""

@@ -31,7 +31,12 @@ def installed(extension_zip):
         filepath=str(extension_zip), repo="user_default", enable_on_install=True
     )
     assert res == {"FINISHED"}
-    return ADDON
+    yield ADDON
+    # disabled at the end, as a user would: its timers and handlers go (a timer left registered
+    # crashes Blender 4.2's bpy module at exit)
+    import addon_utils
+
+    addon_utils.disable(ADDON, default_set=True)
 
 
 @pytest.fixture(autouse=True)

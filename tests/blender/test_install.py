@@ -27,6 +27,25 @@ def test_zip_holds_the_extension_and_no_dev_files(extension_zip):
         assert not any(n.startswith(bad) for n in names), bad
 
 
+def test_blenders_own_tool_validates_the_zip_and_builds_the_same_files(extension_zip, tmp_path):
+    """The zip is built in plain Python (scripts/build_extension.py); Blender's extension tool
+    accepts it and, building from the same checkout, packs the same files."""
+    import subprocess
+    import sys
+
+    from tests.paths import ROOT
+
+    sys.path.insert(0, str(ROOT / "scripts"))
+    import build_extension
+
+    tool = build_extension.blender_ext_tool()
+    res = subprocess.run([sys.executable, str(tool), "validate", str(extension_zip)], text=True)
+    assert res.returncode == 0
+    theirs = build_extension.build_with_tool(tmp_path)
+    assert theirs.name == extension_zip.name
+    assert sorted(zipfile.ZipFile(theirs).namelist()) == zipfile.ZipFile(extension_zip).namelist()
+
+
 def test_installed_copy_is_the_one_enabled(hb):
     mod = ext()
     assert ADDON in bpy.context.preferences.addons

@@ -102,7 +102,7 @@ def test_apply_to_mesh_puts_the_ink_over_the_meshs_own_material(hb):
     st = setup_scene(bpy)
     bpy.ops.mesh.primitive_uv_sphere_add()
     sphere = bpy.context.active_object
-    mat = bpy.data.materials.new("Clay")
+    mat = ext().blender.materials.new_material("Clay")  # with nodes before 5.0 too
     bsdf = next(n for n in mat.node_tree.nodes if n.type == "BSDF_PRINCIPLED")
     bsdf.inputs["Base Color"].default_value = (0.6, 0.4, 0.3, 1.0)
     sphere.data.materials.append(mat)

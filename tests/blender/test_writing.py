@@ -68,7 +68,7 @@ def test_fit_parameters_sets_the_quality_and_saves_a_user_preset(hb):
     import os
 
     st = setup_scene(bpy, ppm=1.0)
-    before = st.quality.as_dict()
+    before = ext().blender.checks.quality_values(st)
     r = bpy.ops.hairy_brush.fit_parameters(
         characters="一",
         size_px=24,
@@ -79,7 +79,7 @@ def test_fit_parameters_sets_the_quality_and_saves_a_user_preset(hb):
         preset_name="My Fit",
     )
     assert r == {"FINISHED"}
-    after = st.quality.as_dict()
+    after = ext().blender.checks.quality_values(st)
     assert all(0.0 <= v <= 1.0 for v in after.values()) and after != before
     folder = bpy.utils.user_resource("SCRIPTS", path="presets/hairy_brush/settings")
     text = open(os.path.join(folder, "My_Fit.py"), encoding="utf-8").read()
@@ -96,7 +96,7 @@ def test_fit_parameters_against_an_image_of_the_artwork(hb):
     bpy.ops.hairy_brush.simulate()
     target = st.paper_image.copy()  # "the real artwork": what these quality values make
     target.name = "Scan"
-    truth = st.quality.as_dict()
+    truth = ext().blender.checks.quality_values(st)
     st.quality.e = min(truth["e"] + 0.3, 1.0)  # a wrong start
     r = bpy.ops.hairy_brush.fit_parameters(
         source="IMAGE",
