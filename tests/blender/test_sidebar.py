@@ -357,8 +357,8 @@ def test_a_recordings_paper_fibre_is_imported_rendered_with_and_exported(hb, tmp
     assert bpy.ops.hairy_brush.export_recording(filepath=str(out)) == {"FINISHED"}
     assert json.loads(out.read_text())["paper"]["fibre"] == pytest.approx(0.2)
     assert load(out).resolve()[2].fibre == pytest.approx(0.2)
-    # the setting decides the image: no fibre inks every pixel under the hair, strong fibre
-    # refuses thin ink at the mark's fringe
+    # the setting decides the image: the sheet's grain shows in the grey where the hair offers
+    # little liquid (sim.paper.paper.paper_grain), more with a stronger fibre
     images = {}
     for fibre in (0.0, 0.9):
         st.paper_fibre = fibre
@@ -366,8 +366,8 @@ def test_a_recordings_paper_fibre_is_imported_rendered_with_and_exported(hb, tmp
         blank = np.array(st.paper_color)
         images[fibre] = (blank - pixels(st.paper_image)[..., :3]).mean(axis=2)
     assert images[0.0].max() > 0.5  # the stroke inked
-    inked = {f: int((img > 0.05).sum()) for f, img in images.items()}
-    assert inked[0.9] < inked[0.0], inked
+    changed = np.abs(images[0.9] - images[0.0])
+    assert changed.max() > 0.01 and (changed > 0.01).sum() > 20, changed.max()
 
 
 def test_the_recording_panel_reads_no_json(hb):
