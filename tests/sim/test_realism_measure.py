@@ -66,6 +66,7 @@ def test_the_grey_morphology_equals_scipys():
     )
 
 
+@pytest.mark.slow
 def test_a_flat_glyph_has_no_structure_and_scores_near_zero():
     cover, _, _ = glyph()
     r = R.realism(rgb(cover))
@@ -73,6 +74,7 @@ def test_a_flat_glyph_has_no_structure_and_scores_near_zero():
     assert r.score < 0.05
 
 
+@pytest.mark.slow
 def test_streaks_along_the_strokes_count_and_across_them_do_not():
     cover, yy, xx = glyph()
     flat = R.realism(rgb(cover))
@@ -85,6 +87,7 @@ def test_streaks_along_the_strokes_count_and_across_them_do_not():
     assert along.score > across.score + 0.1 and along.score > flat.score + 0.1
 
 
+@pytest.mark.slow
 def test_isotropic_pixel_noise_and_specks_are_no_texture():
     cover, yy, xx = glyph()
     rng = np.random.default_rng(5)
@@ -109,6 +112,7 @@ def test_isotropic_pixel_noise_and_specks_are_no_texture():
     assert R.realism(rgb(streak_grain)).score > grain.score + 0.05
 
 
+@pytest.mark.slow
 def test_tone_at_stroke_scale_counts_and_pixel_noise_does_not():
     cover, yy, xx = glyph()
     n = cover.shape[0]
@@ -125,6 +129,7 @@ def test_tone_at_stroke_scale_counts_and_pixel_noise_does_not():
     assert noisy.score < faded.score
 
 
+@pytest.mark.slow
 def test_the_measure_reads_a_character_the_same_at_any_resolution():
     cover, yy, xx = glyph(320)
     img = rgb(streaked(cover, yy, xx))
