@@ -102,7 +102,7 @@ def read_rgb(path: Path) -> np.ndarray:
 
 
 def label(text: str, width: int, height: int = 30, size: int = 18) -> np.ndarray:
-    """A white strip with the text centred on it (Latin labels in DejaVu Sans)."""
+    """A white strip with the text centred on it (in the first of LABEL_FONTS installed)."""
     from PIL import Image, ImageDraw, ImageFont
 
     img = Image.new("RGB", (width, height), PAPER_WHITE)
