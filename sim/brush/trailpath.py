@@ -12,18 +12,20 @@ come from less work (an addition for speed, not a change of the model):
   less the tile's reach, exceeds the smallest (distance + reach) of any segment by more than
   rounding can be nearest to none of the tile's pixels (the distance to a segment, or a ray,
   changes by at most the move of the point), so it is left out;
-- the pixels are sorted by the range of segments their tiles keep and measured in blocks, each
-  against the one contiguous run of segments that holds its pixels' ranges: the same
-  arithmetic, element by element, as against all segments, so the same nearest segment (a
-  segment left out is farther than the nearest by more than rounding: never the first of
-  equals) and the same distance, bit for bit."""
+- every pixel is measured against the run of segments from the first to the last its tile
+  keeps (the pixels with runs of about the same length together, the runs stopped at the last
+  segment, where a segment measured twice is met first at its own place), and a few pixels
+  against all segments: the same arithmetic, element by element, as against all segments, so
+  the same nearest segment (a segment left out is farther than the nearest by more than
+  rounding: never the first of equals) and the same distance, bit for bit."""
 
 from __future__ import annotations
 
 import numpy as np
 
-TILE_MM = 0.4  # about the side of the tiles the segments are sorted out by
+TILE_MM = 0.5  # about the side of the tiles the segments are sorted out by
 BLOCK_ELEMENTS = 1 << 16  # (pixel, segment) pairs measured at once
+PLAIN_ELEMENTS = 1 << 14  # up to this many pairs, every pixel is measured against every segment
 # how much farther than the nearest segment (mm, at unit scale) a segment must be to be left
 # out: far above the rounding of a distance in float64 (about 1e-16 of the coordinates)
 SLACK = 1e-9
@@ -96,10 +98,14 @@ def signed_distances(path, rows, cols, ppm: float) -> np.ndarray:
     ur, uc = uniq // wb, uniq % wb
     x = (uc + c0 + 0.5) / ppm  # as (column + 0.5) / ppm: the same doubles
     y = (ur + r0 + 0.5) / ppm
-    lo_s, hi_s = _segment_ranges(seg, ur, uc, r0, c0, ppm, path)
-    width = hi_s - lo_s
     lat = np.empty(uniq.size)
     n_seg = len(seg[0])
+    if uniq.size * n_seg <= PLAIN_ELEMENTS:  # few pixels: sorting out segments costs more
+        _, lat = _measure(x, y, seg, 0, n_seg)
+        out[:] = lat[inverse]
+        return out
+    lo_s, hi_s = _segment_ranges(seg, ur, uc, r0, c0, ppm, path)
+    width = hi_s - lo_s
     w = 1
     while True:  # pixels by the length of their runs: those of up to w segments together
         sel = (
@@ -119,7 +125,7 @@ def _segment_ranges(seg, ur, uc, r0, c0, ppm, path):
     """For every pixel (rows ur, columns uc from (r0, c0)), the segments [lo, hi) that can be
     nearest to it: those its tile keeps (see the module's note), as one contiguous run."""
     n_seg = len(seg[0])
-    ts = max(int(round(TILE_MM * ppm)), 1)  # tile side, pixels
+    ts = max(int(round(TILE_MM * ppm)), 4)  # tile side, pixels
     ty, tx = ur // ts, uc // ts
     ntx = int(tx.max()) + 1
     tid = ty * ntx + tx

@@ -72,7 +72,11 @@ def _trail(rng, kind, n=48, step=0.25):
 
 @pytest.mark.parametrize("kind", ["straight", "curve", "zigzag", "still"])
 @pytest.mark.parametrize("ppm", [3.0, 10.24, 20.48])
-def test_fast_signed_distance_is_the_plain_measure_bit_for_bit(kind, ppm):
+@pytest.mark.parametrize("sort_out", [False, True])
+def test_fast_signed_distance_is_the_plain_measure_bit_for_bit(kind, ppm, sort_out, monkeypatch):
+    """Also with the segments sorted out by tiles for every size of mark (``sort_out``)."""
+    if sort_out:
+        monkeypatch.setattr(trailpath, "PLAIN_ELEMENTS", 0)
     rng = np.random.default_rng(hash((kind, ppm)) % 2**32)
     for trial in range(6):
         path = _trail(rng, kind, n=int(rng.integers(2, 49)))
