@@ -42,13 +42,30 @@ def segments(path):
     return a, d, dd, lo, hi
 
 
+def _clip_t(raw, at_first, at_last, seg):
+    """``raw`` clipped to the bounds of t of its segments: [0, 1], but at ``at_first`` and
+    ``at_last`` (indices into raw: the elements of the first and the last segment) the rays'
+    bounds; as np.clip with the bounds of every element (the same comparisons; np.clip with
+    bounds that are one number runs faster than with an array of them)."""
+    lo, hi = seg[3], seg[4]
+    t = np.clip(raw, 0.0, 1.0)
+    t[at_first] = np.clip(raw[at_first], lo[0], hi[0])
+    t[at_last] = np.clip(raw[at_last], lo[-1], hi[-1])
+    return t
+
+
 def _measure(x, y, seg, s0, s1):
     """The plain measure of points (x, y) against segments s0..s1: (the nearest's index among
     them, the signed distance to it), float64."""
-    a, d, dd, lo, hi = (v[s0:s1] for v in seg)
+    a, d, dd = (v[s0:s1] for v in seg[:3])
     rx = x[:, None] - a[None, :, 0]
     ry = y[:, None] - a[None, :, 1]
-    t = np.clip((rx * d[:, 0] + ry * d[:, 1]) / dd, lo, hi)
+    n_seg = len(seg[0])
+    cols = (
+        (slice(None), slice(0, 1 if s0 == 0 else 0)),
+        (slice(None), slice(n_seg - 1 - s0, s1 - s0)),
+    )
+    t = _clip_t((rx * d[:, 0] + ry * d[:, 1]) / dd, *cols, seg)
     ex, ey = rx - t * d[:, 0], ry - t * d[:, 1]
     dist2 = ex * ex + ey * ey
     k = np.argmin(dist2, axis=1)
@@ -57,22 +74,28 @@ def _measure(x, y, seg, s0, s1):
     return k, np.sqrt(dist2[rows, k]) * np.where(side < 0, -1, 1)
 
 
-def _measure_runs(x, y, seg, first, w, n_seg):
-    """The plain measure of points (x, y), each against its own run of w segments from
-    ``first`` (the runs cut at the last segment: a segment met twice is met at its first
-    place, so the first of equals is the same); the same arithmetic as ``_measure``."""
-    idx = np.minimum(first[:, None] + np.arange(w), n_seg - 1)
-    a, d, dd, lo, hi = seg
+def _measure_runs(x, y, seg, first, width):
+    """The plain measure of points (x, y), each against its own run of ``width`` segments from
+    ``first``: the same arithmetic as ``_measure`` on every (point, segment) pair, and the
+    first of the nearest in each run (as np.argmin over all segments)."""
+    n = width.size
+    start = np.cumsum(width) - width  # every point's first pair
+    pt = np.repeat(np.arange(n), width)
+    idx = np.arange(pt.size) + np.repeat(first - start, width)  # the pair's segment
+    a, d, dd = seg[:3]
     d0, d1 = d[idx, 0], d[idx, 1]
-    rx = x[:, None] - a[idx, 0]
-    ry = y[:, None] - a[idx, 1]
-    t = np.clip((rx * d0 + ry * d1) / dd[idx], lo[idx], hi[idx])
+    rx = x[pt] - a[idx, 0]
+    ry = y[pt] - a[idx, 1]
+    ends = start + width - 1
+    at = start[first == 0], ends[first + width == len(seg[0])]  # the rays' pairs
+    t = _clip_t((rx * d0 + ry * d1) / dd[idx], *at, seg)
     ex, ey = rx - t * d0, ry - t * d1
     dist2 = ex * ex + ey * ey
-    k = np.argmin(dist2, axis=1)
-    rows = np.arange(k.size)
-    side = d0[rows, k] * ry[rows, k] - d1[rows, k] * rx[rows, k]
-    return np.sqrt(dist2[rows, k]) * np.where(side < 0, -1, 1)
+    best = np.minimum.reduceat(dist2, start)
+    hit = np.flatnonzero(dist2 == np.repeat(best, width))
+    k = hit[np.r_[True, pt[hit[1:]] != pt[hit[:-1]]]]  # the first nearest pair of each point
+    side = d0[k] * ry[k] - d1[k] * rx[k]
+    return np.sqrt(dist2[k]) * np.where(side < 0, -1, 1)
 
 
 def signed_distances(path, rows, cols, ppm: float) -> np.ndarray:
@@ -106,17 +129,13 @@ def signed_distances(path, rows, cols, ppm: float) -> np.ndarray:
         return out
     lo_s, hi_s = _segment_ranges(seg, ur, uc, r0, c0, ppm, path)
     width = hi_s - lo_s
-    w = 1
-    while True:  # pixels by the length of their runs: those of up to w segments together
-        sel = (
-            np.flatnonzero((width <= w) & (width > w // 2)) if w > 1 else np.flatnonzero(width <= 1)
-        )
-        for at in range(0, sel.size, max(BLOCK_ELEMENTS // w, 1)):
-            blk = sel[at : at + BLOCK_ELEMENTS // w]
-            lat[blk] = _measure_runs(x[blk], y[blk], seg, lo_s[blk], w, n_seg)
-        if w >= n_seg:
-            break
-        w *= 2
+    ends = np.cumsum(width)
+    at = 0
+    while at < uniq.size:  # pixels in blocks of about BLOCK_ELEMENTS (pixel, segment) pairs
+        stop = max(int(np.searchsorted(ends, ends[at] - width[at] + BLOCK_ELEMENTS)), at + 1)
+        blk = slice(at, stop)
+        lat[blk] = _measure_runs(x[blk], y[blk], seg, lo_s[blk], width[blk])
+        at = stop
     out[:] = lat[inverse]
     return out
 
@@ -137,11 +156,12 @@ def _segment_ranges(seg, ur, uc, r0, c0, ppm, path):
     cy = (r0 + (tiles // ntx) * ts + 0.5 * (ts - 1) + 0.5) / ppm
     cx = (c0 + (tiles % ntx) * ts + 0.5 * (ts - 1) + 0.5) / ppm
     reach = 0.5 * (ts - 1) * np.sqrt(2.0) / ppm
-    a, d, dd, lo, hi = seg
+    a, d, dd = seg[:3]
     rx = cx[:, None] - a[None, :, 0]
     ry = cy[:, None] - a[None, :, 1]
-    t = np.clip((rx * d[:, 0] + ry * d[:, 1]) / dd, lo, hi)
-    dist = np.hypot(rx - t * d[:, 0], ry - t * d[:, 1])
+    t = _clip_t((rx * d[:, 0] + ry * d[:, 1]) / dd, np.s_[:, :1], np.s_[:, -1:], seg)
+    ex, ey = rx - t * d[:, 0], ry - t * d[:, 1]
+    dist = np.sqrt(ex * ex + ey * ey)
     scale = 1.0 + float(np.abs(path).max()) + float(np.abs(cx).max()) + float(np.abs(cy).max())
     bound = (dist + reach).min(axis=1, keepdims=True) + SLACK * scale
     keep = dist - reach <= bound
