@@ -8,9 +8,8 @@ from __future__ import annotations
 import os
 
 import bpy
-import numpy as np
 
-from ..blender import checks, recordings
+from ..blender import checks, images, recordings
 from ..blender.jobs import JobOperator, WorkerJob
 from ..sim.core.params import QualityParams
 from ..sim.fitting.samples import TRAINING_SIZE_PX, TrainingSample, character_samples
@@ -186,9 +185,8 @@ class HAIRY_BRUSH_OT_fit_parameters(JobOperator, bpy.types.Operator):
                 f"image {img.name!r} is {w} x {h} px but the paper is "
                 f"{rec.width_px} x {rec.height_px} px"
             )
-        a = np.empty(w * h * 4, dtype=np.float32)
-        img.pixels.foreach_get(a)
-        rgb = a.reshape(h, w, 4)[::-1, :, :3]  # top row first, as Eq. 28's images
+        # the visible colour (a float image holds linear light), top row first as Eq. 28's
+        rgb = images.image_rgb(img)[::-1]
         return lambda: [TrainingSample(rec, rgb, img.name)]
 
     def execute(self, context):

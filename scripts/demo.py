@@ -30,6 +30,7 @@ import numpy as np  # noqa: E402
 from build_extension import build, read_manifest  # noqa: E402
 
 from sim.image.png import write_png  # noqa: E402
+from sim.paper.display import linear_to_srgb  # noqa: E402
 
 CHAR = "永"
 README = "README - Virtual Hairy Brush"
@@ -106,6 +107,8 @@ def write_character():
     px = np.empty(len(img.pixels), np.float32)
     img.pixels.foreach_get(px)
     rgb = px.reshape(img.size[1], img.size[0], 4)[::-1, :, :3]
+    if img.is_float:  # a float image holds linear light (blender/images.py); a PNG is sRGB
+        rgb = linear_to_srgb(rgb)
     write_png(OUT / "demo.png", rgb)
     print(f"wrote {OUT / 'demo.png'}")
     return st

@@ -130,27 +130,8 @@ def overlay(chars, n=512, passes=None, quality=None, out=None):
     write_png(out / "sheet.png", np.concatenate(rows, 0))
 
 
-def before_after(before_dir, after_dir, out_png, chars="一中之书人十大天山心日月水永法风"):
-    """Two contact sheets of --overlay's per-character PNGs side by side (before | after), each
-    character at half size, a grey rule between."""
-    from sim.image.png import read_png
-
-    def sheet(folder):
-        tiles = [read_png(Path(folder) / f"{ord(ch):x}.png")[::2, ::2] for ch in chars]
-        rows = [np.concatenate(tiles[i : i + 4], 1) for i in range(0, len(tiles), 4)]
-        return np.concatenate(rows, 0)
-
-    left, right = sheet(before_dir), sheet(after_dir)
-    rule = np.full((left.shape[0], 6, 3), 128, dtype=left.dtype)
-    write_png(out_png, np.concatenate([left, rule, right], 1))
-
-
 def main():
     OUT.mkdir(parents=True, exist_ok=True)
-    if "--before-after" in sys.argv:  # --before-after BEFORE_DIR AFTER_DIR OUT.png
-        i = sys.argv.index("--before-after")
-        before_after(*sys.argv[i + 1 : i + 4])
-        return
     if "--imitation" in sys.argv:
         imitation()
         return

@@ -14,12 +14,14 @@ from .shared import _chars, _progress, _response, _template, _writable
 
 def cmd_write(args) -> int:
     from ..image.png import write_png
-    from ..writing.writer import write_character
+    from ..writing.writer import check_sheet, write_character
 
     _writable(args.output)
     if args.recording:
         _writable(args.recording)
     (char,) = _chars([args.char], args.data)
+    if args.size_mm is not None:  # refused before the brush is calibrated
+        check_sheet(float(args.size_mm), args.size / float(args.size_mm))
     t0 = time.perf_counter()
     template = _template(args)
     rec, resp, sim = write_character(

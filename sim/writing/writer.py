@@ -70,7 +70,7 @@ def _check_writing(n_px, size_mm, passes, dip_every_mm, px_per_mm) -> None:
         )
 
 
-def _check_sheet(size_mm: float, ppm: float) -> None:
+def check_sheet(size_mm: float, ppm: float) -> None:
     """The em box's sheet: a resolution and a pixel size a recording can hold."""
     lo, hi = PX_PER_MM_RANGE
     if not number_within(ppm, lo, hi):
@@ -112,7 +112,7 @@ def write_character(
     check_char(char, "character data")
     _check_writing(n_px, size_mm, passes, dip_every_mm, px_per_mm)
     if size_mm is not None:  # the sheet can be checked before the brush is calibrated
-        _check_sheet(float(size_mm), n_px / size_mm if px_per_mm is None else px_per_mm)
+        check_sheet(float(size_mm), n_px / size_mm if px_per_mm is None else px_per_mm)
     if response is None:
         response = calibrate(template)
     size = auto_size_mm(char, response) if size_mm is None else float(size_mm)
@@ -124,7 +124,7 @@ def write_character(
     samples = np.zeros((N, 6))
     dips = [Dip(i, ink.depth, tuple(ink.color), ink.wetness) for i in pl.dips]
     ppm = n_px / size if px_per_mm is None else float(px_per_mm)
-    _check_sheet(size, ppm)
+    check_sheet(size, ppm)
     rec = _settings(
         template, samples=samples, width_mm=size, height_mm=size, px_per_mm=ppm, dips=dips
     )

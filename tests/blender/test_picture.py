@@ -87,6 +87,7 @@ def test_imitate_a_piece_of_two_characters(hb, tmp_path):
     assert 0 < left.sum() < len(left) and np.all(np.diff(left) >= 0), samples[starts, 0]
 
 
+@pytest.mark.slow
 def test_imitate_an_image_datablock_and_bad_pictures(hb, tmp_path):
     st = setup_scene()
     pic = picture(96)

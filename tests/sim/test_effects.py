@@ -55,6 +55,7 @@ def test_gray_levels_follow_the_ink():
     assert marks[0] > marks[1] + 0.15 > marks[2] + 0.3
 
 
+@pytest.mark.slow
 def test_wetness_gives_lighter_grey_when_the_brush_is_drier():
     mean = []
     for wet in (0.95, 0.3):
@@ -117,6 +118,7 @@ def test_saturation_bleeds_on_raw_xuan_not_on_smooth_paper():
     assert cover["raw_xuan"][1] > 200 and cover["smooth"][1] < 0.1 * cover["raw_xuan"][1]
 
 
+@pytest.mark.slow
 def test_heavy_pressure_splits_a_soft_brush_light_pressure_does_not():
     heavy = simulate(
         line(press_mm=16, speed_mm_s=90, hair=34), brush="goat_soft", dip=(0.9, (0, 0, 0), 0.7)
@@ -128,6 +130,7 @@ def test_heavy_pressure_splits_a_soft_brush_light_pressure_does_not():
     assert light.brush.m == 1
 
 
+@pytest.mark.slow
 def test_lifting_leaves_a_pointed_end():
     sim = simulate(line(press_mm=9, lift_fraction=0.3), paper="smooth", ppm=6.0)
     ink = darkness(sim) > 0.5
@@ -138,6 +141,7 @@ def test_lifting_leaves_a_pointed_end():
     assert middle > 20 and tail.max() <= 0.25 * middle
 
 
+@pytest.mark.slow
 def test_replay_is_bit_identical_and_seed_matters():
     s = line(press_mm=10, speed_mm_s=150)
     kw = dict(dip=(0.5, (0, 0, 0), 0.35), quality={"ren": 0.9})
@@ -148,6 +152,7 @@ def test_replay_is_bit_identical_and_seed_matters():
     assert a.tobytes() != c.tobytes()
 
 
+@pytest.mark.slow
 def test_jumping_with_snapshots_equals_running_straight_through():
     s = line(press_mm=12, speed_mm_s=120)
     rec = Recording(

@@ -153,6 +153,7 @@ def test_the_foot_hangs_towards_the_outlines_farthest_point():
     assert abs(foot[-1, 0] - lowest[0]) < 8.0 and foot[-1, 1] < 10.0
 
 
+@pytest.mark.slow
 def test_a_corner_is_pressed_firmly_not_to_the_heel(response):
     # the movement into a corner eases to the press that leaves CORNER_WIDTH of the widest
     # band over its last stretch; elsewhere, and on the stroke's last movement, the deepest
@@ -175,6 +176,7 @@ def test_a_corner_is_pressed_firmly_not_to_the_heel(response):
     assert np.all(pl.phase[ends[:first] - 1] != WRITING)
 
 
+@pytest.mark.slow
 def test_a_sharp_turn_is_made_on_the_tip_not_in_the_air(response):
     # between the two movements of the L (a 折) the brush eases to its tip and presses again:
     # every sample from the end of the first movement to the start of the second touches the

@@ -341,7 +341,7 @@ def test_the_sweep_needs_no_blas_workspace(monkeypatch):
     "argv, memory, says",
     [
         (["render", "examples/strokes.json"], 100 * MB, "not enough memory to start"),
-        (["render", "examples/strokes.json", "--px-per-mm", "16"], 200 * MB, "2560 x 2880 px"),
+        (["render", "examples/strokes.json", "--px-per-mm", "36"], 200 * MB, "2880 x 2880 px"),
         (["write", "一", "--size", "64", "--passes", "1"], 100 * MB, "not enough memory"),
     ],
 )

@@ -221,6 +221,7 @@ def test_run_fills_marks_for_several_samples_at_once_and_equals_step_by_step():
     assert [mk.primitive for mk in a.last_marks] == [mk.primitive for mk in b.last_marks]
 
 
+@pytest.mark.slow
 def test_timings_split_a_run_into_its_stages_without_changing_it():
     """The benchmark's per-stage figures: every sample's time lands in a named stage, and
     keeping timings does not change the artwork."""

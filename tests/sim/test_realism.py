@@ -36,6 +36,7 @@ def _fibre_stroke(fibre: float, wetness: float = 0.9):
     return Simulation(rec).run()
 
 
+@pytest.mark.slow
 def test_the_grain_shows_in_a_dry_strokes_grey_more_than_in_a_loaded_ones_black():
     # the same stroke, seed and draws: the sheet's grain (paper_grain, scaled by the paper's
     # fibre) changes the offer a pixel takes; where the ink is thin it shows pixel to pixel,

@@ -66,6 +66,7 @@ def test_the_grey_morphology_equals_scipys():
     )
 
 
+@pytest.mark.slow
 def test_a_flat_glyph_has_no_structure_and_scores_near_zero():
     cover, _, _ = glyph()
     r = R.realism(rgb(cover))
@@ -73,6 +74,7 @@ def test_a_flat_glyph_has_no_structure_and_scores_near_zero():
     assert r.score < 0.05
 
 
+@pytest.mark.slow
 def test_streaks_along_the_strokes_count_and_across_them_do_not():
     cover, yy, xx = glyph()
     flat = R.realism(rgb(cover))
@@ -85,6 +87,7 @@ def test_streaks_along_the_strokes_count_and_across_them_do_not():
     assert along.score > across.score + 0.1 and along.score > flat.score + 0.1
 
 
+@pytest.mark.slow
 def test_isotropic_pixel_noise_and_specks_are_no_texture():
     cover, yy, xx = glyph()
     rng = np.random.default_rng(5)
@@ -109,6 +112,7 @@ def test_isotropic_pixel_noise_and_specks_are_no_texture():
     assert R.realism(rgb(streak_grain)).score > grain.score + 0.05
 
 
+@pytest.mark.slow
 def test_tone_at_stroke_scale_counts_and_pixel_noise_does_not():
     cover, yy, xx = glyph()
     n = cover.shape[0]
@@ -125,6 +129,7 @@ def test_tone_at_stroke_scale_counts_and_pixel_noise_does_not():
     assert noisy.score < faded.score
 
 
+@pytest.mark.slow
 def test_the_measure_reads_a_character_the_same_at_any_resolution():
     cover, yy, xx = glyph(320)
     img = rgb(streaked(cover, yy, xx))
@@ -156,3 +161,35 @@ def test_the_brushs_writing_beats_the_flat_font_of_an_unseen_character(name):
     assert flat.score < 0.05
     assert brush.score > flat.score + 0.05
     assert brush.tone > 2 * flat.tone and brush.specks < 0.5  # tone at stroke scale, no spray
+
+
+def test_a_brush_mark_beats_its_own_outline_filled():
+    """Fast (no character writer): two crossing strokes simulated by the engine with a brush
+    dipped once, against the same silhouette filled flat (the ink's outline closed over its
+    gaps, holes filled, anti-aliased as a font renderer does): the measure rates the flat
+    fill about 0 and the brush's mark above it, for its tone and its streaks along the
+    strokes, with no spray of specks."""
+    from sim.core.recording import Dip, Recording
+    from sim.engine.simulation import Simulation
+    from sim.fitting.texture import density
+    from sim.writing.strokes import stroke
+
+    ndimage = pytest.importorskip("scipy.ndimage")
+    s1 = stroke([[15, 40], [85, 40]], press_mm=7, speed_mm_s=80)
+    s2 = stroke([[50, 10], [50, 75]], press_mm=7, speed_mm_s=80)
+    rec = Recording(
+        np.concatenate([s1, s2]),
+        width_mm=100,
+        height_mm=85,
+        px_per_mm=3.0,
+        seed=0,
+        dips=[Dip(0, 0.6, (0, 0, 0), 0.6)],
+    )
+    img = Simulation(rec).run().image()
+    ink = density(img) > 0.25
+    filled = ndimage.binary_fill_holes(ndimage.binary_closing(ink, np.ones((7, 7)), iterations=2))
+    flat = ndimage.gaussian_filter(filled.astype(float), 0.8)
+    brush, font = R.realism(img), R.realism(rgb(flat))
+    assert font.score < 0.05 and font.tone < 0.02
+    assert brush.score > font.score + 0.1
+    assert brush.tone > 2 * font.tone and brush.streaks > font.streaks and brush.specks < 0.5

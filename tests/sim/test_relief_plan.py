@@ -37,6 +37,7 @@ def test_the_faces_under_the_ink_and_a_ring_around_them_are_cut_as_the_texels_ne
     assert plan.vertices == pytest.approx(nv + faces.sum() * 4**plan.levels, rel=0.01)
 
 
+@pytest.mark.slow
 def test_no_ink_no_cut_and_too_many_vertices_go_into_the_material():
     start, total, verts, uv, nv = quad_grid(4)
     blank = np.zeros((64, 64), bool)

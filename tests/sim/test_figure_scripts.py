@@ -1,0 +1,47 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
+"""The scripts that make README's pictures and the realism ranking (scripts/readme_figures.py,
+scripts/realism_rank.py, scripts/revision.py): where the before/after crops are found in the
+stroke data, the PNGs kept small, and the previous version exported from git."""
+
+import numpy as np
+import pytest
+
+from scripts import readme_figures as F
+from scripts import revision
+from sim.writing.hanzi import find_char
+
+
+def test_the_crops_of_yong_are_found_where_a_calligrapher_would_look():
+    places = {k: F.to_pixels(p, 512) for k, p in F.feature_points(find_char("永")).items()}
+    edge, end, turn, hook = (places[k] for k in F.FEATURES)
+    assert abs(edge[1] - 253) < 16 and 150 < edge[0] < 400  # on the long vertical (竖)
+    assert hook[0] > 380 and abs(hook[1] - 230) < 40  # the hook at the vertical's foot
+    assert end[0] > 330 and end[1] > 420  # the 捺's foot, bottom right, written last
+    assert turn[1] < 220  # a turn on the left half (the 横撇's corner)
+    assert len({edge, end, turn, hook}) == 4
+
+
+def test_a_character_without_a_hook_has_no_hook_crop():
+    char = {"medians": [[[100, 500], [900, 500]], [[500, 800], [500, 100]]]}  # 十
+    got = F.feature_points(char)
+    assert got["hook"] is None and got["turn"] is None
+    assert got["edge"] is not None and got["dry end"] is not None
+
+
+def test_pngs_are_kept_under_the_limit(tmp_path, monkeypatch):
+    pil = pytest.importorskip("PIL.Image")
+    rgb = (np.random.default_rng(0).random((90, 120, 3)) * 255).astype(np.uint8)
+    monkeypatch.setattr(F, "MAX_BYTES", 12_000)
+    F.save_png(rgb, tmp_path / "x.png")
+    assert (tmp_path / "x.png").stat().st_size <= 12_000
+    assert pil.open(tmp_path / "x.png").size[0] <= 120
+
+
+def test_the_previous_version_is_exported_and_a_bad_revision_named(tmp_path):
+    with revision.versions(tmp_path, "HEAD") as vs:
+        assert [v.name.split()[0] for v in vs] == ["new", "old"]
+        assert (vs[1].root / "sim" / "__main__.py").is_file()
+        assert not (vs[1].root / ".git").exists()
+    with pytest.raises(SystemExit, match="not a revision"):
+        with revision.versions(tmp_path / "b", "no-such-revision-xyz"):
+            pass
