@@ -3,6 +3,8 @@
 once, segments that cannot be nearest left out) gives, bit for bit, the plain measure of every
 pixel of every mark against every segment (``bristles.across`` as it was first written)."""
 
+from dataclasses import replace
+
 import numpy as np
 import pytest
 
@@ -130,3 +132,37 @@ def test_every_pixels_run_of_segments_holds_its_nearest_and_leaves_most_out(kind
     best = dist2[np.arange(k.size), k]
     assert np.all(np.where(inside, True, dist2 > best[:, None] * (1 + 1e-9) + 1e-12))
     assert (hi - lo).mean() < 0.5 * len(a)
+
+
+def _plain_bristles_across(marks, st, ppm):
+    """``bristles.across`` as first written (the trail's start as in ``bristles.across``)."""
+    path = st.trail
+    if len(path) < 2:
+        here = path[-1] if len(path) else np.zeros(2)
+        path = np.stack([here - st.travel, here])
+    lateral = iter(plain_across([mk for mk in marks if mk.rows.size], path, ppm))
+    return [replace(mk, lateral=next(lateral)) if mk.rows.size else mk for mk in marks]
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize(
+    "primitives, size_px, ppm, samples", [(1, 2048, 10.24, 200), (8, 1024, 5.0, 120)]
+)
+def test_a_simulation_lays_the_same_bits_as_with_the_plain_measure(
+    primitives, size_px, ppm, samples, monkeypatch
+):
+    """The benchmark's stroke, split brushes too: the paper and the brush after it are the same,
+    bit for bit, with the plain measure of the trail's distances in its place."""
+    from tests.sim.builders import long_stroke, simulation
+
+    stroke = long_stroke()[:samples]
+    fast = simulation(stroke, size_px, ppm, primitives).run()
+    monkeypatch.setattr(bristles, "across", _plain_bristles_across)
+    plain = simulation(stroke, size_px, ppm, primitives).run()
+    for name in ("ink", "wet", "last"):
+        a, b = getattr(fast.paper, name), getattr(plain.paper, name)
+        assert np.array_equal(a.view(np.uint8), b.view(np.uint8)), name
+    assert np.count_nonzero(fast.paper.ink) > 1000  # the stroke laid ink
+    for key, value in plain.brush.snapshot().items():
+        if isinstance(value, np.ndarray):
+            np.testing.assert_array_equal(fast.brush.snapshot()[key], value, err_msg=key)
