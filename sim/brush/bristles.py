@@ -48,6 +48,7 @@ from typing import NamedTuple
 
 import numpy as np
 
+from . import trailpath
 from .state import BUNDLES, CONTACT_EPS
 
 WIDTH_SPREAD = 1.2  # a bundle's width is (1 + WIDTH_SPREAD u) of the smallest's
@@ -64,7 +65,6 @@ V_POOL = 15.0  # mm/s: the speed at which half of POOL is left
 REDRAW_RATE = 1.5  # per second: how often a bundle's dry-brush draw changes
 TRAIL = 48  # points of the contact's recent path kept (``trail``)
 TRAIL_MM = 0.25  # mm the contact moves before the trail takes a new point
-ACROSS_BLOCK = 4096  # pixels measured against the trail at once
 
 
 class BristleState(NamedTuple):
@@ -169,31 +169,19 @@ def across(marks, st: BristleState, ppm: float) -> list:
     if len(path) < 2:  # the stroke's first contact: the way the brush is going
         here = path[-1] if len(path) else np.zeros(2)
         path = np.stack([here - st.travel, here])
-    a, d = path[:-1], np.diff(path, axis=0)  # segments a + t d, t in [0, 1]
-    dd = np.maximum(np.einsum("ij,ij->i", d, d), 1e-12)
-    lo = np.zeros(len(a))
-    hi = np.ones(len(a))
-    lo[0], hi[-1] = -np.inf, np.inf  # the hair ahead of the newest point, behind the oldest
-    out = []
-    for mk in marks:
-        if not mk.rows.size:
-            out.append(mk)
-            continue
-        x = (mk.cols + mk.ix0 + 0.5) / ppm
-        y = (mk.rows + mk.iy0 + 0.5) / ppm
-        lateral = np.empty(x.size, dtype=np.float32)
-        for at in range(0, x.size, ACROSS_BLOCK):  # (pixels, segments) a block at a time
-            rx = x[at : at + ACROSS_BLOCK, None] - a[None, :, 0]
-            ry = y[at : at + ACROSS_BLOCK, None] - a[None, :, 1]
-            t = np.clip((rx * d[:, 0] + ry * d[:, 1]) / dd, lo, hi)
-            ex, ey = rx - t * d[:, 0], ry - t * d[:, 1]
-            dist2 = ex * ex + ey * ey
-            k = np.argmin(dist2, axis=1)
-            rows = np.arange(k.size)
-            side = d[k, 0] * ry[rows, k] - d[k, 1] * rx[rows, k]
-            lateral[at : at + ACROSS_BLOCK] = np.sqrt(dist2[rows, k]) * np.where(side < 0, -1, 1)
-        out.append(replace(mk, lateral=lateral))
-    return out
+    # every pixel of the step's marks at once, each measured once (trailpath: the plain
+    # measure against every segment, less the work that cannot change it)
+    live = [mk for mk in marks if mk.rows.size]
+    if not live:
+        return list(marks)
+    lateral = trailpath.signed_distances(
+        path,
+        np.concatenate([mk.rows + mk.iy0 for mk in live]),
+        np.concatenate([mk.cols + mk.ix0 for mk in live]),
+        ppm,
+    )
+    parts = iter(np.split(lateral, np.cumsum([mk.rows.size for mk in live])[:-1]))
+    return [replace(mk, lateral=next(parts)) if mk.rows.size else mk for mk in marks]
 
 
 def lay(marks, st: BristleState, ppm: float) -> list:
