@@ -92,9 +92,11 @@ def plan(
     one movement per piece of the median between its sharp corners (``median_pieces``: a
     hook's foot, a 折), each with an entry and a lift, the tip turning on the paper between the
     movements of a stroke, travel in the air between strokes. Each movement is smoothed on its
-    own, so that a corner stays a corner."""
+    own, so that a corner stays a corner. The brush is dipped before the first stroke and, with
+    ``dip_every_mm``, before a stroke that would take it past that much writing since the last
+    dip (without, the writer dips when the brush runs low, ``writer.dips_when_low``)."""
     scale = size_mm / EM
-    dip_every = 0.0 if dip_every_mm is None else dip_every_mm
+    dip_every = np.inf if dip_every_mm is None else dip_every_mm
     tg, wd, tn, ph, dips, strokes = [], [], [], [], [], []
     since_dip, prev = np.inf, None
     fine = max(step_mm / scale / 4.0, 0.25)
@@ -116,7 +118,7 @@ def plan(
             _air(tg, wd, tn, ph, prev, moves[0][0][0], moves[0][2][0], step_mm)
         n = sum(len(a) for a in tg)
         stroke_len = step_mm * sum(len(m[0]) - 1 for m in moves)
-        if since_dip + stroke_len > dip_every:
+        if not strokes or since_dip + stroke_len > dip_every:
             dips.append(n)
             since_dip = 0.0
         since_dip += stroke_len
