@@ -77,3 +77,21 @@ def rows_ink(brush, sec) -> np.ndarray:
     return w0[..., None] * np.take_along_axis(keys, jj, 1) + w1[..., None] * (
         np.take_along_axis(keys, jj + 1, 1)
     )
+
+
+def brush_load(brush) -> float:
+    """The ink the brush holds: its key points' wetness, averaged with each primitive weighted
+    by its hair (the area of its middle ellipse, Sec. 5.3). (A measure beyond the paper: the
+    writer and a work dip again by it.)"""
+    hair = np.asarray(brush.a) * np.asarray(brush.b)
+    return float(np.sum(brush.wet.mean(axis=1) * hair) / max(float(hair.sum()), 1e-12))
+
+
+def full_load(template) -> float:
+    """The load of the brush right after a full dip in the template recording's ink."""
+    from .primitive import HairyBrush
+
+    q, geometry, _, ink = template.resolve()
+    brush = HairyBrush(geometry, q, np.random.Generator(np.random.PCG64(0)))
+    brush.dip(ink)
+    return brush_load(brush)

@@ -90,7 +90,7 @@ def imitate(
     picture is read on an em box of n_px, at most MAX_DETAIL, px a side (the Imitation's ink is
     at that size). Returns the recording, the response, the finished simulation and the
     Imitation."""
-    from ..writing.writer import write_character
+    from ..writing.writer import DIP_EVERY_STROKE, write_character
 
     if progress is not None:
         progress(0.0, "reading the picture")
@@ -111,6 +111,7 @@ def imitate(
         passes=passes,
         progress=writing,
         px_per_mm=px_per_mm,
+        dip_every_mm=DIP_EVERY_STROKE,  # the picture's own tone is matched, not the brush's
     )
     return rec, resp, sim, im
 

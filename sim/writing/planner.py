@@ -92,9 +92,11 @@ def plan(
     one movement per piece of the median between its sharp corners (``median_pieces``: a
     hook's foot, a 折), each with an entry and a lift, the tip turning on the paper between the
     movements of a stroke, travel in the air between strokes. Each movement is smoothed on its
-    own, so that a corner stays a corner."""
+    own, so that a corner stays a corner. The brush is dipped before the first stroke and, with
+    ``dip_every_mm``, before a stroke that would take it past that much writing since the last
+    dip (without, the writer dips when the brush runs low, ``writer.dips_when_low``)."""
     scale = size_mm / EM
-    dip_every = 0.0 if dip_every_mm is None else dip_every_mm
+    dip_every = np.inf if dip_every_mm is None else dip_every_mm
     tg, wd, tn, ph, dips, strokes = [], [], [], [], [], []
     since_dip, prev = np.inf, None
     fine = max(step_mm / scale / 4.0, 0.25)
@@ -116,7 +118,7 @@ def plan(
             _air(tg, wd, tn, ph, prev, moves[0][0][0], moves[0][2][0], step_mm)
         n = sum(len(a) for a in tg)
         stroke_len = step_mm * sum(len(m[0]) - 1 for m in moves)
-        if since_dip + stroke_len > dip_every:
+        if not strokes or since_dip + stroke_len > dip_every:
             dips.append(n)
             since_dip = 0.0
         since_dip += stroke_len
@@ -165,10 +167,15 @@ def _lead_along(path, lag, stop: bool = False):
 
 
 ENTRY_TOUCH = 0.15  # share of the press the tip lands with; the belly presses as it goes
+HOOK_COS = -0.2  # a corner whose way out turns back by more than this (cosine, about 100
+# degrees) from its way in, into a short hook, is a hook's foot: the belly stays pressed there
+HOOK_LENGTH = 3.0  # a hook is at most this many times as long as the stroke is wide (a
+# 竖折's leg turning back as much is a long stroke of its own)
+HOOK_KEEP = 0.7  # share of its press the belly keeps through a hook's turn
 TURN_EASE = 0.8  # press taken off at a reversal (a hook), less at a milder turn
 
 
-def _entry_ramp(path, width) -> np.ndarray:
+def _entry_ramp(path, width, touch=ENTRY_TOUCH) -> np.ndarray:
     """The press as a share of the planned press along the start of a stroke: the tip lands
     (``ENTRY_TOUCH``) while the brush already moves along the stroke, and the belly presses
     over the first stroke width of the way (a smoothstep), as a calligrapher enters - not a
@@ -177,7 +184,7 @@ def _entry_ramp(path, width) -> np.ndarray:
     s = np.concatenate([[0.0], np.cumsum(seg)])
     ramp = float(np.clip(0.5 * np.max(width[: max(len(width) // 3, 1)]), 0.5, 0.25 * s[-1]))
     t = np.clip(s / max(ramp, 1e-6), 0.0, 1.0)
-    entry = ENTRY_TOUCH + (1.0 - ENTRY_TOUCH) * t * t * (3.0 - 2.0 * t)
+    entry = touch + (1.0 - touch) * t * t * (3.0 - 2.0 * t)
     return entry * _turn_ease(path, s)
 
 
@@ -196,14 +203,18 @@ def _turn_ease(path, s) -> np.ndarray:
     return 1.0 - TURN_EASE * np.clip((turn - 0.9) / 1.4, 0.0, 1.0)
 
 
-def _enter_and_leave(samples, pl, body, hover, hair, step_mm, at_turn=(False, False)) -> None:
+def _enter_and_leave(samples, pl, body, hover, hair, step_mm, corner=(None, None)) -> None:
     """The brush comes down moving along the movement's first direction, the tip touching where
     the body begins, and lifts off moving on along the last direction (a flick, so that hooks
-    and left-falling strokes end in a point, not a blot from a lift on the spot). ``at_turn``:
-    the movement begins after / ends at a sharp corner (``median_pieces``): there the brush
-    eases only to its tip (``TURN_TOUCH``), on the corner itself (a flick there overshoots the
-    corner), and presses again from the tip: lifted off the paper and set down again, the
-    pressed belly landed on the corner as a round blot, and a hook began with one."""
+    and left-falling strokes end in a point, not a blot from a lift on the spot). ``corner``:
+    the base's height at the sharp corner the movement begins after / ends at
+    (``median_pieces``; None: none). At a 折 the brush eases only to its tip (``TURN_TOUCH``),
+    on the corner itself (a flick there overshoots the corner), and presses again from the tip:
+    lifted off the paper and set down again, the pressed belly landed on the corner as a round
+    blot. At a hook's foot (``_is_hook``) the belly stays pressed through the turn and
+    the hook sets off pressed, lifting as it goes: eased to the tip there, the hook began thin
+    and swelled, a blunt tail apart from the foot."""
+    turn_z = hair * (1.0 - TURN_TOUCH)
     a = body[0] - 1
     while a >= 0 and pl.phase[a] == ENTERING:
         a -= 1
@@ -211,12 +222,13 @@ def _enter_and_leave(samples, pl, body, hover, hair, step_mm, at_turn=(False, Fa
     t0 = pl.tangent[body[0]]
     f = np.arange(1, len(entry) + 1) / max(len(entry), 1)
     back = (len(entry) + 1 - np.arange(1, len(entry) + 1)) * 0.5 * step_mm
-    if at_turn[0]:  # after a sharp turn the tip comes down on the corner, not before it
+    if corner[0] is not None:  # after a sharp turn the tip comes down on the corner, not before it
         back = back * 0.0
     samples[entry, :2] = samples[body[0], :2] - back[:, None] * t0
     z_touch = max(samples[body[0], 2], hair - 0.2)  # the tip reaches the paper at the start
-    turn_z = hair * (1.0 - TURN_TOUCH)
-    top = turn_z if at_turn[0] else hover
+    if corner[0] is not None and corner[0] < turn_z:  # a hook's foot: the belly is pressed
+        z_touch = samples[body[0], 2]
+    top = hover if corner[0] is None else corner[0]
     samples[entry, 2] = top + (z_touch - top) * f
     b = body[-1] + 1
     while b < len(pl.phase) and pl.phase[b] == LIFTING:
@@ -224,10 +236,31 @@ def _enter_and_leave(samples, pl, body, hover, hair, step_mm, at_turn=(False, Fa
     lift = np.arange(body[-1] + 1, b)
     t1 = pl.tangent[body[-1]]
     f = np.arange(1, len(lift) + 1) / max(len(lift), 1)
-    flick = 0.0 if at_turn[1] else 0.5 * step_mm  # into a sharp turn: lift on the corner
+    flick = 0.5 * step_mm if corner[1] is None else 0.0  # into a sharp turn: lift on the corner
     samples[lift, :2] = samples[body[-1], :2] + (f * len(lift) * flick)[:, None] * t1
-    top = turn_z if at_turn[1] else hover
+    top = hover if corner[1] is None else corner[1]
     samples[lift, 2] = samples[body[-1], 2] + (top - samples[body[-1], 2]) * np.sqrt(f)
+
+
+def _is_hook(pl: Plan, runs) -> list[bool]:
+    """For each movement of a stroke, whether it leaves a hook's foot: the way out of the
+    corner before it turns back on the way in by more than ``HOOK_COS`` and is short (at most
+    ``HOOK_LENGTH`` stroke widths: a 竖钩, a 斜钩, a 卧钩), not a 折's turn into a long leg."""
+
+    def way(a, b):  # the chord from sample a to sample b, as a unit vector
+        d = pl.target[b] - pl.target[a]
+        return d / max(float(np.linalg.norm(d)), 1e-9)
+
+    def back(p, q) -> bool:
+        # the way in: the second half of the movement up to the corner (where the next sets
+        # off), not on into the foot, which hangs towards the outline's outer corner; the way
+        # out: the first half of the next movement
+        k = int(np.argmin(np.linalg.norm(pl.target[p] - pl.target[q[0]], axis=1)))
+        turned = float(way(p[k // 2], p[max(k, 1)]) @ way(q[0], q[len(q) // 2])) < HOOK_COS
+        out = float(np.linalg.norm(np.diff(pl.target[q], axis=0), axis=1).sum())
+        return turned and out <= HOOK_LENGTH * float(pl.width[p].max())
+
+    return [False] + [back(p, q) for p, q in zip(runs, runs[1:], strict=False)]
 
 
 def _movements(items, body=None) -> list[np.ndarray]:
@@ -237,19 +270,18 @@ def _movements(items, body=None) -> list[np.ndarray]:
     return np.split(items, np.flatnonzero(np.diff(body) > 1) + 1)
 
 
-def _turn_on_the_tip(samples, pl: Plan, span, hair: float) -> None:
+def _turn_on_the_tip(samples, pl: Plan, span, heights) -> None:
     """The TURNING samples of samples a..b (``span``): the base goes straight from where the
-    lift into the corner ended to where the next entry begins, the tip on the paper
-    (``TURN_TOUCH``)."""
+    lift into the corner ended to where the next entry begins, at the corner's height
+    (``heights``, one per corner in order): the tip on the paper (``TURN_TOUCH``) at a 折,
+    the belly pressed at a hook's foot."""
     a, b = span
     turning = np.flatnonzero(pl.phase[a:b] == TURNING) + a
-    for run in _movements(turning):
-        if run.size == 0:
-            continue
+    for run, z in zip([r for r in _movements(turning) if r.size], heights, strict=False):
         p0, p1 = samples[run[0] - 1, :2], samples[run[-1] + 1, :2]
         t = (np.arange(1, len(run) + 1) / (len(run) + 1))[:, None]
         samples[run, :2] = p0 * (1.0 - t) + p1 * t
-        samples[run, 2] = hair * (1.0 - TURN_TOUCH)
+        samples[run, 2] = z
 
 
 def _fill(samples, pl: Plan, response: Response, span, press, side, brush) -> np.ndarray:
@@ -264,14 +296,23 @@ def _fill(samples, pl: Plan, response: Response, span, press, side, brush) -> np
     normal = np.stack([-pl.tangent[:, 1], pl.tangent[:, 0]], axis=1)
     j0 = 0
     runs = _movements(body)
+    hook = _is_hook(pl, runs)
+    at, heights = None, []  # the base's height at the corner the movement begins after
     for r, run in enumerate(runs):
         j1 = j0 + len(run)
-        p = press[j0:j1] * _entry_ramp(pl.target[run], pl.width[run])
+        touch = 1.0 if hook[r] else ENTRY_TOUCH  # a hook sets off pressed
+        p = press[j0:j1] * _entry_ramp(pl.target[run], pl.width[run], touch)
         samples[run, :2] = _lead_along(pl.target[run], response.lag_for(p), r < len(runs) - 1)
         samples[run, :2] += side[j0:j1, None] * normal[run]
         samples[run, 2] = hair - p
-        _enter_and_leave(samples, pl, run, hover, hair, step_mm, (r > 0, r < len(runs) - 1))
+        nxt = None
+        if r < len(runs) - 1:  # into a corner: to the tip, or a hook's foot kept pressed
+            nxt = hair - HOOK_KEEP * p[-1] if hook[r + 1] else hair * (1.0 - TURN_TOUCH)
+        _enter_and_leave(samples, pl, run, hover, hair, step_mm, (at, nxt))
+        if nxt is not None:
+            heights.append(nxt)
+        at = nxt
         j0 = j1
-    _turn_on_the_tip(samples, pl, span, hair)
+    _turn_on_the_tip(samples, pl, span, heights)
     samples[a:b] = quantise(samples[a:b])  # as the saved recording will hold them
     return body

@@ -202,3 +202,37 @@ def test_a_sharp_turn_is_made_on_the_tip_not_in_the_air(response):
     # the strokes themselves are written pressed, and the brush hovers before and after
     assert samples[body, 2].min() < hair - 2.0
     assert samples[a, 2] > hair and samples[b - 1, 2] > hair
+
+
+def test_a_hook_sets_off_pressed_from_its_foot(response):
+    # 永's 竖钩 turns back by more than HOOK_COS at its foot: the belly stays pressed through
+    # the turn (HOOK_KEEP of its press, not eased to the tip as at a 折) and the hook sets off
+    # pressed, lifting as it goes (before issue 26 it began on the tip and swelled: a blunt
+    # tail apart from a round foot)
+    from sim.core.params import HOVER_MM
+    from sim.writing.planner import HOOK_KEEP, TURN_TOUCH, _fill, _is_hook, _movements
+
+    ch = find_char("永")
+    pl = plan(ch, 100.0, 0.5)
+    a, b = pl.strokes[1]
+    body = np.flatnonzero(pl.phase[a:b] == WRITING) + a
+    runs = _movements(body)
+    assert _is_hook(pl, runs) == [False, True]
+    assert _is_hook(
+        plan(L_CHAR, 100.0, 0.5),
+        _movements(np.flatnonzero(plan(L_CHAR, 100.0, 0.5).phase == WRITING)),
+    ) == [False, False]  # a 折 is no hook
+    hair = _template().resolve()[1].hair_length_mm
+    samples = np.zeros((len(pl.target), 6))
+    samples[:, :2], samples[:, 2] = pl.target, hair + HOVER_MM
+    press = response.press_for(pl.width[body])
+    _fill(samples, pl, response, (a, b), press, np.zeros(len(body)), (hair + HOVER_MM, hair, 0.5))
+    foot, hook = runs
+    between = np.arange(foot[-1] + 1, hook[0])
+    kept = HOOK_KEEP * (hair - samples[foot[-1], 2])
+    assert kept > 2.0 * hair * TURN_TOUCH
+    assert np.all(hair - samples[between, 2] >= kept - 0.01)  # pressed all through the turn
+    # the hook's first sample is pressed as planned there (no landing on the tip) and the
+    # press falls from there to the point
+    p = hair - samples[hook, 2]
+    assert p[0] > 0.8 * press[len(foot)] and p[-1] < 0.6 * p[: len(p) // 3].max()

@@ -30,6 +30,7 @@ from typing import NamedTuple
 
 import numpy as np
 
+from ...brush.ink import brush_load, full_load
 from ...core.params import MAX_PAPER_PIXELS, MAX_PAPER_SIDE_PX, ParameterError
 from ...core.recording import PAPER_MM_RANGE, PX_PER_MM_RANGE, Dip, Recording, quantise
 from ...engine.simulation import Simulation
@@ -72,24 +73,6 @@ def local_map(fn, tasks, done=None) -> list:
         if done is not None:
             done(len(out), len(tasks))
     return out
-
-
-# ----------------------------------------------------------------------------------- the ink
-def brush_load(brush) -> float:
-    """The ink the brush holds: its key points' wetness, averaged with each primitive weighted
-    by its hair (the area of its middle ellipse, Sec. 5.3)."""
-    hair = np.asarray(brush.a) * np.asarray(brush.b)
-    return float(np.sum(brush.wet.mean(axis=1) * hair) / max(float(hair.sum()), 1e-12))
-
-
-def full_load(template: Recording) -> float:
-    """The load of the brush right after a full dip in the template's ink."""
-    from ...brush.primitive import HairyBrush
-
-    q, geometry, _, ink = template.resolve()
-    brush = HairyBrush(geometry, q, np.random.Generator(np.random.PCG64(0)))
-    brush.dip(ink)
-    return brush_load(brush)
 
 
 # ------------------------------------------------------------------------------- the writing

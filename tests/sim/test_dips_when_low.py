@@ -1,0 +1,63 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
+"""The writer dips as a calligrapher does (issue 26): before the first stroke and again only
+when the brush runs low, so the ink runs from dark after a dip to grey before the next."""
+
+import numpy as np
+import pytest
+
+from sim.brush.ink import brush_load, full_load
+from sim.brush.primitive import HairyBrush
+from sim.core.recording import Recording
+from sim.engine.simulation import Simulation
+from sim.writing.hanzi import find_char
+from sim.writing.planner import plan
+from sim.writing.practice import _stroke_masks
+from sim.writing.response import calibrate
+from sim.writing.writer import DIP_EVERY_STROKE, LOW_INK, dips_when_low, write_character
+
+
+def test_dips_when_the_brush_runs_low():
+    assert not dips_when_low(1.0, 1.0) and not dips_when_low(LOW_INK + 0.01, 1.0)
+    assert dips_when_low(LOW_INK - 0.01, 1.0) and dips_when_low(0.3, 0.5)
+
+
+def test_a_spent_load_is_less_than_a_full_one():
+    rec = Recording(np.zeros((1, 6)))
+    q, geometry, _, ink = rec.resolve()
+    b = HairyBrush(geometry, q, np.random.Generator(np.random.PCG64(1)))
+    assert brush_load(b) == 0.0  # a new brush is dry until dipped
+    b.dip(ink)
+    full = full_load(rec)
+    assert full > 0.5 and brush_load(b) == pytest.approx(full)
+    b.wet[:] *= 0.5
+    assert brush_load(b) == pytest.approx(0.5 * full)
+
+
+def _density(sim, window):
+    """Mean ink density of a stroke's own outline."""
+    ink = sim.paper.ink[window.rows, window.cols].mean(axis=-1)
+    return float(ink[window.inside].mean())
+
+
+@pytest.mark.slow
+def test_a_character_is_written_on_few_dips_and_greys_before_the_next():
+    template = Recording(np.zeros((1, 6)))
+    response = calibrate(template)
+    ch = find_char("永")
+    rec, _, sim = write_character(ch, 160, template, response=response, passes=1)
+    n = len(ch["medians"])
+    assert 1 < len(rec.dips) < n  # not a dip before every stroke, but not one for 永
+    every, _, _ = write_character(
+        ch, 160, template, response=response, passes=1, dip_every_mm=DIP_EVERY_STROKE
+    )
+    assert len(every.dips) == n
+    # the stroke written just before the second dip is lighter than the first stroke and
+    # than the stroke written after the dip
+    masks = _stroke_masks(ch, sim.paper.H, sim.paper.W)
+    pl = plan(ch, rec.width_mm, response.speed_mm_s / rec.sample_rate_hz)
+    starts = [a for a, _ in pl.strokes]
+    second = starts.index(rec.dips[1].before_sample)
+    spent = _density(sim, masks[second - 1])
+    # the dips decided as the writing went are the recording's: it replays to the same ink
+    assert np.array_equal(Simulation(rec).run().paper.ink, sim.paper.ink)
+    assert spent < 0.97 * _density(sim, masks[0]) and spent < 0.97 * _density(sim, masks[second])
