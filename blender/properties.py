@@ -299,9 +299,9 @@ class HAIRY_BRUSH_PG_settings(bpy.types.PropertyGroup):
         min=0.0,
         max=1.0,
         subtype="FACTOR",
-        description="How much the paper's fibres refuse thin ink: higher gives fibrous edges "
-        "and more dry-brush white where the brush runs dry; 0 = every pixel under the hair "
-        "takes ink (raw xuan 0.4, sized xuan 0.62, smooth paper 0.3)",
+        description="How much the sheet's grain shows where the hair offers little ink: higher "
+        "gives a more mottled grey in dry and fast strokes; 0 = an even grey "
+        "(raw xuan 0.4, sized xuan 0.62, smooth paper 0.3)",
     )
     touch_height_mm: FloatProperty(
         name="Touching Height (mm)",

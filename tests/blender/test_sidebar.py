@@ -328,7 +328,7 @@ def test_paper_fibre_follows_the_preset_and_sits_by_ink_capacity(hb):
     assert st.paper_fibre == pytest.approx(fibre["raw_xuan"])
     prop = bpy.types.Scene.bl_rna.properties["hairy_brush"].fixed_type.properties["paper_fibre"]
     assert (prop.name, prop.subtype, prop.hard_min, prop.hard_max) == ("Fibre", "FACTOR", 0, 1)
-    assert "0 = every pixel under the hair takes ink" in prop.description
+    assert "0 = an even grey" in prop.description
     props = names(drawn(bpy.types.HAIRY_BRUSH_PT_paper), "prop")
     assert props.index("paper_fibre") == props.index("paper_capacity") + 1
     st.paper_fibre = 0.35
