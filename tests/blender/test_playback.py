@@ -125,6 +125,7 @@ def test_primitive_surfaces_match_the_engine(hb):
         assert dist.max() < 1e-6  # metres: float32 round-off on a 30 mm brush
 
 
+@pytest.mark.slow
 def test_splitting_adds_primitive_objects_on_frame_change(hb):
     st = setup_scene(bpy, brush_preset="goat_soft")
     st.quality.tre = 0.05  # splits easily (Eq. 18)

@@ -337,6 +337,7 @@ def test_paper_fibre_follows_the_preset_and_sits_by_ink_capacity(hb):
     ].fibre == pytest.approx(0.35)
 
 
+@pytest.mark.slow
 def test_a_recordings_paper_fibre_is_imported_rendered_with_and_exported(hb, tmp_path):
     st = setup_scene(bpy)
     samples = [[60.0, 100.0, HAIR + 5, 0, 0, 0], [60.0, 100.0, HAIR - 4, 0, 0, 0]]
@@ -430,6 +431,7 @@ def run_slices(job, budget=0.01, limit=60.0):
     return fractions
 
 
+@pytest.mark.slow
 def test_simulate_runs_in_slices_and_esc_puts_the_paper_back(hb):
     st = setup_scene(bpy)
     keyframe_stroke(bpy, st)
@@ -477,6 +479,7 @@ def job_operator():
     return Runner()
 
 
+@pytest.mark.slow
 def test_the_modal_operator_runs_a_job_from_timer_events_and_stops_on_esc(hb):
     st = setup_scene(bpy)
     keyframe_stroke(bpy, st)

@@ -39,6 +39,7 @@ def test_bake_and_simulate_write_where_the_brush_went(hb):
     assert not changed[:150].any() and not changed[250:].any()
 
 
+@pytest.mark.slow
 def test_simulated_image_equals_the_engines_render(hb, tmp_path):
     st = setup_scene(bpy)
     keyframe_stroke(bpy, st)

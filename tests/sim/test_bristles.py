@@ -127,6 +127,7 @@ def test_the_ink_pools_where_the_brush_pauses():
     assert dark["paused"] > dark["go"] + 0.02
 
 
+@pytest.mark.slow
 def test_a_replay_from_a_snapshot_is_exact_with_the_bundles():
     """The bundles' state (draws, gaps, the trail) is in the snapshots: restoring one and
     running on gives the straight run's paper bit for bit."""

@@ -204,6 +204,7 @@ def test_a_sharp_turn_is_made_on_the_tip_not_in_the_air(response):
     assert samples[a, 2] > hair and samples[b - 1, 2] > hair
 
 
+@pytest.mark.slow
 def test_a_hook_sets_off_pressed_from_its_foot(response):
     # 永's 竖钩 turns back by more than HOOK_COS at its foot: the belly stays pressed through
     # the turn (HOOK_KEEP of its press, not eased to the tip as at a 折) and the hook sets off

@@ -156,6 +156,7 @@ def test_a_red_seal_is_not_writing_but_red_writing_is():
     assert iou(read_picture(vermilion, 256).ink.mask, m) > 0.99
 
 
+@pytest.mark.slow
 def test_corners_one_stroke_or_two():
     # 亡's ㄴ (a vertical turning right into a horizontal that ends free) is one stroke, 竖折;
     # so are 凶's and 山's 凵, whose horizontal runs into the strokes standing on it, and the
@@ -304,6 +305,7 @@ def _bad_pictures(tmp_path):
     return pics, paths
 
 
+@pytest.mark.slow
 def test_bad_pictures_get_one_clear_message(tmp_path):
     pics, paths = _bad_pictures(tmp_path)
     words = {

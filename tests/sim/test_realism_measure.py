@@ -163,6 +163,7 @@ def test_the_brushs_writing_beats_the_flat_font_of_an_unseen_character(name):
     assert brush.tone > 2 * flat.tone and brush.specks < 0.5  # tone at stroke scale, no spray
 
 
+@pytest.mark.slow
 def test_a_brush_mark_beats_its_own_outline_filled():
     """Fast (no character writer): two crossing strokes simulated by the engine with a brush
     dipped once, against the same silhouette filled flat (the ink's outline closed over its
