@@ -207,22 +207,43 @@ def test_one_brush_dips_first_and_when_its_ink_runs_low(tiny):
     from sim.writing.work.compose import LOW_INK, assemble
 
     rec, lay = tiny
-    assert all(dp.restart is not None for dp in rec.dips) and len(rec.dips) == len(lay.cells)
+    starts = {c.samples[0] for c in lay.cells}
+    restarting = [dp for dp in rec.dips if dp.restart is not None]
+    assert [dp.before_sample for dp in restarting] == [c.samples[0] for c in lay.cells]
+    for dp in rec.dips:  # the other dips are the writer's own, inside a character
+        if dp.restart is None:
+            assert dp.before_sample not in starts
+            assert any(c.samples[0] < dp.before_sample < c.samples[1] for c in lay.cells)
     assert lay.cells[0].dip and lay.cells[0].load == 1.0
     for a, b in zip(lay.cells, lay.cells[1:], strict=False):
         assert b.samples[0] == a.samples[1]  # one recording, the cells in writing order
         if b.dip:
-            assert b.load == 1.0 and a.load - a.used - b.used < LOW_INK
+            assert b.load == 1.0
         else:
-            assert np.isclose(b.load, a.load - a.used) and b.load < a.load
-    wet = [dp.wetness for dp in rec.dips]
+            assert np.isclose(b.load, a.load - a.used)
+    wet = [dp.wetness for dp in restarting]
     assert wet[0] == max(wet)
-    # --dip-every 1: a dip before every character, each with a full load
-    w = [type("W", (), {"samples": np.zeros((3, 6)), "used": 0.4})() for _ in range(4)]
+
+    def written(used, dips=()):
+        return type("W", (), {"samples": np.zeros((3, 6)), "used": used, "dips": dips})()
+
+    # --dip-every 2: a dip before every other character, each with a full load
+    w = [written(0.4) for _ in range(4)]
     cells = [replace(c) for c in lay.cells[:3]] + [replace(lay.cells[0])]
     _, dips, _ = assemble(rec, cells, w, 0.5, dip_every=2)
     assert [c.dip for c in cells] == [True, False, True, False]
     assert cells[1].load == pytest.approx(0.6) and cells[3].load == pytest.approx(0.6)
+    # when the ink runs low: dipped before a character that would end below LOW_INK; one
+    # that dips inside itself gets those dips and leaves the brush as its last dip did
+    w = [written(0.3), written(0.2), written(0.2, dips=(1,)), written(0.1)]
+    cells = [replace(c) for c in lay.cells[:3]] + [replace(lay.cells[0])]
+    samples, dips, load = assemble(rec, cells, w, 0.5)
+    assert 1.0 - 0.3 - 0.2 < LOW_INK and [c.dip for c in cells] == [True, True, False, False]
+    a, b = cells[2].samples
+    inner = [dp for dp in dips if dp.restart is None]
+    assert len(inner) == 1 and a < inner[0].before_sample < b
+    assert inner[0].before_sample == b - 3 + 1  # its sample 1, after the travel to the cell
+    assert cells[3].load == pytest.approx(0.8) and load == pytest.approx(0.7)
 
 
 @pytest.mark.slow

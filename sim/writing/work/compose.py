@@ -11,7 +11,9 @@ The ink: the brush is dipped before the first character and again when its ink r
 a character uses of a full load is measured on the writer's own run of it (the brush's load,
 ``brush_load``, after one dip at its start, against a full one), and the load runs down from
 character to character; the brush is dipped before a character that would end below
-``LOW_INK`` (or every ``dip_every`` characters). Each cell starts with a *restarting dip*
+``LOW_INK`` (or every ``dip_every`` characters), and inside a character, as the writer dips,
+before a stroke it would begin with too little ink (``writer.dips_when_low``: a large or
+many-stroked character is not written to illegible grey on one load). Each cell starts with a *restarting dip*
 (``Dip.restart``): the brush re-formed on the inkstone, as new, carrying the load that is left
 (the dip's wetness), its random draws from the cell's own stream. So the tone runs from wet and
 dark after a dip to dry, with flying white, before the next, and every cell depends on nothing
@@ -36,6 +38,7 @@ from ...core.recording import PAPER_MM_RANGE, PX_PER_MM_RANGE, Dip, Recording, q
 from ...engine.simulation import Simulation
 from ..hanzi import lookup
 from ..response import Response, calibrate
+from ..writer import LOW_INK as WRITER_LOW_INK
 from ..writer import auto_size_mm, write_character
 from . import variation as var
 from .layout import Cell, Layout, Settings, lay_out
@@ -50,7 +53,6 @@ WORK_VERSION = 1
 # with 0.55 loses its last strokes; a calligrapher dips before the brush fails a character)
 LOW_INK = 0.55
 MIN_LOAD = 0.45  # with dip_every, a character starts with at least this share of a load
-PRACTICE_DIP_MM = 1e6  # the writer practises a character on one dip (the work's are its own)
 
 
 def longest_first(mapper, fn, tasks, costs, done=None) -> list:
@@ -90,7 +92,10 @@ class CellTask(NamedTuple):
 
 class Written(NamedTuple):
     samples: np.ndarray  # (N, 6) on the writer's sheet: the em box, lower-left corner at 0
-    used: float  # share of a full load the character used
+    used: float  # share of a full load the character used since its last dip
+    # samples (of ``samples``) before which the writer dipped inside the character: a large
+    # or many-stroked character the brush could not write on one load (``writer.dips_when_low``)
+    dips: tuple = ()
 
 
 def write_cell(task: CellTask) -> Written:
@@ -103,13 +108,13 @@ def write_cell(task: CellTask) -> Written:
         task.template,
         size_mm=task.size_mm,
         response=task.response,
-        dip_every_mm=PRACTICE_DIP_MM,
+        dip_every_mm=None,  # dips inside the character when the brush runs low
         passes=task.passes,
         px_per_mm=task.ppm,
     )
     full = full_load(task.template)
     used = max(full - brush_load(sim.brush), 0.0) / max(full, 1e-12)
-    return Written(rec.samples, float(used))
+    return Written(rec.samples, float(used), tuple(int(d.before_sample) for d in rec.dips[1:]))
 
 
 def writing_cost(task: CellTask) -> float:
@@ -187,6 +192,8 @@ def assemble(template: Recording, cells, written, step_mm: float, dip_every=None
             dip = True
         elif dip_every:
             dip = n % dip_every == 0
+        elif w.dips:  # it dips inside: begun as its writing was, from a load not yet low
+            dip = load < WRITER_LOW_INK
         else:
             dip = load - w.used < LOW_INK
         load = 1.0 if dip else max(load, MIN_LOAD)
@@ -194,8 +201,14 @@ def assemble(template: Recording, cells, written, step_mm: float, dip_every=None
         dips.append(
             Dip(at, ink.depth, tuple(ink.color), wet, follows_ink=True, restart=int(cell.seed))
         )
-        cell.samples, cell.load, cell.dip, cell.used = (at, at + len(s)), load, dip, w.used
-        load -= w.used
+        inside = len(s) - len(w.samples)  # the travel to the cell comes first
+        dips += [
+            Dip(at + inside + j, ink.depth, tuple(ink.color), ink.wetness, follows_ink=True)
+            for j in w.dips
+        ]
+        after = (1.0 if w.dips else load) - w.used
+        cell.samples, cell.load, cell.dip, cell.used = (at, at + len(s)), load, dip, load - after
+        load = after
         at += len(s)
         parts.append(s)
         prev = s[-1]

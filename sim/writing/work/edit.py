@@ -12,7 +12,7 @@ from dataclasses import replace
 import numpy as np
 
 from ...core.params import ParameterError
-from ...core.recording import Recording, quantise
+from ...core.recording import Dip, Recording, quantise
 from ..response import calibrate
 from .compose import (
     WORK_KEY,
@@ -166,19 +166,26 @@ def rewrite_cell(
         step = response.speed_mm_s / template.sample_rate_hz
         s = np.concatenate([_travel(rec.samples[a - 1], s[0], step), s])
     s = quantise(s)
+    inside = len(s) - len(w.samples)  # the travel to the cell comes first
     if len(s) < b - a:  # the brush waits in the air: the later cells keep their time
         s = np.concatenate([s, np.repeat(s[-1:], b - a - len(s), axis=0)])
     shift = len(s) - (b - a)
     samples = np.concatenate([rec.samples[:a], s, rec.samples[b:]])
+    _, _, _, ink = template.resolve()
     dips = []
     for dp in rec.dips:
         if dp.before_sample == a and dp.restart is not None:
             dips.append(replace(dp, restart=cell.seed))
+            dips += [  # the new writing's own dips inside the character
+                Dip(a + inside + j, ink.depth, tuple(ink.color), ink.wetness, follows_ink=True)
+                for j in w.dips
+            ]
         elif dp.before_sample >= b:
             dips.append(replace(dp, before_sample=dp.before_sample + shift))
         elif not a < dp.before_sample < b:
             dips.append(dp)
-    cell.samples, cell.used = (a, a + len(s)), w.used
+    cell.samples = (a, a + len(s))
+    cell.used = cell.load - ((1.0 if w.dips else cell.load) - w.used)
     lay.cells[index] = cell
     for c in lay.cells[index + 1 :]:
         c.samples = (c.samples[0] + shift, c.samples[1] + shift)
