@@ -13,14 +13,14 @@ a character uses of a full load is measured on the writer's own run of it (the b
 character to character; the brush is dipped before a character that would end below
 ``LOW_INK`` (or every ``dip_every`` characters), and inside a character, as the writer dips,
 before a stroke it would begin with too little ink (``writer.dips_when_low``: a large or
-many-stroked character is not written to illegible grey on one load). Each cell starts with a *restarting dip*
-(``Dip.restart``): the brush re-formed on the inkstone, as new, carrying the load that is left
-(the dip's wetness), its random draws from the cell's own stream. So the tone runs from wet and
-dark after a dip to dry, with flying white, before the next, and every cell depends on nothing
-before it: the cells are simulated side by side, each on its own paper, and put together bit
-for bit as the one run of the recording (``render``; ``sim render`` makes the same image), one
-cell can be written again without touching the others (``rewrite_cell``), and text can be added
-after the last character (``append_text``).
+many-stroked character is not written to illegible grey on one load). Each cell starts with a
+*restarting dip* (``Dip.restart``): the brush re-formed on the inkstone, as new, carrying the
+load that is left (the dip's wetness), its random draws from the cell's own stream. So the tone
+runs from wet and dark after a dip to dry, with flying white, before the next, and every cell
+depends on nothing before it: the cells are simulated side by side, each on its own paper, and
+put together bit for bit as the one run of the recording (``render``; ``sim render`` makes the
+same image), one cell can be written again without touching the others (``rewrite_cell``), and
+text can be added after the last character (``append_text``).
 
 Model additions (not in the paper): the re-formed brush at each character's start, the load
 measured as the area-weighted mean wetness of the key points."""
