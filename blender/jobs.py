@@ -138,6 +138,11 @@ class JobOperator:
 
     in_background: bpy.props.BoolProperty(default=False, options={"HIDDEN", "SKIP_SAVE"})
 
+    def invoke(self, context, _event):
+        """From the interface: run modally (an operator that asks first overrides this)."""
+        self.in_background = True
+        return self.execute(context)
+
     def run_job(self, context, job: Job) -> set:
         wm = context.window_manager
         if self.in_background and not bpy.app.background and context.window is not None:

@@ -70,10 +70,6 @@ class HAIRY_BRUSH_OT_bake_cache(JobOperator, bpy.types.Operator):
             return False
         return True
 
-    def invoke(self, context, _event):
-        self.in_background = True
-        return self.execute(context)
-
     def execute(self, context):
         try:
             job = CacheJob(context.scene)

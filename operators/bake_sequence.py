@@ -105,10 +105,6 @@ class HAIRY_BRUSH_OT_bake_sequence(JobOperator, bpy.types.Operator):
     def poll(cls, context):
         return polls.recording(cls, context)
 
-    def invoke(self, context, _event):
-        self.in_background = True
-        return self.execute(context)
-
     def execute(self, context):
         scene = context.scene
         try:

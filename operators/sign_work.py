@@ -24,10 +24,6 @@ class HAIRY_BRUSH_OT_sign_work(JobOperator, bpy.types.Operator):
     def poll(cls, context):
         return polls.brush_and_paper(cls, context) and polls.recording(cls, context)
 
-    def invoke(self, context, _event):
-        self.in_background = True
-        return self.execute(context)
-
     def execute(self, context):
         scene = context.scene
         w = checks.settings(scene).work

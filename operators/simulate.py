@@ -75,10 +75,6 @@ class HAIRY_BRUSH_OT_simulate(JobOperator, bpy.types.Operator):
     def poll(cls, context):
         return polls.recording(cls, context)
 
-    def invoke(self, context, _event):
-        self.in_background = True
-        return self.execute(context)
-
     def execute(self, context):
         try:
             job = SimulateJob(context.scene, to_current_frame=self.to_current_frame)

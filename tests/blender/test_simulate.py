@@ -68,3 +68,18 @@ def test_dip_records_the_ink_and_colours_the_stroke(hb):
     inked = px[px.min(axis=2) < 0.6]
     assert len(inked) > 50
     assert np.median(inked[:, 2] - inked[:, 0]) > 0.1  # blue ink
+
+
+def test_invoked_from_the_interface_a_job_runs_through_execute(hb):
+    """The Job operators share JobOperator's invoke (in_background, then execute); headless
+    Blender has no window, so the job runs to the end and the paper shows the ink."""
+    st = setup_scene(bpy)
+    keyframe_stroke(bpy, st)
+    assert bpy.ops.hairy_brush.bake_samples() == {"FINISHED"}
+    before = pixels(st.paper_image)
+    assert bpy.ops.hairy_brush.simulate("INVOKE_DEFAULT") == {"FINISHED"}
+    assert (np.abs(pixels(st.paper_image) - before).max(axis=2) > 0.05).sum() > 200
+    jobs = ("simulate", "bake_cache", "bake_sequence", "write_text", "sign_work", "rewrite_cell")
+    for name in jobs:
+        op = getattr(bpy.types, f"HAIRY_BRUSH_OT_{name}")
+        assert op.invoke.__qualname__ == "JobOperator.invoke", name
