@@ -48,24 +48,10 @@ LABELS = {
     "a4_600dpi_peak_mb": "render an A4 sheet at 600 dpi (peak MB)",
     "a4_600dpi_blender_peak_mb": "the same in Blender: import, simulate (peak MB)",
 }
-# Blender (the bpy module) with the version's add-on loaded from its checkout, an A4 recording
-# imported at 600 dpi and simulated into the paper image: the artist's path, in one process
-BLENDER_A4 = """
-import importlib.util, sys
-import bpy
-root, rec, ppm = sys.argv[1], sys.argv[2], float(sys.argv[3])
-spec = importlib.util.spec_from_file_location(
-    "hairy_brush", root + "/__init__.py", submodule_search_locations=[root])
-mod = importlib.util.module_from_spec(spec)
-sys.modules["hairy_brush"] = mod
-spec.loader.exec_module(mod)
-mod.register()
-bpy.context.scene.hairy_brush.sync_frames = False
-assert bpy.ops.hairy_brush.setup() == {"FINISHED"}
-assert bpy.ops.hairy_brush.import_recording(filepath=rec) == {"FINISHED"}
-bpy.context.scene.hairy_brush.px_per_mm = ppm
-assert bpy.ops.hairy_brush.simulate() == {"FINISHED"}
-"""
+# the artist's path in Blender (the bpy module), run by this checkout's script on each version's
+# add-on: an A4 recording imported at 600 dpi and simulated into the paper image; the engine
+# (sim/) itself never imports bpy
+BLENDER_A4 = ROOT / "scripts" / "blender_a4.py"
 
 
 @dataclass
@@ -161,7 +147,7 @@ def run_once(version: Version, k: int, tmp: Path, work: tuple[Path, list[str]], 
     render = py + ["render", str(a4), "--px-per-mm", f"{A4_PX_PER_MM:.6f}", "-q"]
     peak = measured(render + ["-o", str(out / "a4.png")], version)[2]
     version.runs.setdefault("a4_600dpi_peak_mb", []).append(peak)
-    blender = [sys.executable, "-c", BLENDER_A4, str(version.root), str(a4), str(A4_PX_PER_MM)]
+    blender = [sys.executable, str(BLENDER_A4), str(version.root), str(a4), str(A4_PX_PER_MM)]
     peak = measured(blender, version)[2]
     version.runs.setdefault("a4_600dpi_blender_peak_mb", []).append(peak)
 
