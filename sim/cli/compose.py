@@ -9,6 +9,7 @@ import argparse
 import os
 import sys
 import time
+import warnings
 
 from ..core.params import ParameterError
 from ..core.recording import DEFAULT_BRUSH, DEFAULT_PAPER
@@ -47,7 +48,9 @@ class Mapper:
         if self._client is not None:
             from distributed import as_completed
 
-            futures = self._client.map(fn, tasks, pure=False)
+            with warnings.catch_warnings():  # a long text's tasks are a few MB in all, ~10 kB each
+                warnings.filterwarnings("ignore", "Sending large graph", UserWarning)
+                futures = self._client.map(fn, tasks, pure=False)
             index = {f.key: k for k, f in enumerate(futures)}
             for n, fut in enumerate(as_completed(futures), 1):
                 out[index[fut.key]] = fut.result()
