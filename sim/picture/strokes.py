@@ -24,6 +24,12 @@ HOOK_SPUR = 1.5  # ... but the farthest of a junction's spurs this long (times i
 OVERHANG_REACH = 1.3  # ... and a spur this long (times its half-width) straight on from a chain
 HOOK_CLEAR = 1.2  # ... and this many times as long as the next is a hook's tip, kept
 TIP = 0.1  # a free end runs on to this times its half-width short of where the ink ends
+TIP_TURN = np.radians(75.0)  # a spur pruned at a junction is the tip of a stroke ending there
+# when it runs on within this of the stroke's way into the junction (``_tips``)
+TIP_STANDING = 0.25  # ... preferring a standing stroke by this much of the cosine: at a corner
+# where a vertical and a horizontal start (口's top left) the vertical is written first, and
+# its entry is the tip
+TIP_MIN = 1.0  # ... and reaches this many times the junction's half-width from its centre
 ZONE = 1.3  # a junction's zone: this times the ink's half-width there, plus a pixel
 
 
@@ -220,15 +226,16 @@ def _merge_close_nodes(chains: list, nodes: list) -> tuple[list, list]:
     return keep, merged
 
 
-def _prune_spurs(chains: list, nodes: list) -> tuple[list, set]:
+def _prune_spurs(chains: list, nodes: list) -> tuple[list, set, dict]:
     """Short chains from a free end into a junction of three or more: the bumps a brush's
     entry or turn leaves, not strokes. Where that leaves a junction with one chain, its
     farthest-reaching spur comes back when it reaches HOOK_SPUR of the junction's half-width
     and clearly farther than the others: the tip of a hook (宀's 横钩, whose shoulder is the
     other spur), which the stroke turns into; and a spur that runs straight on from one of
     the junction's chains comes back as that stroke's overhang (``_overhangs``). Returns the
-    chains and the junctions whose
-    spur came back (the stroke runs on through them)."""
+    chains, the junctions whose
+    spur came back (the stroke runs on through them) and the spurs still pruned, by junction
+    (``_tips``)."""
     pruned: dict = {}
     for _ in range(3):
         drop = set()
@@ -243,12 +250,14 @@ def _prune_spurs(chains: list, nodes: list) -> tuple[list, set]:
             break
         chains = [c for ci, c in enumerate(chains) if ci not in drop]
         _link(chains, nodes)
-    hooked = set()
+    hooked, loose = set(), {}
     for ni, spurs in pruned.items():
         if len(nodes[ni].chains) != 1:
-            for c in _overhangs(chains, nodes[ni], spurs):
+            back = _overhangs(chains, nodes[ni], spurs)
+            for c in back:
                 chains.append(c)
                 _link(chains, nodes)
+            loose[ni] = [c for c in spurs if not any(c is b for b in back)]
             continue
         reach = sorted((_length(c.pts), k) for k, c in enumerate(spurs))
         far, k = reach[-1]
@@ -257,7 +266,45 @@ def _prune_spurs(chains: list, nodes: list) -> tuple[list, set]:
             chains.append(spurs[k])
             hooked.add(ni)
     _link(chains, nodes)
-    return chains, hooked
+    return chains, hooked, loose
+
+
+def _tips(chains: list, nodes: list, loose: dict, partner: dict) -> None:
+    """The pointed tips of strokes that start or end at a junction, in place: a spur pruned
+    there (``_prune_spurs``) that runs on within TIP_TURN of the way a stroke comes into the
+    junction, where that stroke ends (its chain end has no partner), is that stroke's tip - the
+    point of a 露锋 entry reaching out past the corner of 口 where its vertical and its top
+    start, or a foot reaching down past the corner where they end - and is joined to it, most
+    nearly straight on first (a standing stroke before a lying one), one spur to a stroke's
+    end. Without it the stroke starts at the
+    corner's centre and the brush never reaches the tip, which is often the character's
+    outermost ink. (A spur at a corner that one stroke turns through, the knob of a 折's
+    shoulder, is left off: no stroke ends there.)"""
+    for ni, spurs in loose.items():
+        node = nodes[ni]
+        free = [ce for ce in node.chains if ce not in partner]
+        cand = []
+        for spur in spurs:
+            end = 0 if spur.ends[0] == ni else 1
+            tip = _outward(spur, end)[-1] - node.centre
+            if np.linalg.norm(tip) < TIP_MIN * node.radius:
+                continue
+            way = tip / float(np.linalg.norm(tip))
+            for ce in free:
+                out = _exit(chains[ce[0]], ce[1], node)[1]
+                cos = float(out @ way)
+                if cos < -np.cos(TIP_TURN):  # a standing stroke first (口's vertical)
+                    cand.append(
+                        (cos - TIP_STANDING * (abs(out[1]) > abs(out[0])), id(spur), ce, spur, end)
+                    )
+        taken = set()
+        for _, sid, ce, spur, end in sorted(cand, key=lambda c: c[0]):
+            if sid in taken or ce in partner:
+                continue
+            taken.add(sid)
+            chains.append(spur)
+            partner[ce], partner[(len(chains) - 1, end)] = (len(chains) - 1, end), ce
+    _link(chains, nodes)
 
 
 def _overhangs(chains: list, node: Node, spurs: list) -> list:
@@ -499,8 +546,9 @@ def find_strokes(mask: np.ndarray, dist: np.ndarray | None = None) -> list[Strok
     dist = M.edt(mask) if dist is None else dist
     chains, nodes = skeleton_graph(mask, dist)
     chains, nodes = _merge_close_nodes(chains, nodes)
-    chains, hooked = _prune_spurs(chains, nodes)
+    chains, hooked, loose = _prune_spurs(chains, nodes)
     partner = _pairs(chains, nodes)
+    _tips(chains, nodes, loose, partner)
     for ni in hooked:  # the stroke turns into its hook's tip
         a, b = nodes[ni].chains
         if a not in partner and b not in partner:
