@@ -23,7 +23,10 @@ HOOK_COS = 0.3  # ... and a hook's two ways out lie within ~70 degrees of each o
 HOOK_SPUR = 1.5  # ... but the farthest of a junction's spurs this long (times its half-width)
 OVERHANG_REACH = 1.3  # ... and a spur this long (times its half-width) straight on from a chain
 HOOK_CLEAR = 1.2  # ... and this many times as long as the next is a hook's tip, kept
-TIP = 0.1  # a free end runs on to this times its half-width short of where the ink ends
+TIP = 0.5  # a free end runs on to this times the stroke's half-width short of where the ink
+# ends: where stroke data's medians end (hanzi-writer's, which the writer's reach to the tips
+# and its lift at a stroke's end are made for: 0.46-0.51 of the half-width, median over the
+# bundled and unseen characters); 0.1 overshot every free end by the brush's round tip
 TIP_TURN = np.radians(75.0)  # a spur pruned at a junction is the tip of a stroke ending there
 # when it runs on within this of the stroke's way into the junction (``_tips``)
 TIP_STANDING = 0.25  # ... preferring a standing stroke by this much of the cosine: at a corner
@@ -480,11 +483,13 @@ def _trace(ci: int, end: int, chains, nodes, partner, used, dist) -> _Trace:
         seg = nseg
 
 
-def _extend(pts: np.ndarray, mask: np.ndarray, r_end: float) -> np.ndarray:
-    """Points on from a free end (the last point) along its way until the ink ends, less half
-    the end's half-width: the skeleton stops short of a stroke's tip."""
+def _extend(pts: np.ndarray, mask: np.ndarray, r_end: float, short: float) -> tuple:
+    """Points on from a free end (the last point) along its way until ``short`` px before the
+    ink ends (the end's half-width ``r_end`` bounds the search): the skeleton stops short of a
+    stroke's tip; and how far the end must come back instead when the skeleton already runs
+    nearer the tip than ``short`` (into a 撇's point)."""
     if len(pts) < 2:
-        return np.zeros((0, 2))
+        return np.zeros((0, 2)), 0.0
     d = pts[-1] - pts[max(len(pts) - 10, 0)]
     d /= max(float(np.linalg.norm(d)), 1e-9)
     h, w = mask.shape
@@ -494,10 +499,22 @@ def _extend(pts: np.ndarray, mask: np.ndarray, r_end: float) -> np.ndarray:
         if not (0 <= x < w and 0 <= y < h and mask[y, x]):
             break
         last = s
-    reach = last - TIP * r_end
+    reach = last - short
     if reach < 1:
-        return np.zeros((0, 2))
-    return pts[-1] + np.arange(1, int(reach) + 1)[:, None] * d
+        return np.zeros((0, 2)), max(-reach, 0.0)
+    return pts[-1] + np.arange(1, int(reach) + 1)[:, None] * d, 0.0
+
+
+def _cut_back(pts: np.ndarray, rad: np.ndarray, cut: float) -> tuple:
+    """The line without its last ``cut`` px of arc (never below half its length)."""
+    seg = np.linalg.norm(np.diff(pts, axis=0), axis=1)
+    s = np.concatenate([[0.0], np.cumsum(seg)])
+    t = max(s[-1] - cut, 0.5 * s[-1])
+    k = int(np.searchsorted(s, t, side="right"))
+    if cut <= 0 or k >= len(pts) or k < 1:
+        return pts, rad
+    end = np.array([np.interp(t, s, pts[:, 0]), np.interp(t, s, pts[:, 1])])
+    return np.vstack([pts[:k], end]), np.concatenate([rad[:k], [np.interp(t, s, rad)]])
 
 
 def _smooth_line(p: np.ndarray, k: int) -> np.ndarray:
@@ -518,12 +535,17 @@ def _finish(t: _Trace, mask, dist) -> Stroke:
         rad, known = dist[iy, ix], np.ones(len(pts), bool)
     idx = np.arange(len(pts))
     rad = np.interp(idx, idx[known], rad[known])
+    short = TIP * float(np.median(rad))
     if t.free[1]:
-        ext = _extend(pts, mask, float(rad[-1]))
+        ext, cut = _extend(pts, mask, float(rad[-1]), short)
         pts, rad = np.vstack([pts, ext]), np.concatenate([rad, _radii(ext, dist, rad[-1])])
+        pts, rad = _cut_back(pts, rad, cut)
     if t.free[0]:
-        ext = _extend(pts[::-1], mask, float(rad[0]))[::-1]
-        pts, rad = np.vstack([ext, pts]), np.concatenate([_radii(ext, dist, rad[0]), rad])
+        ext, cut = _extend(pts[::-1], mask, float(rad[0]), short)
+        pts = np.vstack([ext[::-1], pts])
+        rad = np.concatenate([_radii(ext[::-1], dist, rad[0]), rad])
+        back, brad = _cut_back(pts[::-1], rad[::-1], cut)
+        pts, rad = back[::-1], brad[::-1]
     pts = _smooth_line(pts, 5)
     seg = np.linalg.norm(np.diff(pts, axis=0), axis=1)
     s = np.concatenate([[0.0], np.cumsum(seg)])
