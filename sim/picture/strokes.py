@@ -281,10 +281,12 @@ def _tips(chains: list, nodes: list, loose: dict, partner: dict) -> None:
     nearly straight on first (a standing stroke before a lying one), one spur to a stroke's
     end. Without it the stroke starts at the
     corner's centre and the brush never reaches the tip, which is often the character's
-    outermost ink. (A spur at a corner that one stroke turns through, the knob of a 折's
-    shoulder, is left off: no stroke ends there.)"""
+    outermost ink. (A spur where a stroke runs through - the knob of a 折's shoulder, a bump
+    at a crossing such as 木's, where its 撇 and 捺 start - is left off.)"""
     for ni, spurs in loose.items():
         node = nodes[ni]
+        if any(ce in partner for ce in node.chains):  # a stroke runs through: a crossing's bump
+            continue
         free = [ce for ce in node.chains if ce not in partner]
         cand = []
         for spur in spurs:
