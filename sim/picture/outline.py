@@ -31,6 +31,8 @@ FOOT_DOWN = 0.6  # a turn whose way in goes down this steeply (image y) is a hoo
 CORNER_ALIGN = np.radians(35.0)  # the line out of a moved corner keeps this close to its leg
 CORNER_SKIP = 2.0  # ... within this many half-widths along the leg
 STEP_PX = 2.0  # a stroke's centre line has a point every this many pixels (strokes._finish)
+JOIN_REACH = 1.0  # a stroke ending on another runs on this many times the ink's half-width
+JOIN_HOLD = 0.5  # ... while the ink is this share of that thick (``into_join``)
 CORNER_HEEL = 0.6  # rad inside the way straight on that a corner's foot is looked for
 
 
@@ -239,6 +241,37 @@ def into_corners(s: Stroke, dist: np.ndarray) -> Stroke:
     return Stroke(dense, np.interp(si, a, radius), s.through, s.touches, s.joints)
 
 
+def into_join(s: Stroke, dist: np.ndarray) -> Stroke:
+    """A stroke that ends on another (its last point at a junction it touches: 永's right 撇
+    on its 捺, a dot on the stroke it hangs from) carried on past the junction's centre along
+    its way, JOIN_REACH of the ink's half-width there, and no farther than the ink is
+    JOIN_HOLD of that thick: the writer lifts the brush to a point at a stroke's end, so a
+    median that stops at the junction's centre leaves its tip short of the stroke it touches
+    in the picture, and the ink in two pieces. (Its start is left alone: the brush lands
+    pressed, round, and reaches.)"""
+    end = s.pts[-1]
+    if len(s.pts) < 3 or not any(np.linalg.norm(end - c) < 1.0 for c in s.joints.values()):
+        return s
+    h, w = dist.shape
+    x, y = np.clip(np.round(end).astype(int), 0, (w - 1, h - 1))
+    r = float(dist[y, x])
+    k = max(int(np.ceil(r / STEP_PX)), 2)
+    d = end - s.pts[max(len(s.pts) - 1 - k, 0)]
+    d = d / max(float(np.linalg.norm(d)), 1e-9)
+    add = []
+    for t in np.arange(STEP_PX, JOIN_REACH * r + 1e-9, STEP_PX):
+        q = end + t * d
+        x, y = np.round(q).astype(int)
+        if not (0 <= x < w and 0 <= y < h) or dist[y, x] < JOIN_HOLD * r:
+            break
+        add.append(q)
+    if not add:
+        return s
+    pts = np.vstack([s.pts, add])
+    radius = np.concatenate([s.radius, np.full(len(add), s.radius[-1])])
+    return Stroke(pts, radius, s.through, s.touches, s.joints)
+
+
 # -------------------------------------------------------------------- character data
 def _to_data(pts: np.ndarray, n: int) -> np.ndarray:
     return np.stack([pts[:, 0] * EM / n, TOP - pts[:, 1] * EM / n], axis=1)
@@ -311,7 +344,7 @@ def read_strokes(ink: Ink) -> tuple[list, list, dict]:
         )
     strokes = [found[i] for i in writing_order(found, n, ink.mask)]
     dist = M.edt(ink.mask)
-    strokes = [into_corners(s, dist) for s in strokes]
+    strokes = [into_join(into_corners(s, dist), dist) for s in strokes]
     regions = stroke_regions(strokes, ink.mask)
     keep = [i for i, r in enumerate(regions) if r.sum() >= 4]
     if not keep:  # every stroke's own ink is a few pixels: nothing the writer could write

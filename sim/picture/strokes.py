@@ -23,7 +23,16 @@ HOOK_COS = 0.3  # ... and a hook's two ways out lie within ~70 degrees of each o
 HOOK_SPUR = 1.5  # ... but the farthest of a junction's spurs this long (times its half-width)
 OVERHANG_REACH = 1.3  # ... and a spur this long (times its half-width) straight on from a chain
 HOOK_CLEAR = 1.2  # ... and this many times as long as the next is a hook's tip, kept
-TIP = 0.1  # a free end runs on to this times its half-width short of where the ink ends
+TIP = 0.5  # a free end runs on to this times the stroke's half-width short of where the ink
+# ends: where stroke data's medians end (hanzi-writer's, which the writer's reach to the tips
+# and its lift at a stroke's end are made for: 0.46-0.51 of the half-width, median over the
+# bundled and unseen characters); 0.1 overshot every free end by the brush's round tip
+TIP_TURN = np.radians(75.0)  # a spur pruned at a junction is the tip of a stroke ending there
+# when it runs on within this of the stroke's way into the junction (``_tips``)
+TIP_STANDING = 0.25  # ... preferring a standing stroke by this much of the cosine: at a corner
+# where a vertical and a horizontal start (口's top left) the vertical is written first, and
+# its entry is the tip
+TIP_MIN = 1.0  # ... and reaches this many times the junction's half-width from its centre
 ZONE = 1.3  # a junction's zone: this times the ink's half-width there, plus a pixel
 
 
@@ -220,15 +229,16 @@ def _merge_close_nodes(chains: list, nodes: list) -> tuple[list, list]:
     return keep, merged
 
 
-def _prune_spurs(chains: list, nodes: list) -> tuple[list, set]:
+def _prune_spurs(chains: list, nodes: list) -> tuple[list, set, dict]:
     """Short chains from a free end into a junction of three or more: the bumps a brush's
     entry or turn leaves, not strokes. Where that leaves a junction with one chain, its
     farthest-reaching spur comes back when it reaches HOOK_SPUR of the junction's half-width
     and clearly farther than the others: the tip of a hook (宀's 横钩, whose shoulder is the
     other spur), which the stroke turns into; and a spur that runs straight on from one of
     the junction's chains comes back as that stroke's overhang (``_overhangs``). Returns the
-    chains and the junctions whose
-    spur came back (the stroke runs on through them)."""
+    chains, the junctions whose
+    spur came back (the stroke runs on through them) and the spurs still pruned, by junction
+    (``_tips``)."""
     pruned: dict = {}
     for _ in range(3):
         drop = set()
@@ -243,12 +253,14 @@ def _prune_spurs(chains: list, nodes: list) -> tuple[list, set]:
             break
         chains = [c for ci, c in enumerate(chains) if ci not in drop]
         _link(chains, nodes)
-    hooked = set()
+    hooked, loose = set(), {}
     for ni, spurs in pruned.items():
         if len(nodes[ni].chains) != 1:
-            for c in _overhangs(chains, nodes[ni], spurs):
+            back = _overhangs(chains, nodes[ni], spurs)
+            for c in back:
                 chains.append(c)
                 _link(chains, nodes)
+            loose[ni] = [c for c in spurs if not any(c is b for b in back)]
             continue
         reach = sorted((_length(c.pts), k) for k, c in enumerate(spurs))
         far, k = reach[-1]
@@ -257,7 +269,47 @@ def _prune_spurs(chains: list, nodes: list) -> tuple[list, set]:
             chains.append(spurs[k])
             hooked.add(ni)
     _link(chains, nodes)
-    return chains, hooked
+    return chains, hooked, loose
+
+
+def _tips(chains: list, nodes: list, loose: dict, partner: dict) -> None:
+    """The pointed tips of strokes that start or end at a junction, in place: a spur pruned
+    there (``_prune_spurs``) that runs on within TIP_TURN of the way a stroke comes into the
+    junction, where that stroke ends (its chain end has no partner), is that stroke's tip - the
+    point of a 露锋 entry reaching out past the corner of 口 where its vertical and its top
+    start, or a foot reaching down past the corner where they end - and is joined to it, most
+    nearly straight on first (a standing stroke before a lying one), one spur to a stroke's
+    end. Without it the stroke starts at the
+    corner's centre and the brush never reaches the tip, which is often the character's
+    outermost ink. (A spur where a stroke runs through - the knob of a 折's shoulder, a bump
+    at a crossing such as 木's, where its 撇 and 捺 start - is left off.)"""
+    for ni, spurs in loose.items():
+        node = nodes[ni]
+        if any(ce in partner for ce in node.chains):  # a stroke runs through: a crossing's bump
+            continue
+        free = [ce for ce in node.chains if ce not in partner]
+        cand = []
+        for spur in spurs:
+            end = 0 if spur.ends[0] == ni else 1
+            tip = _outward(spur, end)[-1] - node.centre
+            if np.linalg.norm(tip) < TIP_MIN * node.radius:
+                continue
+            way = tip / float(np.linalg.norm(tip))
+            for ce in free:
+                out = _exit(chains[ce[0]], ce[1], node)[1]
+                cos = float(out @ way)
+                if cos < -np.cos(TIP_TURN):  # a standing stroke first (口's vertical)
+                    cand.append(
+                        (cos - TIP_STANDING * (abs(out[1]) > abs(out[0])), id(spur), ce, spur, end)
+                    )
+        taken = set()
+        for _, sid, ce, spur, end in sorted(cand, key=lambda c: c[0]):
+            if sid in taken or ce in partner:
+                continue
+            taken.add(sid)
+            chains.append(spur)
+            partner[ce], partner[(len(chains) - 1, end)] = (len(chains) - 1, end), ce
+    _link(chains, nodes)
 
 
 def _overhangs(chains: list, node: Node, spurs: list) -> list:
@@ -433,11 +485,13 @@ def _trace(ci: int, end: int, chains, nodes, partner, used, dist) -> _Trace:
         seg = nseg
 
 
-def _extend(pts: np.ndarray, mask: np.ndarray, r_end: float) -> np.ndarray:
-    """Points on from a free end (the last point) along its way until the ink ends, less half
-    the end's half-width: the skeleton stops short of a stroke's tip."""
+def _extend(pts: np.ndarray, mask: np.ndarray, r_end: float, short: float) -> tuple:
+    """Points on from a free end (the last point) along its way until ``short`` px before the
+    ink ends (the end's half-width ``r_end`` bounds the search): the skeleton stops short of a
+    stroke's tip; and how far the end must come back instead when the skeleton already runs
+    nearer the tip than ``short`` (into a 撇's point)."""
     if len(pts) < 2:
-        return np.zeros((0, 2))
+        return np.zeros((0, 2)), 0.0
     d = pts[-1] - pts[max(len(pts) - 10, 0)]
     d /= max(float(np.linalg.norm(d)), 1e-9)
     h, w = mask.shape
@@ -447,10 +501,22 @@ def _extend(pts: np.ndarray, mask: np.ndarray, r_end: float) -> np.ndarray:
         if not (0 <= x < w and 0 <= y < h and mask[y, x]):
             break
         last = s
-    reach = last - TIP * r_end
+    reach = last - short
     if reach < 1:
-        return np.zeros((0, 2))
-    return pts[-1] + np.arange(1, int(reach) + 1)[:, None] * d
+        return np.zeros((0, 2)), max(-reach, 0.0)
+    return pts[-1] + np.arange(1, int(reach) + 1)[:, None] * d, 0.0
+
+
+def _cut_back(pts: np.ndarray, rad: np.ndarray, cut: float) -> tuple:
+    """The line without its last ``cut`` px of arc (never below half its length)."""
+    seg = np.linalg.norm(np.diff(pts, axis=0), axis=1)
+    s = np.concatenate([[0.0], np.cumsum(seg)])
+    t = max(s[-1] - cut, 0.5 * s[-1])
+    k = int(np.searchsorted(s, t, side="right"))
+    if cut <= 0 or k >= len(pts) or k < 1:
+        return pts, rad
+    end = np.array([np.interp(t, s, pts[:, 0]), np.interp(t, s, pts[:, 1])])
+    return np.vstack([pts[:k], end]), np.concatenate([rad[:k], [np.interp(t, s, rad)]])
 
 
 def _smooth_line(p: np.ndarray, k: int) -> np.ndarray:
@@ -471,12 +537,17 @@ def _finish(t: _Trace, mask, dist) -> Stroke:
         rad, known = dist[iy, ix], np.ones(len(pts), bool)
     idx = np.arange(len(pts))
     rad = np.interp(idx, idx[known], rad[known])
+    short = TIP * float(np.median(rad))
     if t.free[1]:
-        ext = _extend(pts, mask, float(rad[-1]))
+        ext, cut = _extend(pts, mask, float(rad[-1]), short)
         pts, rad = np.vstack([pts, ext]), np.concatenate([rad, _radii(ext, dist, rad[-1])])
+        pts, rad = _cut_back(pts, rad, cut)
     if t.free[0]:
-        ext = _extend(pts[::-1], mask, float(rad[0]))[::-1]
-        pts, rad = np.vstack([ext, pts]), np.concatenate([_radii(ext, dist, rad[0]), rad])
+        ext, cut = _extend(pts[::-1], mask, float(rad[0]), short)
+        pts = np.vstack([ext[::-1], pts])
+        rad = np.concatenate([_radii(ext[::-1], dist, rad[0]), rad])
+        back, brad = _cut_back(pts[::-1], rad[::-1], cut)
+        pts, rad = back[::-1], brad[::-1]
     pts = _smooth_line(pts, 5)
     seg = np.linalg.norm(np.diff(pts, axis=0), axis=1)
     s = np.concatenate([[0.0], np.cumsum(seg)])
@@ -499,8 +570,9 @@ def find_strokes(mask: np.ndarray, dist: np.ndarray | None = None) -> list[Strok
     dist = M.edt(mask) if dist is None else dist
     chains, nodes = skeleton_graph(mask, dist)
     chains, nodes = _merge_close_nodes(chains, nodes)
-    chains, hooked = _prune_spurs(chains, nodes)
+    chains, hooked, loose = _prune_spurs(chains, nodes)
     partner = _pairs(chains, nodes)
+    _tips(chains, nodes, loose, partner)
     for ni in hooked:  # the stroke turns into its hook's tip
         a, b = nodes[ni].chains
         if a not in partner and b not in partner:

@@ -431,22 +431,9 @@ def test_a_piece_is_read_in_columns_right_to_left():
 
 
 # the least box-normalised IoU: 口 0.60 (a turn's knob at 256 px), 心 0.72, 永 0.70 (0.64 before
-# its corners were read: the foot of its hook and its 横折 cut off)
-DEGRADED = [
-    ("口", 1, 1, 0.55),
-    ("心", 0, 4, 0.65),
-    pytest.param(
-        "永",
-        0,
-        3,
-        0.67,
-        marks=pytest.mark.xfail(
-            strict=True,
-            reason="issue 26, open: the 撇 on the right leaves in a point short of the 捺 it "
-            "touches in the picture (4 pieces of ink for 3)",
-        ),
-    ),
-]
+# its corners were read: the foot of its hook and its 横折 cut off); 永's right 撇 touches its 捺
+# (3 pieces, not 4) since a stroke ending on another runs on into it (``outline.into_join``)
+DEGRADED = [("口", 1, 1, 0.55), ("心", 0, 4, 0.65), ("永", 0, 3, 0.67)]
 
 
 @pytest.mark.slow
@@ -474,3 +461,64 @@ def test_a_degraded_picture_keeps_its_boxes_dots_and_widths(c, n_holes, n_pieces
     assert box_iou(ink, truth) > least, c
     err, ratio = width_error(truth, ink)
     assert err < 0.2 and 0.8 < ratio < 1.25, (c, err, ratio)
+
+
+def test_a_written_end_that_overshoots_or_falls_short_is_moved_to_the_pictures():
+    from sim.picture.correct import corrected, end_moves
+
+    n, r = 128, 5.0
+    picture = np.zeros((n, n), bool)
+    picture[60:70, 20:100] = True  # a bar 80 px long, half-width 5
+    line = np.array([[25.0, 65.0], [95.0, 65.0]])  # its median, as read
+    over, short = picture.copy(), picture.copy()
+    over[60:70, 100:108] = True  # the writing ran 8 px past the right end
+    short[60:70, 94:100] = False  # ... or stopped 6 px short of it
+    assert end_moves(line, r, over, picture) == pytest.approx(-8.0, abs=1.0)
+    assert end_moves(line, r, short, picture) == pytest.approx(6.0, abs=1.0)
+    assert end_moves(line, r, picture, picture) == 0.0
+    joined = picture.copy()
+    joined[20:110, 100:110] = True  # the end runs into a vertical in both: left alone
+    assert end_moves(line, r, joined | over, joined) == 0.0
+    # the character data: the right end moved back by 8 / (1 - the writer's reach to the tip)
+    from sim.picture.outline import _to_data
+    from sim.writing.outline import TIP_REACH
+
+    med = [[round(float(x), 1), round(float(y), 1)] for x, y in _to_data(line, n)]
+    s = Stroke(line, np.full(2, r))
+    got = to_image(np.array(corrected({"medians": [med]}, [s], over, picture)["medians"][0]), n)
+    assert got[0] == pytest.approx(line[0], abs=0.2)
+    assert got[-1][0] == pytest.approx(95.0 - 8.0 / (1 - TIP_REACH[1]), abs=1.5)
+
+
+def _bars(*bars, n: int = 256) -> Ink:
+    from sim.writing.outline import discs
+
+    t = np.linspace(0.0, 1.0, 200)[:, None]
+    m = np.zeros((n, n), bool)
+    for a, b, r in bars:
+        a, b = np.array(a, float), np.array(b, float)
+        m |= discs(a + t * (b - a), np.full(200, float(r)), n)
+    return Ink(m, m.astype(float), 0.5, 1.0)
+
+
+def _ends(char: dict, n: int = 256) -> list:
+    return [to_image(np.array(m, dtype=float), n)[[0, -1]] for m in char["medians"]]
+
+
+def test_a_pointed_tip_past_the_corner_where_strokes_start_is_written():
+    # a vertical and a horizontal start at one corner (口's top left); a 露锋 tip reaches out
+    # up-left past it: the vertical (written first there) starts at the tip, not the corner
+    corner = [((60, 60), (60, 200), 8), ((60, 60), (200, 60), 8)]
+    plain = _ends(read_strokes(_bars(*corner))[2])
+    assert min(float(e[:, 0].min() + e[:, 1].min()) for e in plain) > 110  # none past it
+    tipped = _ends(read_strokes(_bars(*corner, ((60, 60), (49, 49), 4)))[2])
+    starts = [e[0] for e in tipped if e[1][1] > 150]  # the vertical
+    assert len(starts) == 1 and np.linalg.norm(starts[0] - (47.0, 47.0)) < 3.0, tipped
+
+
+def test_a_stroke_ending_on_another_runs_on_into_its_ink():
+    # a dot coming down-left onto a vertical (centre line x = 100, half-width 8) ends past the
+    # junction's centre, so the brush's lifted tip reaches the vertical, but inside its ink
+    ends = _ends(read_strokes(_bars(((100, 40), (100, 220), 8), ((160, 60), (108, 120), 5)))[2])
+    dot = [e for e in ends if e[0][0] > 140]
+    assert len(dot) == 1 and 92.0 < dot[0][1][0] < 99.0, ends
