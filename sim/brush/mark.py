@@ -59,6 +59,11 @@ _CASES = {
 SPAN_MARGIN_PX = 2.0
 # span pixels evaluated together (all primitives' marks at once, in groups of about this many)
 BATCH_PIXELS = 1 << 17
+# per-pixel stages (the section solve, the cover) run over runs of whole intervals of about this
+# many entries at a time, so that their dozens of temporaries stay in the processor's cache
+# instead of streaming through memory; every entry's arithmetic is its own, so the grouping
+# changes no bit (issue 28)
+CHUNK_ENTRIES = 1 << 13
 
 _SEG_A = np.full((16, 2), -1)
 _SEG_B = np.full((16, 2), -1)
@@ -799,12 +804,37 @@ def _interval_quadratics(rk: ContactRows, planes: RowPlanes, ent: Entries, y, sl
     )
 
 
+def _interval_chunks(count, size: int = CHUNK_ENTRIES):
+    """Runs of whole intervals of about ``size`` entries (at least one interval each): yields
+    (first interval, end interval, first entry, end entry) for intervals of ``count`` entries."""
+    ends = np.cumsum(count)
+    total = int(ends[-1]) if len(ends) else 0
+    if total <= size:
+        yield 0, len(count), 0, total
+        return
+    cut = np.searchsorted(ends, np.arange(size, total, size), side="left") + 1
+    bounds = np.unique(np.r_[0, np.minimum(cut, len(count)), len(count)]).tolist()
+    for i0, i1 in zip(bounds[:-1], bounds[1:], strict=False):
+        yield i0, i1, int(ends[i0] - count[i0]), int(ends[i1 - 1])
+
+
 def _section_solve(iq: IntervalQuadratics, count, x) -> SectionSolve:
     """Every entry's section plane (at lam between its slab's rows, where the rounded Hd of the
     crossing search changes sign) and its place there: tau - V^ = p U + q V (least squares,
     tolerant of the flat tip line). The intervals' quadratics are repeated over their entries
-    into contiguous rows."""
-    C = IntervalQuadratics._make(np.repeat(np.stack(iq), count, axis=1))
+    into contiguous rows, a cache-sized run of intervals at a time (``CHUNK_ENTRIES``)."""
+    out = SectionSolve(*(np.empty(len(x)) for _ in SectionSolve._fields))
+    table = np.stack(iq)
+    for i0, i1, e0, e1 in _interval_chunks(count):
+        part = _section_solve_run(table[:, i0:i1], count[i0:i1], x[e0:e1])
+        for o, v in zip(out, part, strict=True):
+            o[e0:e1] = v
+    return out
+
+
+def _section_solve_run(table, count, x) -> SectionSolve:
+    """``_section_solve`` of a run of intervals (``table``: their stacked quadratics)."""
+    C = IntervalQuadratics._make(np.repeat(table, count, axis=1))
     h0 = x * C.tx0 + C.h0
     h1 = x * C.tx1 + C.h1
     lam = np.clip(h0 / np.where(h0 != h1, h0 - h1, 1.0), 0.0, 1.0)
@@ -887,13 +917,17 @@ def _pixel_ink(inkp, rk: ContactRows, sc: Scanlines, ent: Entries, slab, n_ok, l
 
 def _cover(rk: ContactRows, slab, n_ok, lam, p, q, ppm) -> np.ndarray:
     """``section_cover`` of the inked pixels, from their sections' semi-axes between the rows
-    of their slabs (per interval, repeated over its inked pixels)."""
+    of their slabs (per interval, repeated over its inked pixels, a cache-sized run of
+    intervals at a time)."""
     U0, V0 = (a[:, :-1].reshape(-1, 3)[slab] for a in (rk.U, rk.V))
     dU, dV = (np.diff(a, axis=1).reshape(-1, 3)[slab] for a in (rk.U, rk.V))
-    L = lam[:, None]
-    U = np.repeat(U0, n_ok, axis=0) + L * np.repeat(dU, n_ok, axis=0)
-    V = np.repeat(V0, n_ok, axis=0) + L * np.repeat(dV, n_ok, axis=0)
-    return section_cover(U, V, p, q, ppm)
+    out = np.empty(len(lam))
+    for i0, i1, e0, e1 in _interval_chunks(n_ok):
+        n, L = n_ok[i0:i1], lam[e0:e1, None]
+        U = np.repeat(U0[i0:i1], n, axis=0) + L * np.repeat(dU[i0:i1], n, axis=0)
+        V = np.repeat(V0[i0:i1], n, axis=0) + L * np.repeat(dV[i0:i1], n, axis=0)
+        out[e0:e1] = section_cover(U, V, p[e0:e1], q[e0:e1], ppm)
+    return out
 
 
 def section_cover(U, V, p, q, ppm: float) -> np.ndarray:
