@@ -886,9 +886,27 @@ def _pixel_ink(inkp, rk: ContactRows, sc: Scanlines, ent: Entries, slab, n_ok, l
             np.diff(inkp[..., :nf], axis=1).reshape(-1, nf)[slab].T,
         ]
     ).astype(np.float32)
+    tex_scalars = None
+    if same_tex:
+        tex_scalars = {
+            n: [np.float32(v) for v in inkp[0, 0, INK_FIELDS[n]].tolist()] for n in TEXTURE_NAMES
+        }
+    lam = lam.astype(np.float32)
+    wet = np.empty(len(lam), dtype=np.float32)
+    col = np.empty((len(lam), 3), dtype=np.float32)
+    for i0, i1, e0, e1 in _interval_chunks(n_ok):  # cache-sized runs (CHUNK_ENTRIES)
+        wet[e0:e1], col[e0:e1] = _pixel_ink_run(
+            per[:, i0:i1], n_ok[i0:i1], lam[e0:e1], cols[e0:e1], nf, tex_scalars, ppm
+        )
+    return wet, col
+
+
+def _pixel_ink_run(per, n_ok, lam, cols, nf: int, tex_scalars, ppm):
+    """``_pixel_ink`` of a run of intervals: ``per`` their rows of per-interval numbers,
+    repeated over their inked pixels; ``tex_scalars`` the one texture function (None: each
+    pixel's own, from V^'s ink)."""
     D = np.repeat(per, n_ok, axis=1)
     offset, axis_step, ink0, ink_step = D[0:3], D[3:6], D[6 : 6 + nf], D[6 + nf :]
-    lam = lam.astype(np.float32)
     # tau - V^ (V^ = c0 + lam dc on the axis), then Eq. 22 and 23: V = V^ + (tau - V^) / f lies
     # on the surface and takes its ink from V^'s texture function, and Eq. 23 mixes V^'s and
     # V's by f, which folds into one factor on V^'s ink:
@@ -899,8 +917,8 @@ def _pixel_ink(inkp, rk: ContactRows, sc: Scanlines, ent: Entries, slab, n_ok, l
     at = ink0 + lam * ink_step  # Eq. 21: V^'s ink between the two rows around it
     dist = np.sqrt(ox * ox + oy * oy + oz * oz)
     o = (dist, ox, oy, oz)
-    if same_tex:
-        f = {n: [np.float32(v) for v in inkp[0, 0, INK_FIELDS[n]].tolist()] for n in TEXTURE_NAMES}
+    if tex_scalars is not None:
+        f = tex_scalars
     else:
         f = {n: list(at[INK_FIELDS[n]]) for n in TEXTURE_NAMES}
     w_fac = _factor(o, (*f["wr"], *f["wv"]))  # Eq. 22, 23
