@@ -59,6 +59,11 @@ _CASES = {
 SPAN_MARGIN_PX = 2.0
 # span pixels evaluated together (all primitives' marks at once, in groups of about this many)
 BATCH_PIXELS = 1 << 17
+# per-pixel stages (the section solve, the cover) run over runs of whole intervals of about this
+# many entries at a time, so that their dozens of temporaries stay in the processor's cache
+# instead of streaming through memory; every entry's arithmetic is its own, so the grouping
+# changes no bit (issue 28)
+CHUNK_ENTRIES = 1 << 13
 
 _SEG_A = np.full((16, 2), -1)
 _SEG_B = np.full((16, 2), -1)
@@ -799,12 +804,37 @@ def _interval_quadratics(rk: ContactRows, planes: RowPlanes, ent: Entries, y, sl
     )
 
 
+def _interval_chunks(count, size: int = CHUNK_ENTRIES):
+    """Runs of whole intervals of about ``size`` entries (at least one interval each): yields
+    (first interval, end interval, first entry, end entry) for intervals of ``count`` entries."""
+    ends = np.cumsum(count)
+    total = int(ends[-1]) if len(ends) else 0
+    if total <= size:
+        yield 0, len(count), 0, total
+        return
+    cut = np.searchsorted(ends, np.arange(size, total, size), side="left") + 1
+    bounds = np.unique(np.r_[0, np.minimum(cut, len(count)), len(count)]).tolist()
+    for i0, i1 in zip(bounds[:-1], bounds[1:], strict=False):
+        yield i0, i1, int(ends[i0] - count[i0]), int(ends[i1 - 1])
+
+
 def _section_solve(iq: IntervalQuadratics, count, x) -> SectionSolve:
     """Every entry's section plane (at lam between its slab's rows, where the rounded Hd of the
     crossing search changes sign) and its place there: tau - V^ = p U + q V (least squares,
     tolerant of the flat tip line). The intervals' quadratics are repeated over their entries
-    into contiguous rows."""
-    C = IntervalQuadratics._make(np.repeat(np.stack(iq), count, axis=1))
+    into contiguous rows, a cache-sized run of intervals at a time (``CHUNK_ENTRIES``)."""
+    out = SectionSolve(*(np.empty(len(x)) for _ in SectionSolve._fields))
+    table = np.stack(iq)
+    for i0, i1, e0, e1 in _interval_chunks(count):
+        part = _section_solve_run(table[:, i0:i1], count[i0:i1], x[e0:e1])
+        for o, v in zip(out, part, strict=True):
+            o[e0:e1] = v
+    return out
+
+
+def _section_solve_run(table, count, x) -> SectionSolve:
+    """``_section_solve`` of a run of intervals (``table``: their stacked quadratics)."""
+    C = IntervalQuadratics._make(np.repeat(table, count, axis=1))
     h0 = x * C.tx0 + C.h0
     h1 = x * C.tx1 + C.h1
     lam = np.clip(h0 / np.where(h0 != h1, h0 - h1, 1.0), 0.0, 1.0)
@@ -856,9 +886,27 @@ def _pixel_ink(inkp, rk: ContactRows, sc: Scanlines, ent: Entries, slab, n_ok, l
             np.diff(inkp[..., :nf], axis=1).reshape(-1, nf)[slab].T,
         ]
     ).astype(np.float32)
+    tex_scalars = None
+    if same_tex:
+        tex_scalars = {
+            n: [np.float32(v) for v in inkp[0, 0, INK_FIELDS[n]].tolist()] for n in TEXTURE_NAMES
+        }
+    lam = lam.astype(np.float32)
+    wet = np.empty(len(lam), dtype=np.float32)
+    col = np.empty((len(lam), 3), dtype=np.float32)
+    for i0, i1, e0, e1 in _interval_chunks(n_ok):  # cache-sized runs (CHUNK_ENTRIES)
+        wet[e0:e1], col[e0:e1] = _pixel_ink_run(
+            per[:, i0:i1], n_ok[i0:i1], lam[e0:e1], cols[e0:e1], nf, tex_scalars, ppm
+        )
+    return wet, col
+
+
+def _pixel_ink_run(per, n_ok, lam, cols, nf: int, tex_scalars, ppm):
+    """``_pixel_ink`` of a run of intervals: ``per`` their rows of per-interval numbers,
+    repeated over their inked pixels; ``tex_scalars`` the one texture function (None: each
+    pixel's own, from V^'s ink)."""
     D = np.repeat(per, n_ok, axis=1)
     offset, axis_step, ink0, ink_step = D[0:3], D[3:6], D[6 : 6 + nf], D[6 + nf :]
-    lam = lam.astype(np.float32)
     # tau - V^ (V^ = c0 + lam dc on the axis), then Eq. 22 and 23: V = V^ + (tau - V^) / f lies
     # on the surface and takes its ink from V^'s texture function, and Eq. 23 mixes V^'s and
     # V's by f, which folds into one factor on V^'s ink:
@@ -869,8 +917,8 @@ def _pixel_ink(inkp, rk: ContactRows, sc: Scanlines, ent: Entries, slab, n_ok, l
     at = ink0 + lam * ink_step  # Eq. 21: V^'s ink between the two rows around it
     dist = np.sqrt(ox * ox + oy * oy + oz * oz)
     o = (dist, ox, oy, oz)
-    if same_tex:
-        f = {n: [np.float32(v) for v in inkp[0, 0, INK_FIELDS[n]].tolist()] for n in TEXTURE_NAMES}
+    if tex_scalars is not None:
+        f = tex_scalars
     else:
         f = {n: list(at[INK_FIELDS[n]]) for n in TEXTURE_NAMES}
     w_fac = _factor(o, (*f["wr"], *f["wv"]))  # Eq. 22, 23
@@ -887,13 +935,17 @@ def _pixel_ink(inkp, rk: ContactRows, sc: Scanlines, ent: Entries, slab, n_ok, l
 
 def _cover(rk: ContactRows, slab, n_ok, lam, p, q, ppm) -> np.ndarray:
     """``section_cover`` of the inked pixels, from their sections' semi-axes between the rows
-    of their slabs (per interval, repeated over its inked pixels)."""
+    of their slabs (per interval, repeated over its inked pixels, a cache-sized run of
+    intervals at a time)."""
     U0, V0 = (a[:, :-1].reshape(-1, 3)[slab] for a in (rk.U, rk.V))
     dU, dV = (np.diff(a, axis=1).reshape(-1, 3)[slab] for a in (rk.U, rk.V))
-    L = lam[:, None]
-    U = np.repeat(U0, n_ok, axis=0) + L * np.repeat(dU, n_ok, axis=0)
-    V = np.repeat(V0, n_ok, axis=0) + L * np.repeat(dV, n_ok, axis=0)
-    return section_cover(U, V, p, q, ppm)
+    out = np.empty(len(lam))
+    for i0, i1, e0, e1 in _interval_chunks(n_ok):
+        n, L = n_ok[i0:i1], lam[e0:e1, None]
+        U = np.repeat(U0[i0:i1], n, axis=0) + L * np.repeat(dU[i0:i1], n, axis=0)
+        V = np.repeat(V0[i0:i1], n, axis=0) + L * np.repeat(dV[i0:i1], n, axis=0)
+        out[e0:e1] = section_cover(U, V, p[e0:e1], q[e0:e1], ppm)
+    return out
 
 
 def section_cover(U, V, p, q, ppm: float) -> np.ndarray:

@@ -243,3 +243,53 @@ def test_timings_split_a_run_into_its_stages_without_changing_it():
     assert rate > 0 and m == 4
     assert set(stages) == set(STAGES) | {"other"} and stages["other"] >= 0
     assert 0.5 < sum(stages.values()) * rate / 1e3 <= 1.01  # ms a sample add up to the rate
+
+
+def test_per_pixel_stages_in_cache_sized_runs_are_the_same_bits():
+    """The section solve and the cover run over runs of whole intervals of about
+    CHUNK_ENTRIES entries (issue 28): every run's entries are those of its intervals, the runs
+    cover every interval once, in order, and the answers are those of one run over all of
+    them, bit for bit."""
+    import sim.brush.mark as mark
+
+    rng = np.random.default_rng(3)
+    count = rng.integers(0, 40, 3000)  # intervals of 0..39 entries (empty ones too)
+    count[:5] = 0
+    E = int(count.sum())
+    assert E > 5 * mark.CHUNK_ENTRIES
+    for size in (1, 37, mark.CHUNK_ENTRIES, 10 * E):
+        runs = list(mark._interval_chunks(count, size))
+        assert runs[0][0] == 0 and runs[0][2] == 0 and runs[-1][1] == len(count)
+        assert runs[-1][3] == E
+        for (_, i1, _, e1), (j0, _, f0, _) in zip(runs[:-1], runs[1:], strict=True):
+            assert i1 == j0 and e1 == f0
+        for i0, i1, e0, e1 in runs:  # about ``size`` entries: at most one interval more
+            assert i1 > i0 and e1 - e0 == count[i0:i1].sum() <= size + count.max()
+        assert len(runs) == 1 if size >= E else len(runs) > 1
+
+    iq = mark.IntervalQuadratics._make(rng.normal(size=(23, len(count))))
+    x = rng.normal(size=E)
+    chunked = mark._section_solve(iq, count, x)
+    whole = mark._section_solve_run(np.stack(iq), count, x)
+    for a, b in zip(chunked, whole, strict=True):
+        assert a.tobytes() == b.tobytes()
+
+    U = rng.normal(size=(len(count), 3))
+    V = rng.normal(size=(len(count), 3))
+    dU, dV = 0.1 * rng.normal(size=U.shape), 0.1 * rng.normal(size=V.shape)
+    rk = mark.ContactRows(
+        c=None,
+        U=np.stack([U, U + dU], axis=1),
+        V=np.stack([V, V + dV], axis=1),
+        T=None,
+        slab_ok=None,
+        j0=0,
+        j1=2,
+    )
+    lam, p, q = rng.random(E), rng.normal(size=E), rng.normal(size=E)
+    slab = np.arange(len(count))
+    got = mark._cover(rk, slab, count, lam, p, q, 8.0)
+    L = lam[:, None]
+    Ue = np.repeat(U, count, axis=0) + L * np.repeat(np.diff(rk.U, axis=1)[:, 0], count, axis=0)
+    Ve = np.repeat(V, count, axis=0) + L * np.repeat(np.diff(rk.V, axis=1)[:, 0], count, axis=0)
+    assert got.tobytes() == mark.section_cover(Ue, Ve, p, q, 8.0).tobytes()
