@@ -180,12 +180,35 @@ def _entry_ramp(path, width, touch=ENTRY_TOUCH) -> np.ndarray:
     (``ENTRY_TOUCH``) while the brush already moves along the stroke, and the belly presses
     over the first stroke width of the way (a smoothstep), as a calligrapher enters - not a
     stationary press, which splays the hair into a round blob."""
-    seg = np.linalg.norm(np.diff(path, axis=0), axis=1)
-    s = np.concatenate([[0.0], np.cumsum(seg)])
-    ramp = float(np.clip(0.5 * np.max(width[: max(len(width) // 3, 1)]), 0.5, 0.25 * s[-1]))
-    t = np.clip(s / max(ramp, 1e-6), 0.0, 1.0)
+    s = _along(path)
+    t = np.clip(s / max(_ramp_length(s, width), 1e-6), 0.0, 1.0)
     entry = touch + (1.0 - touch) * t * t * (3.0 - 2.0 * t)
     return entry * _turn_ease(path, s)
+
+
+def _along(path) -> np.ndarray:
+    """Distance (mm) along ``path`` from its first point, per point."""
+    return np.concatenate([[0.0], np.cumsum(np.linalg.norm(np.diff(path, axis=0), axis=1))])
+
+
+def _ramp_length(s, width) -> float:
+    """How far (mm) into a movement the belly has pressed to the planned press (``_entry_ramp``):
+    half the stroke's width over its first third, at least 0.5 mm, at most a quarter of the
+    movement (``s``: distance along it per sample)."""
+    return float(np.clip(0.5 * np.max(width[: max(len(width) // 3, 1)]), 0.5, 0.25 * s[-1]))
+
+
+def entry_zone(pl: Plan, body) -> np.ndarray:
+    """For each body sample of a stroke, whether it lies in a movement's entry, where the belly
+    is still pressing down (``_entry_ramp``): the planned gesture (起笔), not yet the stroke's
+    band. A hook, which sets off pressed, has none."""
+    runs = _movements(body)
+    zone = [np.zeros(len(r), dtype=bool) for r in runs]
+    for r, (run, hook) in enumerate(zip(runs, _is_hook(pl, runs), strict=True)):
+        if not hook:
+            s = _along(pl.target[run])
+            zone[r] = s < _ramp_length(s, pl.width[run])
+    return np.concatenate(zone)
 
 
 def _turn_ease(path, s) -> np.ndarray:
