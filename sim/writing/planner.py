@@ -211,6 +211,20 @@ def entry_zone(pl: Plan, body) -> np.ndarray:
     return np.concatenate(zone)
 
 
+def point_zone(pl: Plan, body) -> np.ndarray:
+    """For each body sample of a stroke, whether it lies in the last stretch of a movement that
+    ends in a point (``_point_reach``), as long as the stroke is wide there: where the belly
+    lets go, and the band read there narrows because the brush lifts off, not because it is
+    pressed too little."""
+    runs = _movements(body)
+    zone = [np.zeros(len(r), dtype=bool) for r in runs]
+    for r, run in enumerate(runs):
+        if r == len(runs) - 1 and _point_reach(pl.target[run], pl.width[run]) > 0.0:
+            s = _along(pl.target[run])
+            zone[r] = s > s[-1] - float(pl.width[run][-1])
+    return np.concatenate(zone)
+
+
 def _turn_ease(path, s) -> np.ndarray:
     """Less press where the stroke turns back on itself (a hook, the sharp turn of a 折): a
     calligrapher eases the belly off and turns on the tip there; pressed through a sharp turn
@@ -260,9 +274,39 @@ def _enter_and_leave(samples, pl, body, hover, hair, step_mm, corner=(None, None
     t1 = pl.tangent[body[-1]]
     f = np.arange(1, len(lift) + 1) / max(len(lift), 1)
     flick = 0.5 * step_mm if corner[1] is None else 0.0  # into a sharp turn: lift on the corner
-    samples[lift, :2] = samples[body[-1], :2] + (f * len(lift) * flick)[:, None] * t1
+    travel = f * len(lift) * flick
     top = hover if corner[1] is None else corner[1]
-    samples[lift, 2] = samples[body[-1], 2] + (top - samples[body[-1], 2]) * np.sqrt(f)
+    z0 = samples[body[-1], 2]
+    rise = z0 + (top - z0) * np.sqrt(f)
+    point = _point_reach(pl.target[body], pl.width[body]) if corner[1] is None else 0.0
+    if point > 0.0:  # 出锋: the belly lets go evenly as the brush sweeps on, out to the point
+        g = np.clip(f / POINT_LIFT, 0.0, 1.0)
+        travel = np.maximum(travel, g * point)
+        rise = np.where(f <= POINT_LIFT, z0 + (hair - z0) * g, rise)
+    samples[lift, :2] = samples[body[-1], :2] + travel[:, None] * t1
+    samples[lift, 2] = rise
+
+
+POINT_SHARE = 0.6  # a movement whose planned width ends below this share of its widest, ...
+POINT_PEAK = 0.6  # ... its widest point lying in this first share of it, ends in a point
+POINT_LIFT = 0.75  # share of the lift-off over which the belly lets go, sweeping out to the point
+
+
+def _point_reach(path, width) -> float:
+    """How far (mm) past its median's end a movement's outline runs on to its point (the
+    median stops short of it), for a movement that narrows to its end (出锋: a hook, a 撇, a
+    提; ``width`` planned per body sample along ``path``): from its widest, in its first
+    ``POINT_PEAK`` share, to an end below ``POINT_SHARE`` of that; the last width over the
+    rate it narrowed at, from half to twice that width. 0 for any other movement: a round or
+    pressed end (收笔), whose width falls only over the end's cap, a 捺 that swells to its end."""
+    n = len(width)
+    top = int(np.argmax(width))
+    w, w_max = float(width[-1]), float(width[top])
+    if n < 5 or top > POINT_PEAK * (n - 1) or w >= POINT_SHARE * w_max:
+        return 0.0
+    run = float(np.linalg.norm(np.diff(path[top:], axis=0), axis=1).sum())
+    rate = (w_max - w) / max(run, 1e-9)
+    return float(np.clip(w / max(rate, 1e-6), 0.5 * w, 2.0 * w))
 
 
 def _is_hook(pl: Plan, runs) -> list[bool]:
