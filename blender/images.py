@@ -95,7 +95,8 @@ class WorkView:
     def _band(self, paper, y0: int, y1: int):
         """Paper rows y0:y1 (bottom first) converted, the overlay drawn on them (top first)."""
         top = paper.H - y1  # the band's first row counted from the top
-        vis = np.ascontiguousarray(paper.visible(paper.ink[y0:y1])[::-1], dtype=np.float32)
+        band = paper.visible(paper.ink[y0:y1], slice(y0, y1), slice(0, paper.W))
+        vis = np.ascontiguousarray(band[::-1], dtype=np.float32)
         if self.overlay is not None:
             vis = self.overlay.apply(vis, top)
         self.pixels[y0:y1, :, :3] = display.encode(np.clip(vis[::-1], 0.0, 1.0), self.linear)

@@ -52,6 +52,7 @@ class Simulation:
             dry_per_step=self.q.dry * DRY_RATE * self.dt,
             grain_seed=recording.seed,
             fibre=self.paper_spec.fibre,
+            texture=self.paper_spec.texture,
         )
         self.predictor = InertiaPredictor(self.dt)
         self.dips = recording.dips_or_default()
