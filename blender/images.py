@@ -9,6 +9,7 @@ import numpy as np
 
 from ..sim.image.matte import ink_matte
 from ..sim.paper import display
+from ..sim.paper.texture import paper_tone
 from . import checks, runtime
 
 PAPER_IMAGE = "HairyBrush Paper"
@@ -177,20 +178,22 @@ def write_density(dens, density):
 
 
 def density_from_image(st, img) -> np.ndarray:
-    """The ink density (H, W) the paper image shows: 1 - visible / the paper's colour, the
-    channels' mean (the inverse of ``Paper.rgb``, to the image's precision)."""
-    paper = np.maximum(np.asarray(blank_color(st), np.float32), 1e-6)
-    return np.clip(1.0 - image_rgb(img) / paper, 0.0, 1.0).mean(axis=2)
+    """The ink density (H, W) the paper image shows: 1 - visible / the blank sheet's colour
+    (with its texture, for an image of the paper's size), the channels' mean (the inverse of
+    ``Paper.rgb``, to the image's precision)."""
+    rgb = image_rgb(img)
+    if rgb.shape[:2] == checks.paper_pixels(st)[::-1]:
+        paper = np.maximum(blank_sheet(st), 1e-6)
+    else:
+        paper = np.maximum(np.asarray(blank_color(st), np.float32), 1e-6)
+    return np.clip(1.0 - rgb / paper, 0.0, 1.0).mean(axis=2)
 
 
 def show_blank(st):
     """The paper image as the blank paper of the scene's paper preset."""
     color = blank_color(st)
     img = ensure_paper_image(st, color)
-    w, h = checks.paper_pixels(st)
-    blank = np.empty((h, w, 3), np.float32)
-    blank[:] = color
-    write_image(img, blank)
+    write_image(img, blank_sheet(st))
     img[SHOWN_TAG] = 0
     if density_read(img, tag_reliefs(img)):
         show_density(img)
@@ -201,6 +204,20 @@ def show_blank(st):
 def blank_color(st) -> tuple:
     """The blank paper's colour as the engine will simulate it."""
     return tuple(float(c) for c in st.paper_color)
+
+
+def blank_sheet(st) -> np.ndarray:
+    """The blank paper (H, W, 3), bottom row first, as the engine will show it: its colour
+    with its texture (``sim.paper.texture``: the scene's Texture, px/mm and seed); a mesh made
+    paper shows none (``Simulation``: a mesh is not xuan)."""
+    from .recordings import scene_seed
+    from .surfaces import is_surface
+
+    w, h = checks.paper_pixels(st)
+    color = np.asarray(blank_color(st), np.float32)
+    texture = 0.0 if is_surface(st) else float(st.paper_texture)
+    tone = paper_tone(slice(0, h), slice(0, w), float(st.px_per_mm), texture, scene_seed(st))
+    return np.clip(color * tone[..., None], 0.0, 1.0)
 
 
 def write_image(img, rgb_bottom_up: np.ndarray):
