@@ -177,23 +177,24 @@ def write_density(dens, density):
     keep_packed(dens)
 
 
-def density_from_image(st, img) -> np.ndarray:
+def density_from_image(st, img, texture: float) -> np.ndarray:
     """The ink density (H, W) the paper image shows: 1 - visible / the blank sheet's colour
-    (with its texture, for an image of the paper's size), the channels' mean (the inverse of
-    ``Paper.rgb``, to the image's precision)."""
+    (with its ``texture``, for an image of the paper's size), the channels' mean (the inverse
+    of ``Paper.rgb``, to the image's precision)."""
     rgb = image_rgb(img)
     if rgb.shape[:2] == checks.paper_pixels(st)[::-1]:
-        paper = np.maximum(blank_sheet(st), 1e-6)
+        paper = np.maximum(blank_sheet(st, texture), 1e-6)
     else:
         paper = np.maximum(np.asarray(blank_color(st), np.float32), 1e-6)
     return np.clip(1.0 - rgb / paper, 0.0, 1.0).mean(axis=2)
 
 
-def show_blank(st):
-    """The paper image as the blank paper of the scene's paper preset."""
+def show_blank(st, texture: float):
+    """The paper image as the blank paper of the scene's paper preset (``texture``: how much
+    its sheet shows, ``surfaces.paper_texture``)."""
     color = blank_color(st)
     img = ensure_paper_image(st, color)
-    write_image(img, blank_sheet(st))
+    write_image(img, blank_sheet(st, texture))
     img[SHOWN_TAG] = 0
     if density_read(img, tag_reliefs(img)):
         show_density(img)
@@ -206,16 +207,13 @@ def blank_color(st) -> tuple:
     return tuple(float(c) for c in st.paper_color)
 
 
-def blank_sheet(st) -> np.ndarray:
+def blank_sheet(st, texture: float) -> np.ndarray:
     """The blank paper (H, W, 3), bottom row first, as the engine will show it: its colour
-    with its texture (``sim.paper.texture``: the scene's Texture, px/mm and seed); a mesh made
-    paper shows none (``Simulation``: a mesh is not xuan)."""
+    with its texture (``sim.paper.texture``: ``texture``, the scene's px/mm and seed)."""
     from .recordings import scene_seed
-    from .surfaces import is_surface
 
     w, h = checks.paper_pixels(st)
     color = np.asarray(blank_color(st), np.float32)
-    texture = 0.0 if is_surface(st) else float(st.paper_texture)
     tone = paper_tone(slice(0, h), slice(0, w), float(st.px_per_mm), texture, scene_seed(st))
     return np.clip(color * tone[..., None], 0.0, 1.0)
 

@@ -39,7 +39,7 @@ def test_setup_builds_paper_and_brush_in_metres(hb):
         .color
     )
     # the blank sheet: the preset's colour with its texture (clouds and fibres, a few per cent)
-    sheet = ext().blender.images.blank_sheet(st)
+    sheet = ext().blender.images.blank_sheet(st, st.paper_texture)
     np.testing.assert_allclose(pixels(img)[..., :3], sheet, atol=1e-3)
     np.testing.assert_allclose(sheet.reshape(-1, 3).mean(axis=0), color, rtol=0.02)
     assert st.paper_texture > 0 and sheet[..., 1].std() > 0.002
