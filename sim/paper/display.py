@@ -16,7 +16,7 @@ import numpy as np
 from .paper import Paper
 
 SRGB_LEVELS = 4096  # steps of the sRGB -> linear table
-BLANK_ROWS = 256  # rows of the blank sheet made at a time (no full-size float temporaries)
+BLANK_ROWS = 64  # rows of the blank sheet made at a time (a row of the paper's tiles)
 
 
 def srgb_to_linear(v) -> np.ndarray:
@@ -60,7 +60,7 @@ class PaperView:
             for y0 in range(0, paper.H, BLANK_ROWS):  # the blank sheet, a band of rows at a time
                 ys = slice(y0, min(y0 + BLANK_ROWS, paper.H))
                 blank = paper.visible(np.zeros(3, np.float32), ys, slice(0, paper.W))
-                self.pixels[ys, :, :3] = encode(blank, self.linear)
+                self.pixels[ys, :, :3] = encode(blank, self.linear)  # (its tiles' tone is kept)
             self.pixels[..., 3] = 1.0
             self._paper, self._version = paper, 0
         rows = _row_runs(paper.tiles_since(self._version))

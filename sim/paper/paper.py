@@ -28,7 +28,7 @@ import numpy as np
 
 from ..image.png import to_uint8
 from .grain import paper_grain
-from .texture import paper_tone
+from .texture import paper_tone, sheet_tone
 
 _RGB = np.dtype((np.void, 12))  # a pixel's three float32 ink densities as one item
 DRY_RATE = 1.0  # capacity units per second at dry = 1
@@ -266,8 +266,10 @@ class Paper:
         """The bare sheet's colour (h, w, 3) at the pixels (``rows``, ``cols``) of a grid of
         ``ppm`` pixels a millimetre (the paper's own by default; a print's finer one keeps the
         clouds and fibres their size in mm): its colour times its tone (``paper_tone``)."""
-        ppm = self.ppm if ppm is None else float(ppm)
-        tone = paper_tone(rows, cols, ppm, self.texture, self.grain_seed)
+        if ppm is None:  # the paper's own pixels: made a tile at a time, once (sheet_tone)
+            tone = sheet_tone(rows, cols, self.ppm, self.texture, self.grain_seed, TILE)
+        else:
+            tone = paper_tone(rows, cols, float(ppm), self.texture, self.grain_seed)
         return np.clip(self.color * tone[..., None], 0.0, 1.0)
 
     def rgb8(self, chunk_rows: int = 256) -> np.ndarray:

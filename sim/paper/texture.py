@@ -17,6 +17,8 @@ threads in mm at any resolution. No generator is drawn, so the brush's draws are
 
 from __future__ import annotations
 
+from functools import lru_cache
+
 import numpy as np
 
 from .grain import paper_grain
@@ -29,6 +31,7 @@ FIBRE_BEND_MM = 0.6  # how far the small clouds push a fibre sideways (they curl
 FIBRE_SHARE = 0.12  # share of a fibre noise's range at either end that shows as a thread
 MOTTLE = 0.6  # the clouds' and ...
 THREADS = 0.4  # ... the fibres' share of the texture
+TONE_TILES = 2048  # tiles of tone kept (``sheet_tone``; 16 KB each at 64 px: 32 MB at most)
 _OCTAVE = 1 << 40  # index offsets that keep the noises' lattices apart
 _HALF = 1 << 19  # lattice indices are offset by this to stay positive (sheets < 2**19 cells)
 
@@ -83,3 +86,32 @@ def paper_tone(rows: slice, cols: slice, ppm: float, texture: float, seed: int =
         fibres += np.clip((np.abs(n) - (1.0 - FIBRE_SHARE)) / FIBRE_SHARE, 0.0, 1.0) * np.sign(n)
     fibres = np.clip(fibres, -1.0, 1.0)
     return (1.0 + texture * (MOTTLE * clouds + THREADS * fibres)).astype(np.float32)
+
+
+@lru_cache(maxsize=TONE_TILES)
+def _tile_tone(ty: int, tx: int, tile: int, ppm: float, texture: float, seed: int):
+    """``paper_tone`` of the tile (ty, tx), ``tile`` pixels a side, kept (read-only)."""
+    tone = paper_tone(
+        slice(ty * tile, (ty + 1) * tile), slice(tx * tile, (tx + 1) * tile), ppm, texture, seed
+    )
+    tone.flags.writeable = False
+    return tone
+
+
+def sheet_tone(rows: slice, cols: slice, ppm: float, texture: float, seed: int, tile: int):
+    """``paper_tone`` of the window, put together from tiles of ``tile`` pixels that are made
+    once and kept (the same values: each pixel's tone is its own): a display refreshing the
+    tiles the brush changed, or going back to an earlier frame, makes none of them again."""
+    h, w = rows.stop - rows.start, cols.stop - cols.start
+    if texture <= 0.0 or h <= 0 or w <= 0:
+        return paper_tone(rows, cols, ppm, texture, seed)
+    out = np.empty((h, w), dtype=np.float32)
+    for ty in range(rows.start // tile, (rows.stop - 1) // tile + 1):
+        r0, r1 = max(rows.start, ty * tile), min(rows.stop, (ty + 1) * tile)
+        for tx in range(cols.start // tile, (cols.stop - 1) // tile + 1):
+            c0, c1 = max(cols.start, tx * tile), min(cols.stop, (tx + 1) * tile)
+            t = _tile_tone(ty, tx, tile, ppm, texture, seed)
+            out[r0 - rows.start : r1 - rows.start, c0 - cols.start : c1 - cols.start] = t[
+                r0 - ty * tile : r1 - ty * tile, c0 - tx * tile : c1 - tx * tile
+            ]
+    return out

@@ -8,13 +8,17 @@ from sim.image.png import to_uint8
 from sim.image.prints import print_image
 from sim.paper.display import PaperView
 from sim.paper.paper import Paper
-from sim.paper.texture import CLOUD_MM, paper_tone
+from sim.paper.texture import CLOUD_MM, paper_tone, sheet_tone
 
 
 def test_the_tone_is_the_same_in_any_window_and_for_the_same_sheet_only():
     whole = paper_tone(slice(0, 90), slice(0, 120), 5.0, 0.05, seed=3)
     part = paper_tone(slice(31, 77), slice(50, 119), 5.0, 0.05, seed=3)
     assert np.array_equal(whole[31:77, 50:119], part)  # a tile is the sheet's, bit for bit
+    kept = sheet_tone(slice(31, 77), slice(50, 119), 5.0, 0.05, 3, tile=16)  # from kept tiles
+    assert np.array_equal(kept, part) and np.array_equal(
+        sheet_tone(slice(31, 77), slice(50, 119), 5.0, 0.05, 3, tile=16), part
+    )
     assert np.array_equal(whole, paper_tone(slice(0, 90), slice(0, 120), 5.0, 0.05, seed=3))
     other = paper_tone(slice(0, 90), slice(0, 120), 5.0, 0.05, seed=4)
     assert np.abs(other - whole).mean() > 0.003  # another seed, another sheet
