@@ -38,7 +38,11 @@ def simulate(
 
 
 def darkness(sim):
-    return 1.0 - sim.paper.rgb().mean(axis=2) / sim.paper.color.mean()
+    """(H, W) ink darkness, bottom row first: 0 the paper (its sheet, texture and all), 1 black."""
+    H, W = sim.paper.shape
+    return 1.0 - sim.paper.rgb().mean(axis=2) / sim.paper.sheet(slice(0, H), slice(0, W)).mean(
+        axis=2
+    )
 
 
 def line(**kw):

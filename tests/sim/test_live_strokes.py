@@ -50,9 +50,11 @@ def paint(live, p0, p1, seconds, t0=0.0, pressure=None, tilt=None, release=True,
 
 
 def darkness(sim) -> np.ndarray:
-    """(H, W) ink darkness, bottom row first: 0 the paper, 1 black."""
-    grey = sim.paper.rgb().mean(axis=2)
-    return 1.0 - grey / grey.max()
+    """(H, W) ink darkness, bottom row first: 0 the paper (its sheet, texture and all), 1 black."""
+    H, W = sim.paper.shape
+    return 1.0 - sim.paper.rgb().mean(axis=2) / sim.paper.sheet(slice(0, H), slice(0, W)).mean(
+        axis=2
+    )
 
 
 def widths(sim, y_mm: float, x_mm) -> np.ndarray:
