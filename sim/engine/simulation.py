@@ -22,6 +22,10 @@ from ..surface.paper import CHART_SHAPE
 # samples whose marks are filled in together by ``run`` (the brush never reads the paper, so its
 # dynamics can run ahead of the paper; each step's deposit still comes in order)
 BATCH_STEPS = 8
+# at most this many waiting samples have their marks filled in one pass when the paper catches
+# up with a brush that ran ahead (``advance``, ``settle``): fewer passes, each over more pixels
+# (issue 28); any grouping gives the same marks, bit for bit (``fill_marks``)
+FILL_STEPS = 32
 
 
 class PendingDeposit(NamedTuple):
@@ -58,6 +62,7 @@ class Simulation:
         self.index = 0  # next sample to process
         self.last_marks = []
         self._pending: list[PendingDeposit] = []  # moved but not yet deposited (see run)
+        self._filled: list = []  # the marks of the first waiting samples, filled in already
         self.timings = None  # a dict to keep the seconds spent in every stage (the benchmark)
         first = self._sample(0)
         self.brush.place(
@@ -154,14 +159,44 @@ class Simulation:
             self.timings[stage] = self.timings.get(stage, 0.0) + (now - t0)
         return now
 
-    def _deposit_pending(self):
-        """Fill in the waiting samples' marks together, then deposit them in order."""
-        if not self._pending:
-            return
+    def advance(self, until: int):
+        """The brush alone up to sample ``until`` (not past the recording's end): its marks
+        wait for the paper, which ``settle`` or ``run`` brings up to it (the brush never reads
+        the paper)."""
+        end = min(until, len(self.rec.samples))
+        while self.index < end:
+            self._advance()
+
+    def settle(self, until: int):
+        """The paper up to sample ``until`` (as ``run(until)`` leaves it), the brush having run
+        at least that far (``advance``)."""
+        self._deposit_pending(until)
+
+    def _drop_pending(self):
+        """Forget the samples the paper has not taken (the brush is put back)."""
+        self._pending = []
+        self._filled = []
+
+    def _deposit_pending(self, until: int | None = None):
+        """Fill in the waiting samples' marks together (up to FILL_STEPS at a time), then
+        deposit them in order: all of them, or those of samples before ``until``."""
+        while self._pending and (until is None or self._pending[0].step <= until):
+            if not self._filled:
+                t0 = time.perf_counter()
+                batch = [p.cut for p in self._pending[:FILL_STEPS]]
+                self._filled = fill_marks(batch, self.paper.ppm)
+                self._tick("mark pixels", t0)
+            stop = len(self._filled)
+            if until is not None:
+                stop = min(stop, sum(1 for p in self._pending[:stop] if p.step <= until))
+            self._deposit(self._pending[:stop], self._filled[:stop])
+            del self._pending[:stop]
+            del self._filled[:stop]
+
+    def _deposit(self, pending, marks_per_step):
+        """Deposit the marks of waiting samples, in order."""
         t0 = time.perf_counter()
-        marks_per_step = fill_marks([p.cut for p in self._pending], self.paper.ppm)
-        t0 = self._tick("mark pixels", t0)
-        for p, marks in zip(self._pending, marks_per_step, strict=True):
+        for p, marks in zip(pending, marks_per_step, strict=True):
             if self.surface is None:
                 marks = bristles.across(marks, p.bristles, self.paper.ppm)
                 marks = bristles.lay(marks, p.bristles, self.paper.ppm)  # the hair bundles (Eq. 27)
@@ -176,7 +211,6 @@ class Simulation:
             for group in groups:  # far apart in the texture (a seam): a window each
                 self.paper.deposit(group, self.q, self.dt, p.step)
             self.last_marks = [mk for group in groups for mk in group]
-        self._pending = []
         self._tick("paper", t0)
 
     def run(self, until: int | None = None, progress=None):
@@ -239,7 +273,7 @@ class Simulation:
 
     def _set_state(self, state: dict):
         """Everything of a snapshot or hold but the paper."""
-        self._pending = []
+        self._drop_pending()
         self.index = state["index"]
         self.brush.restore(state["brush"])
         self.rng.bit_generator.state = state["rng"]
