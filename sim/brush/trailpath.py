@@ -17,7 +17,10 @@ come from less work (an addition for speed, not a change of the model):
   segment, where a segment measured twice is met first at its own place), and a few pixels
   against all segments: the same arithmetic, element by element, as against all segments, so
   the same nearest segment (a segment left out is farther than the nearest by more than
-  rounding: never the first of equals) and the same distance, bit for bit."""
+  rounding: never the first of equals) and the same distance, bit for bit;
+- many steps' pixels, each step with its own path, are measured together
+  (``signed_distances_many``): every pixel against its own step's segments, in one pass of
+  numpy calls instead of one per step (issue 28), the same numbers as step by step."""
 
 from __future__ import annotations
 
@@ -138,6 +141,109 @@ def signed_distances(path, rows, cols, ppm: float) -> np.ndarray:
         at = stop
     out[:] = lat[inverse]
     return out
+
+
+def signed_distances_many(paths, owner, rows, cols, ppm: float) -> np.ndarray:
+    """``signed_distances`` of pixels of many steps at once, bit for bit as step by step:
+    pixel i (rows[i], cols[i]) is measured from the polyline ``paths[owner[i]]`` (each of
+    k >= 2 points, mm). Every step's pixels are taken once each; the segments of all paths
+    are one table, each with its bounds of t (a path's first segment a ray going back, its
+    last one going on ahead), so each pixel is measured against a run of its own path's
+    segments (those its tile can have nearest, see the module's note)."""
+    out = np.empty(rows.size, dtype=np.float32)
+    if rows.size == 0:
+        return out
+    parts = [segments(np.asarray(p, dtype=float)) for p in paths]
+    n_seg = np.array([len(p[0]) for p in parts])
+    seg_at = np.cumsum(n_seg) - n_seg  # every path's first segment in the table
+    seg = tuple(np.concatenate(f) for f in zip(*parts, strict=True))
+    r0, c0 = int(rows.min()), int(cols.min())
+    hb, wb = int(rows.max()) - r0 + 1, int(cols.max()) - c0 + 1
+    key = (owner.astype(np.int64) * hb + (rows - r0)) * wb + (cols - c0)
+    if len(paths) * hb * wb <= 8 * rows.size + (1 << 20):  # each pixel once a step: a mask
+        seen = np.zeros(len(paths) * hb * wb, dtype=bool)
+        seen[key] = True
+        uniq = np.flatnonzero(seen)
+        inverse = (np.cumsum(seen) - 1)[key]
+    else:
+        uniq, inverse = np.unique(key, return_inverse=True)
+    us, rest = np.divmod(uniq, hb * wb)  # the pixel's step, and its place in the box
+    ur, uc = np.divmod(rest, wb)
+    x = (uc + c0 + 0.5) / ppm  # as (column + 0.5) / ppm: the same doubles
+    y = (ur + r0 + 0.5) / ppm
+    lo_s, hi_s = _segment_ranges_many(seg, seg_at, n_seg, (us, ur, uc), (r0, c0), ppm, paths)
+    width = hi_s - lo_s
+    lat = np.empty(uniq.size)
+    ends = np.cumsum(width)
+    at = 0
+    while at < uniq.size:  # pixels in blocks of about BLOCK_ELEMENTS (pixel, segment) pairs
+        stop = max(int(np.searchsorted(ends, ends[at] - width[at] + BLOCK_ELEMENTS)), at + 1)
+        blk = slice(at, stop)
+        lat[blk] = _measure_own_runs(x[blk], y[blk], seg, lo_s[blk], width[blk])
+        at = stop
+    out[:] = lat[inverse]
+    return out
+
+
+def _measure_own_runs(x, y, seg, first, width):
+    """``_measure_runs`` with every segment's own bounds of t (segments of many paths)."""
+    start = np.cumsum(width) - width  # every point's first pair
+    pt = np.repeat(np.arange(width.size), width)
+    idx = np.arange(pt.size) + np.repeat(first - start, width)  # the pair's segment
+    a, d, dd, lo, hi = seg
+    d0, d1 = d[idx, 0], d[idx, 1]
+    rx = x[pt] - a[idx, 0]
+    ry = y[pt] - a[idx, 1]
+    t = np.clip((rx * d0 + ry * d1) / dd[idx], lo[idx], hi[idx])  # picks the same bound
+    ex, ey = rx - t * d0, ry - t * d1
+    dist2 = ex * ex + ey * ey
+    best = np.minimum.reduceat(dist2, start)
+    hit = np.flatnonzero(dist2 == np.repeat(best, width))
+    k = hit[np.r_[True, pt[hit[1:]] != pt[hit[:-1]]]]  # the first nearest pair of each point
+    side = d0[k] * ry[k] - d1[k] * rx[k]
+    return np.sqrt(dist2[k]) * np.where(side < 0, -1, 1)
+
+
+def _segment_ranges_many(seg, seg_at, n_seg, pixels, origin, ppm, paths):
+    """``_segment_ranges`` of pixels of many steps (``pixels``: each one's step, row and
+    column from ``origin``): the run [lo, hi) of the table's segments, all of its own step's
+    path, that can be nearest to it, as its tile (of its step) keeps them."""
+    us, ur, uc = pixels
+    r0, c0 = origin
+    ts = max(int(round(TILE_MM * ppm)), 4)  # tile side, pixels
+    ty, tx = ur // ts, uc // ts
+    nty, ntx = int(ty.max()) + 1, int(tx.max()) + 1
+    tid = (us * nty + ty) * ntx + tx
+    occupied = np.zeros(len(paths) * nty * ntx, dtype=bool)
+    occupied[tid] = True
+    tiles = np.flatnonzero(occupied)
+    tslot = np.cumsum(occupied) - 1
+    t_step, t_rest = np.divmod(tiles, nty * ntx)
+    # the tiles' centres (mm) and reach: the farthest pixel centre of a whole tile
+    cy = (r0 + (t_rest // ntx) * ts + 0.5 * (ts - 1) + 0.5) / ppm
+    cx = (c0 + (t_rest % ntx) * ts + 0.5 * (ts - 1) + 0.5) / ppm
+    reach = 0.5 * (ts - 1) * np.sqrt(2.0) / ppm
+    # every tile against every segment of its step's path
+    width = n_seg[t_step]
+    start = np.cumsum(width) - width
+    pt = np.repeat(np.arange(tiles.size), width)
+    idx = np.arange(pt.size) + np.repeat(seg_at[t_step] - start, width)
+    a, d, dd, lo, hi = seg
+    rx = cx[pt] - a[idx, 0]
+    ry = cy[pt] - a[idx, 1]
+    t = np.clip((rx * d[idx, 0] + ry * d[idx, 1]) / dd[idx], lo[idx], hi[idx])
+    ex, ey = rx - t * d[idx, 0], ry - t * d[idx, 1]
+    dist = np.sqrt(ex * ex + ey * ey)
+    # the rounding allowance of each step (its path's and its tiles' largest coordinates)
+    scale = 1.0 + np.array([float(np.abs(p).max()) for p in paths])
+    big = np.zeros(len(paths))
+    np.maximum.at(big, t_step, np.maximum(np.abs(cx), np.abs(cy)))
+    bound = np.minimum.reduceat(dist + reach, start) + SLACK * (scale + 2.0 * big)[t_step]
+    keep = dist - reach <= bound[pt]
+    first = np.minimum.reduceat(np.where(keep, idx, idx.size + len(seg[0])), start)
+    last = np.maximum.reduceat(np.where(keep, idx, -1), start) + 1
+    slot = tslot[tid]
+    return first[slot], last[slot]
 
 
 def _segment_ranges(seg, ur, uc, r0, c0, ppm, path):

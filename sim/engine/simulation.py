@@ -182,10 +182,7 @@ class Simulation:
         deposit them in order: all of them, or those of samples before ``until``."""
         while self._pending and (until is None or self._pending[0].step <= until):
             if not self._filled:
-                t0 = time.perf_counter()
-                batch = [p.cut for p in self._pending[:FILL_STEPS]]
-                self._filled = fill_marks(batch, self.paper.ppm)
-                self._tick("mark pixels", t0)
+                self._filled = self._fill(self._pending[:FILL_STEPS])
             stop = len(self._filled)
             if until is not None:
                 stop = min(stop, sum(1 for p in self._pending[:stop] if p.step <= until))
@@ -193,18 +190,30 @@ class Simulation:
             del self._pending[:stop]
             del self._filled[:stop]
 
+    def _fill(self, pending) -> list:
+        """The marks of waiting samples, filled in together (Eq. 21-23) and, on the flat
+        paper, laid by the hair bundles (``bristles``); on a surface the bundles lay them once
+        they are splatted into the texture (``_deposit``)."""
+        t0 = time.perf_counter()
+        ppm = self.paper.ppm
+        marks = fill_marks([p.cut for p in pending], ppm)
+        t0 = self._tick("mark pixels", t0)
+        states = [p.bristles for p in pending]
+        marks = bristles.across_steps(marks, states, ppm)  # on the chart, on a surface
+        if self.surface is None:
+            marks = bristles.lay_steps(marks, states, ppm)  # the hair bundles (Eq. 27)
+        self._tick("paper", t0)
+        return marks
+
     def _deposit(self, pending, marks_per_step):
-        """Deposit the marks of waiting samples, in order."""
+        """Deposit the filled marks of waiting samples, in order (Eq. 24-27)."""
         t0 = time.perf_counter()
         for p, marks in zip(pending, marks_per_step, strict=True):
             if self.surface is None:
-                marks = bristles.across(marks, p.bristles, self.paper.ppm)
-                marks = bristles.lay(marks, p.bristles, self.paper.ppm)  # the hair bundles (Eq. 27)
                 self.paper.deposit(marks, self.q, self.dt, p.step)  # Eq. 24-27
                 self.last_marks = marks
                 continue
             t1 = time.perf_counter()
-            marks = bristles.across(marks, p.bristles, self.paper.ppm)  # on the chart
             groups = self.surface.splat(marks, p.step - 1) or [[]]  # texels under the marks
             self._tick("surface splat", t1)
             groups = [bristles.lay(group, p.bristles, self.paper.ppm) for group in groups]
