@@ -286,15 +286,12 @@ def lay_steps(marks_per_step, states, ppm: float) -> list:
     mark = np.repeat(np.arange(len(live)), n)  # every pixel's mark
     lateral = np.concatenate([mk.lateral for _, mk in live])
     u = np.clip(lateral / radius.astype(np.float32)[mark], -1.0, 1.0)
-    # np.searchsorted(bounds[1:-1], u): how many inner bounds lie below u
-    b = np.count_nonzero(bounds_k[mark, 1:-1] < u[:, None], axis=1)
-    centre, gap = centre_k[mark], gap_k[mark]
-    near = np.where(u < centre[np.arange(u.size), b], b - 1, b + 1).clip(0, BUNDLES - 1)
+    b = _bundle_of(bounds_k[:, 1:-1], mark, u)
+    near = np.where(u < centre_k[mark, b], b - 1, b + 1).clip(0, BUNDLES - 1)
     px = px_k[mark]
     h = np.float32(0.5) / px  # half a pixel, in the bundles' coordinate
-    pick = np.arange(u.size)
-    own = _in_gap(u, h, centre[pick, b], gap[pick, b], px)
-    beside = np.where(near == b, 0.0, _in_gap(u, h, centre[pick, near], gap[pick, near], px))
+    own = _in_gap(u, h, centre_k[mark, b], gap_k[mark, b], px)
+    beside = np.where(near == b, 0.0, _in_gap(u, h, centre_k[mark, near], gap_k[mark, near], px))
     share = np.clip(1.0 - own - beside, 0.0, 1.0)
     bundle = share_k[mark, b].astype(np.float32)
     cut = np.cumsum(n)[:-1]
@@ -307,6 +304,22 @@ def lay_steps(marks_per_step, states, ppm: float) -> list:
         for (_, mk), w, sh, sk in zip(live, wet, shares, skips, strict=True)
     )
     return [[next(laid) if mk.rows.size else mk for mk in marks] for marks in marks_per_step]
+
+
+def _bundle_of(inner, mark, u) -> np.ndarray:
+    """np.searchsorted(inner[mark[i]], u[i]) for every i (``inner`` (k, BUNDLES - 1) float32,
+    each row ascending; u float32): the rows' values and u as integers in the same order as
+    the floats (-0 taken as +0, as a float compares), row by row, and one search."""
+    k, w = inner.shape
+    rows = _ordered(inner) + (np.arange(k, dtype=np.int64) << 32)[:, None]
+    at = np.searchsorted(rows.ravel(), _ordered(u) + (mark.astype(np.int64) << 32))
+    return at - mark * w
+
+
+def _ordered(x) -> np.ndarray:
+    """float32 values (no NaN) as int64 in the same order (and equal where they are equal)."""
+    i = (x + np.float32(0.0)).view(np.int32).astype(np.int64)  # -0 + 0 = +0
+    return np.where(i < 0, -(i & 0x7FFFFFFF), i)
 
 
 def _in_gap(u, h, centre, gap, px):

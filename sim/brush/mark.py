@@ -217,6 +217,8 @@ class Cut:
     height: np.ndarray  # (k,) hei_i
     centre: np.ndarray  # (k, 2) mm: the middle of each cut's bounding box
     extent: np.ndarray  # (k, 2) mm: each cut's bounding box's width and height
+    # (params, keys): where ``rows.ink`` is still to be interpolated from (Eq. 21), or None
+    ink_source: tuple | None = None
 
     def contact(self):
         """The middle of the hair's contact with the paper (mm): the cuts' middles, weighted

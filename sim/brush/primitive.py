@@ -43,11 +43,13 @@ import numpy as np
 from ..core.frames import angles_from_matrix, cross, rotation_matrix, unit
 from ..core.nurbs import (
     SweepLayout,
+    averaged_knots,
     bezier_form,
     bspline_bases,
+    chord_params,
     derivative_ctrl,
-    interpolate_cubic,
     rotation_minimising_frames,
+    solve_collocation,
     surface_control_net,
 )
 from ..core.params import BrushGeometry, InkSpec, QualityParams
@@ -151,12 +153,19 @@ class HairyBrush:
         """Sweep the bottom control circle, middle control ellipse and tip control line along
         the middle control axis (Sec. 2, 3.2) with rotation-minimising frames."""
         lay = self.layout
-        ctrl, knots, params = interpolate_cubic(self.cc)  # A_i through P_i,1..n (Sec. 3.2.3)
+        # A_i through P_i,1..n (Sec. 3.2.3), as ``interpolate_cubic``: the basis at the key
+        # points' parameters (the collocation matrix) and at the stations in one recursion
+        # (every parameter's basis is its own: the same numbers as two)
+        params = chord_params(self.cc)
+        knots = averaged_knots(params, 3)
         u = lay.station_u
-        bases = bspline_bases(knots, 3, np.broadcast_to(u, (self.m, len(u))))
-        centres = bases[3] @ ctrl
+        n = params.shape[-1]
+        bases = bspline_bases(knots, 3, np.concatenate([params, np.tile(u, (self.m, 1))], 1))
+        ctrl = solve_collocation(bases[3][:, :n], self.cc)
+        centres = np.ascontiguousarray(bases[3][:, n:]) @ ctrl
         dq, _ = derivative_ctrl(ctrl, knots, 3)
-        T = unit(bases[2][..., 1:-1] @ dq)  # the derivative's basis is degree 2 on knots[1:-1]
+        # the derivative's basis is degree 2 on knots[1:-1]
+        T = unit(np.ascontiguousarray(bases[2][:, n:])[..., 1:-1] @ dq)
         # initial frame: the bottom control circle's own x axis (cori = shaft direction)
         x0 = self.R[:, 0]
         r0 = x0 - np.einsum("ij,j->i", T[:, 0], x0)[:, None] * T[:, 0]

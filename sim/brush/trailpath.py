@@ -157,21 +157,23 @@ def signed_distances_many(paths, owner, rows, cols, ppm: float) -> np.ndarray:
     n_seg = np.array([len(p[0]) for p in parts])
     seg_at = np.cumsum(n_seg) - n_seg  # every path's first segment in the table
     seg = tuple(np.concatenate(f) for f in zip(*parts, strict=True))
-    r0, c0 = int(rows.min()), int(cols.min())
-    hb, wb = int(rows.max()) - r0 + 1, int(cols.max()) - c0 + 1
-    key = (owner.astype(np.int64) * hb + (rows - r0)) * wb + (cols - c0)
-    if len(paths) * hb * wb <= 8 * rows.size + (1 << 20):  # each pixel once a step: a mask
-        seen = np.zeros(len(paths) * hb * wb, dtype=bool)
+    # every step's pixels in a box of its own (as step by step), the boxes one after another
+    box = _boxes(owner, rows, cols, len(paths))
+    r0, c0, wb, base = (v[owner] for v in box[:4])
+    key = base + (rows - r0) * wb + (cols - c0)
+    size = int(box[3][-1] + (box[4][-1] if len(paths) else 0))
+    if size <= 8 * rows.size + (1 << 20):  # each pixel once a step: a mask of the boxes
+        seen = np.zeros(size, dtype=bool)
         seen[key] = True
         uniq = np.flatnonzero(seen)
         inverse = (np.cumsum(seen) - 1)[key]
-    else:
+    else:  # boxes far too large: sort instead
         uniq, inverse = np.unique(key, return_inverse=True)
-    us, rest = np.divmod(uniq, hb * wb)  # the pixel's step, and its place in the box
-    ur, uc = np.divmod(rest, wb)
-    x = (uc + c0 + 0.5) / ppm  # as (column + 0.5) / ppm: the same doubles
-    y = (ur + r0 + 0.5) / ppm
-    lo_s, hi_s = _segment_ranges_many(seg, seg_at, n_seg, (us, ur, uc), (r0, c0), ppm, paths)
+    us = np.searchsorted(box[3], uniq, side="right") - 1  # the pixel's step
+    ur, uc = np.divmod(uniq - box[3][us], box[2][us])  # its row and column in the step's box
+    x = (uc + box[1][us] + 0.5) / ppm  # as (column + 0.5) / ppm: the same doubles
+    y = (ur + box[0][us] + 0.5) / ppm
+    lo_s, hi_s = _segment_ranges_many(seg, seg_at, n_seg, (us, ur, uc), box[:2], ppm, paths)
     width = hi_s - lo_s
     lat = np.empty(uniq.size)
     ends = np.cumsum(width)
@@ -185,16 +187,51 @@ def signed_distances_many(paths, owner, rows, cols, ppm: float) -> np.ndarray:
     return out
 
 
+def _boxes(owner, rows, cols, steps: int):
+    """Every step's box of pixels: its first row and column, its width, where its cells begin
+    among all steps' cells (rows by columns, one step after another), and its cells."""
+    has, r0 = _per_step(np.minimum, rows, owner, steps, 0)
+    _, c0 = _per_step(np.minimum, cols, owner, steps, 0)
+    _, r1 = _per_step(np.maximum, rows, owner, steps, -1)
+    _, c1 = _per_step(np.maximum, cols, owner, steps, -1)
+    r0, c0 = np.where(has, r0, 0), np.where(has, c0, 0)
+    cells = np.where(has, (r1 - r0 + 1) * (c1 - c0 + 1), 0)
+    wb = np.where(has, c1 - c0 + 1, 1)
+    return r0, c0, wb, np.cumsum(cells) - cells, cells
+
+
+def _clip_own(raw, idx, seg):
+    """``raw`` clipped to the bounds of t of its segments ``idx`` (as ``_clip_t``: [0, 1], a
+    path's first and last segments the rays' bounds; np.clip only picks a bound or the value,
+    so the bounds one number or many give the same)."""
+    lo, hi = seg[3], seg[4]
+    t = np.clip(raw, 0.0, 1.0)
+    ray = np.flatnonzero((lo != 0.0)[idx] | (hi != 1.0)[idx])
+    t[ray] = np.clip(raw[ray], lo[idx[ray]], hi[idx[ray]])
+    return t
+
+
+def _per_step(op, values, owner, steps: int, empty):
+    """(which steps have values, ``op``.reduce of every step's values or ``empty``); ``owner``
+    (the step of every value) ascending."""
+    start = np.searchsorted(owner, np.arange(steps))
+    has = np.r_[start[1:], len(owner)] > start
+    out = np.full(steps, empty, dtype=np.asarray(values).dtype)
+    if has.any():
+        out[has] = op.reduceat(values, start[has])
+    return has, out
+
+
 def _measure_own_runs(x, y, seg, first, width):
     """``_measure_runs`` with every segment's own bounds of t (segments of many paths)."""
     start = np.cumsum(width) - width  # every point's first pair
     pt = np.repeat(np.arange(width.size), width)
     idx = np.arange(pt.size) + np.repeat(first - start, width)  # the pair's segment
-    a, d, dd, lo, hi = seg
+    a, d, dd = seg[:3]
     d0, d1 = d[idx, 0], d[idx, 1]
     rx = x[pt] - a[idx, 0]
     ry = y[pt] - a[idx, 1]
-    t = np.clip((rx * d0 + ry * d1) / dd[idx], lo[idx], hi[idx])  # picks the same bound
+    t = _clip_own((rx * d0 + ry * d1) / dd[idx], idx, seg)
     ex, ey = rx - t * d0, ry - t * d1
     dist2 = ex * ex + ey * ey
     best = np.minimum.reduceat(dist2, start)
@@ -205,39 +242,44 @@ def _measure_own_runs(x, y, seg, first, width):
 
 
 def _segment_ranges_many(seg, seg_at, n_seg, pixels, origin, ppm, paths):
-    """``_segment_ranges`` of pixels of many steps (``pixels``: each one's step, row and
-    column from ``origin``): the run [lo, hi) of the table's segments, all of its own step's
-    path, that can be nearest to it, as its tile (of its step) keeps them."""
+    """``_segment_ranges`` of pixels of many steps (``pixels``: each one's step, and its row
+    and column in its step's box, whose first row and column are ``origin``): the run
+    [lo, hi) of the table's segments, all of its own step's path, that can be nearest to it,
+    as its tile (of its step's box) keeps them."""
     us, ur, uc = pixels
     r0, c0 = origin
     ts = max(int(round(TILE_MM * ppm)), 4)  # tile side, pixels
     ty, tx = ur // ts, uc // ts
-    nty, ntx = int(ty.max()) + 1, int(tx.max()) + 1
-    tid = (us * nty + ty) * ntx + tx
-    occupied = np.zeros(len(paths) * nty * ntx, dtype=bool)
+    S = len(paths)
+    nty = _per_step(np.maximum, ty + 1, us, S, 0)[1]
+    ntx = _per_step(np.maximum, tx + 1, us, S, 0)[1]
+    cells = nty * ntx
+    tbase = np.cumsum(cells) - cells
+    tid = tbase[us] + ty * ntx[us] + tx
+    occupied = np.zeros(int(cells.sum()), dtype=bool)
     occupied[tid] = True
     tiles = np.flatnonzero(occupied)
     tslot = np.cumsum(occupied) - 1
-    t_step, t_rest = np.divmod(tiles, nty * ntx)
+    t_step = np.searchsorted(tbase, tiles, side="right") - 1
+    t_y, t_x = np.divmod(tiles - tbase[t_step], ntx[t_step])
     # the tiles' centres (mm) and reach: the farthest pixel centre of a whole tile
-    cy = (r0 + (t_rest // ntx) * ts + 0.5 * (ts - 1) + 0.5) / ppm
-    cx = (c0 + (t_rest % ntx) * ts + 0.5 * (ts - 1) + 0.5) / ppm
+    cy = (r0[t_step] + t_y * ts + 0.5 * (ts - 1) + 0.5) / ppm
+    cx = (c0[t_step] + t_x * ts + 0.5 * (ts - 1) + 0.5) / ppm
     reach = 0.5 * (ts - 1) * np.sqrt(2.0) / ppm
     # every tile against every segment of its step's path
     width = n_seg[t_step]
     start = np.cumsum(width) - width
     pt = np.repeat(np.arange(tiles.size), width)
     idx = np.arange(pt.size) + np.repeat(seg_at[t_step] - start, width)
-    a, d, dd, lo, hi = seg
+    a, d, dd = seg[:3]
     rx = cx[pt] - a[idx, 0]
     ry = cy[pt] - a[idx, 1]
-    t = np.clip((rx * d[idx, 0] + ry * d[idx, 1]) / dd[idx], lo[idx], hi[idx])
+    t = _clip_own((rx * d[idx, 0] + ry * d[idx, 1]) / dd[idx], idx, seg)
     ex, ey = rx - t * d[idx, 0], ry - t * d[idx, 1]
     dist = np.sqrt(ex * ex + ey * ey)
     # the rounding allowance of each step (its path's and its tiles' largest coordinates)
     scale = 1.0 + np.array([float(np.abs(p).max()) for p in paths])
-    big = np.zeros(len(paths))
-    np.maximum.at(big, t_step, np.maximum(np.abs(cx), np.abs(cy)))
+    big = _per_step(np.maximum, np.maximum(np.abs(cx), np.abs(cy)), t_step, S, 0.0)[1]
     bound = np.minimum.reduceat(dist + reach, start) + SLACK * (scale + 2.0 * big)[t_step]
     keep = dist - reach <= bound[pt]
     first = np.minimum.reduceat(np.where(keep, idx, idx.size + len(seg[0])), start)

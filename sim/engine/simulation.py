@@ -12,8 +12,10 @@ import numpy as np
 
 from ..brush import bristles
 from ..brush.inertia import InertiaPredictor
+from ..brush.ink import interpolate_rows
 from ..brush.mark import cut_marks, fill_marks
 from ..brush.primitive import HairyBrush
+from ..brush.state import ink_keys
 from ..core.params import HOVER_MM
 from ..core.recording import Recording
 from ..paper.paper import DRY_RATE, Paper
@@ -26,6 +28,10 @@ BATCH_STEPS = 8
 # up with a brush that ran ahead (``advance``, ``settle``): fewer passes, each over more pixels
 # (issue 28); any grouping gives the same marks, bit for bit (``fill_marks``)
 FILL_STEPS = 32
+# the hair bundles measure and lay the marks of the filled samples together, as many samples
+# at a time as have about this many pixels: one pass of numpy calls for many small marks,
+# while large marks' temporaries stay in the processor's cache (issue 28)
+LAY_PIXELS = 1 << 13
 
 
 class PendingDeposit(NamedTuple):
@@ -125,7 +131,11 @@ class Simulation:
         sec = b.sections()
         t0 = self._tick("sweep", t0)
         shape = self.paper.shape if self.surface is None else CHART_SHAPE
-        cut = cut_marks(b, sec, b.rows_ink(sec), self.paper.ppm, shape)
+        # the ink at the surface rows (Eq. 21) only feeds the marks: it is interpolated when
+        # they are filled, for many samples at once (``_fill``), from the key points' ink now
+        cut = cut_marks(b, sec, None, self.paper.ppm, shape)
+        if cut is not None:
+            cut.ink_source = (sec.params, ink_keys(b))
         t0 = self._tick("cut", t0)
         area, height = cut.sizes(b.m) if cut is not None else (np.zeros(b.m), np.zeros(b.m))
         if cut is not None:
@@ -196,14 +206,23 @@ class Simulation:
         they are splatted into the texture (``_deposit``)."""
         t0 = time.perf_counter()
         ppm = self.paper.ppm
+        _rows_ink([p.cut for p in pending], self.brush.layout.grid_s)
         marks = fill_marks([p.cut for p in pending], ppm)
         t0 = self._tick("mark pixels", t0)
-        states = [p.bristles for p in pending]
-        marks = bristles.across_steps(marks, states, ppm)  # on the chart, on a surface
-        if self.surface is None:
-            marks = bristles.lay_steps(marks, states, ppm)  # the hair bundles (Eq. 27)
+        out = []
+        for a, b in _groups([sum(mk.rows.size for mk in m) for m in marks], LAY_PIXELS):
+            part, states = marks[a:b], [p.bristles for p in pending[a:b]]
+            if b - a == 1:  # large marks: a sample at a time
+                part = [bristles.across(part[0], states[0], ppm)]
+                if self.surface is None:
+                    part = [bristles.lay(part[0], states[0], ppm)]
+            else:
+                part = bristles.across_steps(part, states, ppm)  # on the chart, on a surface
+                if self.surface is None:
+                    part = bristles.lay_steps(part, states, ppm)  # the hair bundles (Eq. 27)
+            out += part
         self._tick("paper", t0)
-        return marks
+        return out
 
     def _deposit(self, pending, marks_per_step):
         """Deposit the filled marks of waiting samples, in order (Eq. 24-27)."""
@@ -287,6 +306,36 @@ class Simulation:
         self.brush.restore(state["brush"])
         self.rng.bit_generator.state = state["rng"]
         self.predictor.set_state(state["predictor"])
+
+
+def _groups(sizes, budget: int):
+    """Runs [a, b) of consecutive items whose sizes add up to about ``budget`` (at least one
+    item each)."""
+    a, total = 0, 0
+    for i, size in enumerate(sizes):
+        if i > a and total + size > budget:
+            yield a, i
+            a, total = i, 0
+        total += size
+    if a < len(sizes):
+        yield a, len(sizes)
+
+
+def _rows_ink(cuts, grid_s):
+    """Every cut's ink at its surface rows' axis points V^ (Eq. 21), all samples' at once, from
+    the key points' ink each kept (``Cut.ink_source``)."""
+    todo = [c for c in cuts if c is not None and c.ink_source is not None]
+    if not todo:
+        return
+    t = np.concatenate([c.ink_source[0] for c in todo])
+    keys = np.concatenate([c.ink_source[1] for c in todo])
+    rows = interpolate_rows(grid_s, t, keys)
+    at = 0
+    for c in todo:
+        m = c.ink_source[0].shape[0]
+        c.rows = c.rows._replace(ink=rows[at : at + m])
+        c.ink_source = None
+        at += m
 
 
 def render(recording: Recording, until: int | None = None, progress=None) -> np.ndarray:
