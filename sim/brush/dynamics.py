@@ -12,6 +12,8 @@ brush behaves, are listed in ``brush``'s module doc and noted where they are imp
 
 from __future__ import annotations
 
+import math
+
 import numpy as np
 
 from ..core.frames import cross, norm, rotation_matrix, unit
@@ -165,6 +167,9 @@ def constrain(brush, vel6):
     else:  # a vertical brush at rest lays its hair back along the way it came
         fb = np.tile(-brush.travel, (m, 1)) + 0.25 * brush.lay
         fb /= np.linalg.norm(fb, axis=1, keepdims=True)
+    if m == 1:  # one primitive: the same arithmetic on Python floats (fewer calls)
+        points[0, 1:] = _constrain_one(points[0].tolist(), brush.sarc[0].tolist(), fb[0].tolist())
+        return
     prev = points[:, 0]
     segs = brush.sarc[:, 1:] - brush.sarc[:, :-1]
     for j in range(1, n):
@@ -190,6 +195,45 @@ def constrain(brush, vel6):
         np.maximum(p[:, 2], 0.0, out=p[:, 2])
         points[:, j] = p
         prev = p
+
+
+def _constrain_one(points, sarc, fb) -> list:
+    """``constrain``'s walk for one primitive, on Python floats: the same operations in the
+    same order as the arrays' (a length as sqrt((x^2 + y^2) + z^2), numpy's order; the larger
+    of two equal numbers the second, as np.maximum picks it: -0 and +0 keep their signs).
+    Returns the key points 2..n."""
+    px, py, pz = points[0]
+    out = []
+    for j in range(1, len(points)):
+        qx, qy, qz = points[j]
+        dx, dy, dz = qx - px, qy - py, qz - pz
+        dist = math.sqrt(dx * dx + dy * dy + dz * dz)
+        seg = sarc[j] - sarc[j - 1]
+        scale = _min(1.0, seg / _max(dist, 1e-12))
+        cx, cy, cz = px + dx * scale, py + dy * scale, pz + dz * scale
+        on_paper = (qz <= CONTACT_EPS) | (cz <= CONTACT_EPS)
+        h = _max(pz, 0.0)
+        if on_paper and seg > h:  # lies flat on the paper at its full arc distance
+            H = math.sqrt(_max(seg * seg - h * h, 0.0))
+            nd = math.sqrt(dx * dx + dy * dy)
+            if nd > 1e-9:
+                ux, uy = dx / _max(nd, 1e-12), dy / _max(nd, 1e-12)
+            else:
+                ux, uy = fb
+            cx, cy, cz = px + H * ux, py + H * uy, 0.0
+        px, py, pz = cx, cy, _max(cz, 0.0)
+        out.append((px, py, pz))
+    return out
+
+
+def _max(a: float, b: float) -> float:
+    """np.maximum of two floats: b where they are equal (its sign of zero), NaN if either is."""
+    return a if (a > b or a != a) else b
+
+
+def _min(a: float, b: float) -> float:
+    """np.minimum of two floats: b where they are equal, NaN if either is."""
+    return a if (a < b or a != a) else b
 
 
 def update_stress(brush, section_area, section_height, speed, dt):
