@@ -48,6 +48,7 @@ from typing import NamedTuple
 
 import numpy as np
 
+from ..core.frames import clip
 from . import trailpath
 from .state import BUNDLES, CONTACT_EPS
 
@@ -113,7 +114,7 @@ def contact_wetness(brush):
     """(on, wet_on): which key points lie on the paper (m, n) - the active point (Eq. 13), or
     the lowest one, always - and the mean wetness of each primitive's (m,)."""
     m = brush.m
-    act = np.where(brush.active >= 0, brush.active, np.argmin(brush.cc[..., 2], axis=1))
+    act = np.where(brush.active >= 0, brush.active, brush.cc[..., 2].argmin(axis=1))
     on = brush.cc[..., 2] <= CONTACT_EPS
     on[:, 0] = False
     on[np.arange(m), act] = True
@@ -135,11 +136,11 @@ def step(brush, speed: float, dt: float):
     follow = 1.0 - np.exp(-dt / SETTLE_S)
     brush.moist = np.where(brush.moist > 0, brush.moist + follow * (wet_on - brush.moist), wet_on)
     w = brush.moist[:, None] * brush.bundle
-    dryness = np.clip(1.0 - w / (W_DRY * (1.0 + speed / V_FLY)), 0.0, 1.0)
+    dryness = clip(1.0 - w / (W_DRY * (1.0 + speed / V_FLY)), 0.0, 1.0)
     p = np.minimum(q.ren * (q.ab * brush.gamma[:, None] + FLY * dryness), 1.0)
     dry = (brush.hair_u < p) & brush.touching[:, None]
     ramp = min(dt / RAMP_S, 1.0)
-    brush.gap = np.clip(brush.gap + np.where(dry, ramp, -ramp), 0.0, 1.0)
+    brush.gap = clip(brush.gap + np.where(dry, ramp, -ramp), 0.0, 1.0)
 
 
 def new_trail() -> np.ndarray:

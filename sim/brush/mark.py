@@ -30,7 +30,7 @@ from typing import NamedTuple
 
 import numpy as np
 
-from ..core.frames import dot, norm
+from ..core.frames import dot, norm, stack1
 from .ink import LOAD, TEXTURE, TEXTURE_NAMES
 from .state import INK_FIELDS
 
@@ -118,14 +118,14 @@ def slice_grids(X):
     e1 = crossing(p01, p11)
     e2 = crossing(p10, p11)
     e3 = crossing(p00, p10)
-    E = np.stack([e0, e1, e2, e3], axis=1)  # (C, 4, 3)
+    E = stack1([e0, e1, e2, e3])  # (C, 4, 3)
     segs, owner = [], []
     for k in range(2):
         a, b = _SEG_A[cs, k], _SEG_B[cs, k]
         ok = a >= 0
         if ok.any():
             r = np.nonzero(ok)[0]
-            segs.append(np.stack([E[r, a[ok]], E[r, b[ok]]], axis=1))
+            segs.append(stack1([E[r, a[ok]], E[r, b[ok]]]))
             owner.append(gg[r])
     return np.concatenate(segs, axis=0), np.concatenate(owner)
 
@@ -272,7 +272,7 @@ def cut_marks(brush, sec, ink_rows, ppm: float, paper_shape) -> Cut | None:
     order = np.argsort(owner, kind="stable")
     xy_sorted = xy_all[order]
     cuts = np.nonzero(cnt)[0]  # grids with a cut
-    first = (np.cumsum(cnt) - cnt)[cuts]
+    first = (cnt.cumsum() - cnt)[cuts]
     pts_x = xy_sorted[..., 0].min(axis=1), xy_sorted[..., 0].max(axis=1)
     pts_y = xy_sorted[..., 1].min(axis=1), xy_sorted[..., 1].max(axis=1)
     xmin = np.minimum.reduceat(pts_x[0], first)
@@ -281,7 +281,7 @@ def cut_marks(brush, sec, ink_rows, ppm: float, paper_shape) -> Cut | None:
     ymax = np.maximum.reduceat(pts_y[1], first)
     prims = touching[cuts]
     area = (xmax - xmin) * (ymax - ymin)
-    centroid = np.stack([(xmin + xmax) / 2, (ymin + ymax) / 2, np.zeros(len(cuts))], axis=1)
+    centroid = stack1([(xmin + xmax) / 2, (ymin + ymax) / 2, np.zeros(len(cuts))])
     height = norm(brush.cc[prims, -1] - centroid)
     ix0 = np.maximum(np.floor(xmin * ppm - 0.5).astype(np.int64), 0)
     iy0 = np.maximum(np.floor(ymin * ppm - 0.5).astype(np.int64), 0)
@@ -297,11 +297,11 @@ def cut_marks(brush, sec, ink_rows, ppm: float, paper_shape) -> Cut | None:
     slot[cuts] = np.arange(len(cuts))
     seg_win = slot[owner[order]]
     hh = np.where(w > 0, h, 0)  # a window without columns has no pixels
-    win = np.stack([iy0, ix0, hh, w], axis=1)
+    win = stack1([iy0, ix0, hh, w])
     return Cut(
         prims=prims,
         win=win,
-        shape=np.stack([h, w], axis=1),
+        shape=stack1([h, w]),
         xy=xy_sorted,
         seg_win=seg_win,
         chord=chord,
@@ -310,7 +310,7 @@ def cut_marks(brush, sec, ink_rows, ppm: float, paper_shape) -> Cut | None:
         area=area,
         height=height,
         centre=centroid[:, :2],
-        extent=np.stack([xmax - xmin, ymax - ymin], axis=1),
+        extent=stack1([xmax - xmin, ymax - ymin]),
     )
 
 

@@ -40,7 +40,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..core.frames import angles_from_matrix, cross, rotation_matrix, unit
+from ..core.frames import angles_from_matrix, clip, cross, rotation_matrix, unit
 from ..core.nurbs import (
     SweepLayout,
     averaged_knots,
@@ -174,7 +174,7 @@ class HairyBrush:
         Bn = cross(T, N)
         # orientation of the middle control ellipse (Eq. 6): its minor axis eori, projected
         # into the normal plane at loc, fixes the profiles' angle within the swept frames
-        ks = np.clip(np.searchsorted(u, self.loc), 0, len(u) - 1)
+        ks = clip(np.searchsorted(u, self.loc), 0, len(u) - 1)
         idx = np.arange(self.m)
         Nl, Bl = N[idx, ks], Bn[idx, ks]
         minor = self.eori @ self.R.T
@@ -222,8 +222,8 @@ class HairyBrush:
         loc = self.loc[:, None]
         r = self.r
         a2, b2, l2 = (self.a / 2)[:, None], (self.b / 2)[:, None], (self.tiplen / 2)[:, None]
-        up = np.sin(0.5 * np.pi * np.clip(u / loc, 0.0, 1.0))
-        x = np.clip((u - loc) / (1.0 - loc), 0.0, 1.0)
+        up = np.sin(0.5 * np.pi * clip(u / loc, 0.0, 1.0))
+        x = clip((u - loc) / (1.0 - loc), 0.0, 1.0)
         down = 1.0 - x * x
         below = u <= loc
         alpha = np.where(below, r + (a2 - r) * up, l2 + (a2 - l2) * down)

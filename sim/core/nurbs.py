@@ -21,6 +21,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from .frames import diff, norm
+
 # The 9-point rational quadratic unit circle (Piegl & Tiller, Ex. 7.2).
 _W = np.sqrt(0.5)
 CIRCLE_XY = np.array(
@@ -74,7 +76,7 @@ def averaged_knots(params, degree: int = 3) -> np.ndarray:
     n = params.shape[-1]
     lead = params.shape[:-1]
     inner = n - degree - 1
-    c = np.cumsum(params, axis=-1)
+    c = params.cumsum(axis=-1)
     c = np.concatenate([np.zeros(lead + (1,)), c], axis=-1)
     # u_{j+p} = (1/p) * sum_{i=j}^{j+p-1} params_i, j = 1..n-p-1
     j = np.arange(1, inner + 1)
@@ -85,9 +87,9 @@ def averaged_knots(params, degree: int = 3) -> np.ndarray:
 def chord_params(points) -> np.ndarray:
     """Chord-length parameters in [0, 1] for (..., n, dim) points."""
     points = np.asarray(points, dtype=float)
-    seg = np.linalg.norm(np.diff(points, axis=-2), axis=-1)
+    seg = norm(diff(points, axis=-2), axis=-1)
     seg = np.maximum(seg, 1e-9)
-    c = np.concatenate([np.zeros(seg.shape[:-1] + (1,)), np.cumsum(seg, axis=-1)], axis=-1)
+    c = np.concatenate([np.zeros(seg.shape[:-1] + (1,)), seg.cumsum(axis=-1)], axis=-1)
     return c / c[..., -1:]
 
 
@@ -130,7 +132,7 @@ def derivative_ctrl(ctrl, knots, degree: int):
     k = knots
     den = k[..., degree + 1 : -1] - k[..., 1 : -degree - 1]
     den = np.where(den > 0, den, 1.0)
-    q = degree * np.diff(ctrl, axis=-2) / den[..., None]
+    q = degree * diff(ctrl, axis=-2) / den[..., None]
     return q, k[..., 1:-1]
 
 
@@ -142,7 +144,7 @@ def rotation_minimising_frames(points, tangents, r0):
     the points and tangents: they are built for all steps at once, and so are their running
     products."""
     m, N, _ = points.shape
-    v1 = np.diff(points, axis=1)  # (m, N-1, 3)
+    v1 = diff(points, axis=1)  # (m, N-1, 3)
     c1 = np.einsum("mik,mik->mi", v1, v1)
     f1 = np.where(c1 > 1e-18, 2.0 / np.where(c1 > 1e-18, c1, 1.0), 0.0)
     t0 = tangents[:, :-1]
@@ -165,7 +167,7 @@ def rotation_minimising_frames(points, tangents, r0):
     out[:, 1:] = np.einsum("mnij,mj->mni", P, np.asarray(r0, dtype=float))
     # against round-off: exactly perpendicular to the tangents and of unit length
     out -= np.einsum("mik,mik->mi", out, tangents)[..., None] * tangents
-    out /= np.maximum(np.linalg.norm(out, axis=2), 1e-12)[..., None]
+    out /= np.maximum(norm(out, axis=2), 1e-12)[..., None]
     return out
 
 

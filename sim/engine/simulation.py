@@ -140,7 +140,8 @@ class Simulation:
         area, height = cut.sizes(b.m) if cut is not None else (np.zeros(b.m), np.zeros(b.m))
         if cut is not None:
             b.follow(cut.contact())  # the path the hair bundles are drawn along (bristles)
-        speed = float(np.linalg.norm(vel[:3]))
+        v3 = vel[:3]
+        speed = float(np.sqrt(v3.dot(v3)))  # np.linalg.norm(vel[:3]), without its wrapper
         b.update_stress(area, height, speed, self.dt)  # Eq. 10-12
         across = np.array([-b.travel[1], b.travel[0]])
         b.sweep = (cut.widths(b.m, across) if cut is not None else np.zeros(b.m)) * speed
