@@ -202,17 +202,17 @@ class SurfaceRows(NamedTuple):
 @dataclass(kw_only=True)
 class Cut:
     """The first half of one step's marks: where every primitive's solid meets the paper
-    (cur_u, S_i and hei_i for the dynamics, Eq. 10) and its pixel window. ``fill_marks`` then
-    finds the scanline spans, the inked pixels and their ink, for many steps at once."""
+    (cur_u, S_i and hei_i for the dynamics, Eq. 10). ``fill_marks`` then finds the cuts' pixel
+    windows (``_windows``), the scanline spans, the inked pixels and their ink, for many steps
+    at once (issue 28: what only the marks need waits for them)."""
 
     prims: np.ndarray  # (k,) primitives with a cut
-    win: np.ndarray  # (k, 4) windows (iy0, ix0, rows, cols), rows 0 if there are no columns
-    shape: np.ndarray  # (k, 2) window (h, w)
+    box: np.ndarray  # (k, 4) each cut's bounding box, mm: xmin, xmax, ymin, ymax
+    paper: tuple  # the paper's (H, W), pixels
+    sides: int  # the points of the surface's grid around each row (the ring's)
     xy: np.ndarray  # (M, 2, 2) all cuts' cur_u, grouped by cut
-    seg_win: np.ndarray  # (M,) the cut of every segment
-    chord: np.ndarray  # (k,) the grid's chord error against the true sections, pixels
+    count: np.ndarray  # (k,) the segments of each cut
     rows: SurfaceRows  # the surface rows of every primitive
-    segments: list  # (M_i, 2, 2) cur_u of each cut
     area: np.ndarray  # (k,) S_i
     height: np.ndarray  # (k,) hei_i
     centre: np.ndarray  # (k, 2) mm: the middle of each cut's bounding box
@@ -283,35 +283,48 @@ def cut_marks(brush, sec, ink_rows, ppm: float, paper_shape) -> Cut | None:
     area = (xmax - xmin) * (ymax - ymin)
     centroid = stack1([(xmin + xmax) / 2, (ymin + ymax) / 2, np.zeros(len(cuts))])
     height = norm(brush.cc[prims, -1] - centroid)
+    return Cut(
+        prims=prims,
+        box=stack1([xmin, xmax, ymin, ymax]),
+        paper=(H, W),
+        sides=ring.shape[0],
+        xy=xy_sorted,
+        count=cnt[cuts],
+        rows=SurfaceRows(rows_c, rows_U, rows_V, rows_T, Zmin, ink_rows),
+        area=area,
+        height=height,
+        centre=centroid[:, :2],
+        extent=stack1([xmax - xmin, ymax - ymin]),
+    )
+
+
+class Windows(NamedTuple):
+    """The pixel windows of cuts (``_windows``), one row per cut of a primitive."""
+
+    win: np.ndarray  # (k, 4) windows (iy0, ix0, rows, cols), rows 0 if there are no columns
+    shape: np.ndarray  # (k, 2) window (h, w)
+    chord: np.ndarray  # (k,) the grid's chord error against the true sections, pixels
+
+
+def _windows(cuts: list[Cut], ppm: float) -> Windows:
+    """The pixel windows of the cuts of many steps (the paper's pixels around each bounding
+    box), and each one's chord error of the grid's polygon against the true sections: every
+    cut's numbers are its own, so all steps' at once are each step's."""
+    xmin, xmax, ymin, ymax = np.concatenate([c.box for c in cuts]).T
+    hw = np.repeat(np.array([c.paper for c in cuts]), [len(c.prims) for c in cuts], axis=0)
+    H, W = hw[:, 0], hw[:, 1]
     ix0 = np.maximum(np.floor(xmin * ppm - 0.5).astype(np.int64), 0)
     iy0 = np.maximum(np.floor(ymin * ppm - 0.5).astype(np.int64), 0)
     ix1 = np.minimum(np.ceil(xmax * ppm - 0.5).astype(np.int64) + 1, W)
     iy1 = np.minimum(np.ceil(ymax * ppm - 0.5).astype(np.int64) + 1, H)
     h = np.maximum(iy1 - iy0, 0)
     w = np.maximum(ix1 - ix0, 0)
-    # chord error of the grid's polygon against the true sections
-    sag = 1.0 - np.cos(np.pi / ring.shape[0])
-    semi = np.max(np.hypot(norm(rows_U[prims]), norm(rows_V[prims])), axis=1)
-    chord = sag * semi * ppm
-    slot = np.full(k, -1)
-    slot[cuts] = np.arange(len(cuts))
-    seg_win = slot[owner[order]]
+    sag = 1.0 - np.cos(np.pi / cuts[0].sides)
+    U = np.concatenate([c.rows.U[c.prims] for c in cuts])
+    V = np.concatenate([c.rows.V[c.prims] for c in cuts])
+    semi = np.max(np.hypot(norm(U), norm(V)), axis=1)
     hh = np.where(w > 0, h, 0)  # a window without columns has no pixels
-    win = stack1([iy0, ix0, hh, w])
-    return Cut(
-        prims=prims,
-        win=win,
-        shape=stack1([h, w]),
-        xy=xy_sorted,
-        seg_win=seg_win,
-        chord=chord,
-        rows=SurfaceRows(rows_c, rows_U, rows_V, rows_T, Zmin, ink_rows),
-        segments=np.split(xy_sorted, np.cumsum(cnt[cuts])[:-1]),
-        area=area,
-        height=height,
-        centre=centroid[:, :2],
-        extent=stack1([xmax - xmin, ymax - ymin]),
-    )
+    return Windows(stack1([iy0, ix0, hh, w]), stack1([h, w]), sag * semi * ppm)
 
 
 def fill_marks(cuts: list[Cut | None], ppm: float) -> list[list[Mark]]:
@@ -322,17 +335,17 @@ def fill_marks(cuts: list[Cut | None], ppm: float) -> list[list[Mark]]:
     real = [c for c in cuts if c is not None]
     if not real:
         return [[] for _ in cuts]
+    win, shape, chord = _windows(real, ppm)
+    count = np.concatenate([c.count for c in real])
+    seg_win = np.repeat(np.arange(len(count)), count)  # the cut of every segment
+    seg_at = (count.cumsum() - count).tolist()
     if len(real) == 1:
         c = real[0]
-        prims, win, xy, seg_win, chord, rows = c.prims, c.win, c.xy, c.seg_win, c.chord, c.rows
+        prims, xy, rows = c.prims, c.xy, c.rows
     else:
         offs = np.cumsum([0] + [c.rows.centre.shape[0] for c in real[:-1]])
         prims = np.concatenate([c.prims + o for c, o in zip(real, offs, strict=True)])
-        woffs = np.cumsum([0] + [len(c.prims) for c in real[:-1]])
-        seg_win = np.concatenate([c.seg_win + o for c, o in zip(real, woffs, strict=True)])
-        win = np.concatenate([c.win for c in real])
         xy = np.concatenate([c.xy for c in real])
-        chord = np.concatenate([c.chord for c in real])
         rows = SurfaceRows._make(
             np.concatenate(parts) for parts in zip(*(c.rows for c in real), strict=True)
         )
@@ -349,6 +362,7 @@ def fill_marks(cuts: list[Cut | None], ppm: float) -> list[list[Mark]]:
         for jj, j in enumerate(redo.tolist()):
             pixels[j] = again[jj]
     out, at = [], 0
+    win_l, shape_l, count_l = win.tolist(), shape.tolist(), count.tolist()
     for c in cuts:
         if c is None:
             out.append([])
@@ -359,16 +373,16 @@ def fill_marks(cuts: list[Cut | None], ppm: float) -> list[list[Mark]]:
             marks.append(
                 Mark(
                     primitive=i,
-                    iy0=int(c.win[j, 0]),
-                    ix0=int(c.win[j, 1]),
+                    iy0=win_l[at + j][0],
+                    ix0=win_l[at + j][1],
                     rows=px.rows,
                     cols=px.cols,
                     wet=px.wet,
                     col=px.col,
                     lateral=px.lateral,
                     depth=px.depth,
-                    shape=(int(c.shape[j, 0]), int(c.shape[j, 1])),
-                    segments=c.segments[j],
+                    shape=tuple(shape_l[at + j]),
+                    segments=xy[seg_at[at + j] : seg_at[at + j] + count_l[at + j]],
                     area_bbox=float(c.area[j]),
                     height=float(c.height[j]),
                 )
