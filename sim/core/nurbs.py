@@ -115,6 +115,9 @@ def solve_collocation(A, B):
     matrix and the right-hand side are eliminated together, as one augmented matrix."""
     A = np.asarray(A, dtype=float)
     n = A.shape[-1]
+    if A.ndim == 3 and A.shape[0] == 1:  # one system: the same steps on Python floats
+        B = np.asarray(B, dtype=float)
+        return np.array([_solve_one(A[0].tolist(), B[0].tolist())]).reshape(B.shape)
     M = np.concatenate([A, np.asarray(B, dtype=float)], axis=-1)  # (..., n, n + k)
     for k in range(n - 1):
         f = M[..., k + 1 :, k] / M[..., k, k, None]
@@ -124,6 +127,30 @@ def solve_collocation(A, B):
         X[..., k, :] /= M[..., k, k, None]
         if k:
             X[..., :k, :] -= M[..., :k, k, None] * X[..., k, None, :]
+    return X
+
+
+def _solve_one(A: list, B: list) -> list:
+    """``solve_collocation`` of one system on Python floats (lists of rows): the same
+    operations in the same order, element by element, as the arrays' elimination, without a
+    numpy call per step (issue 28)."""
+    n = len(A)
+    M = [a + b for a, b in zip(A, B, strict=True)]
+    for k in range(n - 1):
+        pivot = M[k]
+        d = pivot[k]
+        for i in range(k + 1, n):
+            row = M[i]
+            f = row[k] / d
+            for c in range(k, len(row)):
+                row[c] -= f * pivot[c]
+    X = [row[n:] for row in M]
+    for k in range(n - 1, -1, -1):
+        d = M[k][k]
+        xk = X[k] = [v / d for v in X[k]]
+        for i in range(k):
+            mik = M[i][k]
+            X[i] = [v - mik * w for v, w in zip(X[i], xk, strict=True)]
     return X
 
 

@@ -106,3 +106,20 @@ def test_constrain_of_one_primitive_on_floats_is_its_arrays_walk():
         assert brush.cc.tobytes() == want.tobytes()
         flat += int(np.count_nonzero(brush.cc[..., 2] == 0.0))
     assert flat > 100  # hair lay flat on the paper
+
+
+def test_one_collocation_system_on_floats_is_the_arrays_elimination():
+    """``solve_collocation`` of one system (Python floats) against a stack of two (arrays)."""
+    from sim.core import nurbs
+
+    rng = np.random.default_rng(3)
+    for trial in range(400):
+        n = int(rng.integers(4, 14))
+        pts = np.cumsum(rng.normal(size=(1, n, 3)) * rng.uniform(0.01, 5.0), axis=1)
+        if trial % 5 == 0:
+            pts[0, :, 2] = np.where(rng.random(n) < 0.5, -0.0, pts[0, :, 2])
+        params = nurbs.chord_params(pts)
+        A = nurbs.bspline_basis(nurbs.averaged_knots(params, 3), 3, params)
+        one = nurbs.solve_collocation(A, pts)
+        two = nurbs.solve_collocation(np.concatenate([A, A]), np.concatenate([pts, pts]))
+        assert one.shape == pts.shape and one.tobytes() == two[:1].tobytes()
