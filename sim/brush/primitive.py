@@ -160,7 +160,8 @@ class HairyBrush:
         knots = averaged_knots(params, 3)
         u = lay.station_u
         n = params.shape[-1]
-        bases = bspline_bases(knots, 3, np.concatenate([params, np.tile(u, (self.m, 1))], 1))
+        stations = np.broadcast_to(u, (self.m, len(u)))
+        bases = bspline_bases(knots, 3, np.concatenate([params, stations], 1))
         ctrl = solve_collocation(bases[3][:, :n], self.cc)
         centres = np.ascontiguousarray(bases[3][:, n:]) @ ctrl
         dq, _ = derivative_ctrl(ctrl, knots, 3)
