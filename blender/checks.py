@@ -60,6 +60,7 @@ FINITE_SETTINGS = {
     "paint_angle_step": "Angle Step",
     "paper_capacity": "Ink Capacity",
     "paper_fibre": "Fibre",
+    "paper_texture": "Texture",
     "paper_color": "Paper Colour",
     "ink_color": "Ink Colour",
 }

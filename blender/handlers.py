@@ -128,7 +128,7 @@ def on_undo_redo(_scene, _data=None):
             continue
         try:
             if st.recording is None:
-                images.show_blank(st)
+                images.show_blank(st, surfaces.paper_texture(st))
             else:
                 target = int(img[images.SHOWN_TAG])
                 sim = playback.show(scene, target, should_stop=_deadline(exact_frames()))

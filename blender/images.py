@@ -9,6 +9,7 @@ import numpy as np
 
 from ..sim.image.matte import ink_matte
 from ..sim.paper import display
+from ..sim.paper.texture import paper_tone
 from . import checks, runtime
 
 PAPER_IMAGE = "HairyBrush Paper"
@@ -95,7 +96,8 @@ class WorkView:
     def _band(self, paper, y0: int, y1: int):
         """Paper rows y0:y1 (bottom first) converted, the overlay drawn on them (top first)."""
         top = paper.H - y1  # the band's first row counted from the top
-        vis = np.ascontiguousarray(paper.visible(paper.ink[y0:y1])[::-1], dtype=np.float32)
+        band = paper.visible(paper.ink[y0:y1], slice(y0, y1), slice(0, paper.W))
+        vis = np.ascontiguousarray(band[::-1], dtype=np.float32)
         if self.overlay is not None:
             vis = self.overlay.apply(vis, top)
         self.pixels[y0:y1, :, :3] = display.encode(np.clip(vis[::-1], 0.0, 1.0), self.linear)
@@ -175,21 +177,24 @@ def write_density(dens, density):
     keep_packed(dens)
 
 
-def density_from_image(st, img) -> np.ndarray:
-    """The ink density (H, W) the paper image shows: 1 - visible / the paper's colour, the
-    channels' mean (the inverse of ``Paper.rgb``, to the image's precision)."""
-    paper = np.maximum(np.asarray(blank_color(st), np.float32), 1e-6)
-    return np.clip(1.0 - image_rgb(img) / paper, 0.0, 1.0).mean(axis=2)
+def density_from_image(st, img, texture: float) -> np.ndarray:
+    """The ink density (H, W) the paper image shows: 1 - visible / the blank sheet's colour
+    (with its ``texture``, for an image of the paper's size), the channels' mean (the inverse
+    of ``Paper.rgb``, to the image's precision)."""
+    rgb = image_rgb(img)
+    if rgb.shape[:2] == checks.paper_pixels(st)[::-1]:
+        paper = np.maximum(blank_sheet(st, texture), 1e-6)
+    else:
+        paper = np.maximum(np.asarray(blank_color(st), np.float32), 1e-6)
+    return np.clip(1.0 - rgb / paper, 0.0, 1.0).mean(axis=2)
 
 
-def show_blank(st):
-    """The paper image as the blank paper of the scene's paper preset."""
+def show_blank(st, texture: float):
+    """The paper image as the blank paper of the scene's paper preset (``texture``: how much
+    its sheet shows, ``surfaces.paper_texture``)."""
     color = blank_color(st)
     img = ensure_paper_image(st, color)
-    w, h = checks.paper_pixels(st)
-    blank = np.empty((h, w, 3), np.float32)
-    blank[:] = color
-    write_image(img, blank)
+    write_image(img, blank_sheet(st, texture))
     img[SHOWN_TAG] = 0
     if density_read(img, tag_reliefs(img)):
         show_density(img)
@@ -200,6 +205,17 @@ def show_blank(st):
 def blank_color(st) -> tuple:
     """The blank paper's colour as the engine will simulate it."""
     return tuple(float(c) for c in st.paper_color)
+
+
+def blank_sheet(st, texture: float) -> np.ndarray:
+    """The blank paper (H, W, 3), bottom row first, as the engine will show it: its colour
+    with its texture (``sim.paper.texture``: ``texture``, the scene's px/mm and seed)."""
+    from .recordings import scene_seed
+
+    w, h = checks.paper_pixels(st)
+    color = np.asarray(blank_color(st), np.float32)
+    tone = paper_tone(slice(0, h), slice(0, w), float(st.px_per_mm), texture, scene_seed(st))
+    return np.clip(color * tone[..., None], 0.0, 1.0)
 
 
 def write_image(img, rgb_bottom_up: np.ndarray):

@@ -111,11 +111,12 @@ def apply_quality_presets(st, brush: bool = True, paper: bool = True):
 
 
 def apply_paper_preset(st):
-    """The paper preset's colour, capacity and fibre into the settings."""
+    """The paper preset's colour, capacity, fibre and texture into the settings."""
     spec = paper_from_preset(load_preset("paper", st.paper_preset))
     st.paper_color = spec.color
     st.paper_capacity = spec.capacity
     st.paper_fibre = spec.fibre
+    st.paper_texture = spec.texture
 
 
 def apply_ink_preset(st):

@@ -18,6 +18,7 @@ from bpy.props import (
 
 from ..sim.core.params import (
     PAPER_CAPACITY_RANGE,
+    PAPER_TEXTURE_MAX,
     QUALITY_DOC,
     QualityParams,
     load_preset,
@@ -302,6 +303,15 @@ class HAIRY_BRUSH_PG_settings(bpy.types.PropertyGroup):
         description="How much the sheet's grain shows where the hair offers little ink: higher "
         "gives a more mottled grey in dry and fast strokes; 0 = an even grey "
         "(raw xuan 0.4, sized xuan 0.62, smooth paper 0.3)",
+    )
+    paper_texture: FloatProperty(
+        name="Texture",
+        default=_DEFAULT_PAPER_SPEC.texture,
+        min=0.0,
+        max=PAPER_TEXTURE_MAX,
+        description="How much the sheet itself shows: the pulp's soft clouds and its fibres, "
+        "under and between the ink; 0 = an even colour (raw xuan 0.06, sized xuan 0.05, "
+        "smooth paper 0)",
     )
     touch_height_mm: FloatProperty(
         name="Touching Height (mm)",

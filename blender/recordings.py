@@ -40,6 +40,7 @@ def scene_overrides(st) -> dict:
     paper["color"] = [float(c) for c in st.paper_color]
     paper["capacity"] = float(st.paper_capacity)
     paper["fibre"] = float(st.paper_fibre)
+    paper["texture"] = float(st.paper_texture)
     return {
         "paper": paper,
         "brush": {"preset": st.brush_preset},
@@ -191,6 +192,7 @@ def copy_settings_from_recording(st, rec: Recording):
     q, _geom, _paper, _ink = rec.resolve()
     _check_fits(st, "paper_capacity", _paper.capacity)
     _check_fits(st, "paper_fibre", _paper.fibre)
+    _check_fits(st, "paper_texture", _paper.texture)
     quality = {name: getattr(q, name) for name in QualityParams.names()}
     for name, value in values.items():
         _check_fits(st, name, value)
@@ -202,6 +204,7 @@ def copy_settings_from_recording(st, rec: Recording):
         setattr(st.quality, name, value)
     st.paper_color, st.paper_capacity = _paper.color, _paper.capacity
     st.paper_fibre = _paper.fibre
+    st.paper_texture = _paper.texture
     st.ink_color = _ink.color  # after the ink preset, which sets its own
     st.seed_of_recording = str(rec.seed) if rec.seed > checks.MAX_INT_PROPERTY else ""
 

@@ -203,7 +203,7 @@ def set_up_flat(scene) -> str:
         resize_paper(st)
     img = images.ensure_paper_image(st, color)
     if images.SHOWN_TAG not in img:
-        img = images.show_blank(st)
+        img = images.show_blank(st, surfaces.paper_texture(st))
     mat = materials.paper_material(img)
     if mat.name not in st.paper_object.data.materials:
         st.paper_object.data.materials.append(mat)
@@ -231,7 +231,7 @@ def set_up_surface(scene, obj) -> str:
     obj[surfaces.SURFACE_TAG] = 1
     st.paper_object = obj
     st.paper_width_mm = st.paper_height_mm = side
-    img = images.show_blank(st)
+    img = images.show_blank(st, surfaces.paper_texture(st))
     materials.surface_material(obj, img)
     if st.brush_object is None:
         st.brush_object = new_brush(scene.collection)

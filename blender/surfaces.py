@@ -24,6 +24,13 @@ def is_surface(st) -> bool:
     return obj is not None and SURFACE_TAG in obj
 
 
+def paper_texture(st) -> float:
+    """How much the paper's own texture shows (``sim.paper.texture``): the scene's Texture on
+    the flat paper, none on a mesh made paper (the engine's ``Simulation``: a mesh is not
+    xuan)."""
+    return 0.0 if is_surface(st) else float(st.paper_texture)
+
+
 def surface_space(paper_obj) -> np.ndarray:
     """4x4: the surface's space (the paper object's axes and origin, metres, its scale applied
     to the mesh instead) -> world. The engine's surface is this space in millimetres."""

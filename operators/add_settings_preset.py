@@ -40,6 +40,7 @@ class HAIRY_BRUSH_OT_add_settings_preset(AddPresetBase, bpy.types.Operator):
         "st.paper_color",
         "st.paper_capacity",
         "st.paper_fibre",
+        "st.paper_texture",
         "st.ink_color",
         "st.dip_wetness",
         "st.dip_depth",

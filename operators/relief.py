@@ -25,7 +25,7 @@ from __future__ import annotations
 import bpy
 import numpy as np
 
-from ..blender import checks, images, materials, playback, transforms
+from ..blender import checks, images, materials, playback, surfaces, transforms
 from ..sim.paper import display
 from ..sim.surface.relief import INK_LEVEL, MAX_LEVELS, plan_relief
 from . import polls
@@ -233,7 +233,7 @@ class HAIRY_BRUSH_OT_relief(bpy.types.Operator):
             ink = playback.show(context.scene, int(img[images.SHOWN_TAG])).paper.ink
             density = images.density_of(ink)
         except (*checks.USER_ERRORS, KeyError, MemoryError):  # else as the image shows it
-            density = images.density_from_image(st, img)
+            density = images.density_from_image(st, img, surfaces.paper_texture(st))
         if self.follow == "DENSITY":  # displacement = density x (-sign depth)
             dens = images.density_image(img, create=True)  # made once nothing can fail
             images.write_density(dens, density)

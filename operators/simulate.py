@@ -8,7 +8,7 @@ import time
 
 import bpy
 
-from ..blender import checks, frames, images, playback
+from ..blender import checks, frames, images, playback, surfaces
 from ..blender.jobs import Job, JobOperator, deadline
 from . import polls
 
@@ -50,7 +50,8 @@ class SimulateJob(Job):
         if self.shown_before is not None:
             playback.show(self.scene, self.shown_before)
         elif checks.settings(self.scene).paper_image is not None:
-            images.show_blank(checks.settings(self.scene))
+            st = checks.settings(self.scene)
+            images.show_blank(st, surfaces.paper_texture(st))
 
     def finish(self, context):
         playback.show(self.scene, self.target)

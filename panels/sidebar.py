@@ -47,6 +47,7 @@ class HAIRY_BRUSH_PT_paper(_Panel, bpy.types.Panel):
         col.prop(st, "paper_color")
         col.prop(st, "paper_capacity")
         col.prop(st, "paper_fibre")
+        col.prop(st, "paper_texture")
         layout.operator("hairy_brush.setup", icon="ADD")
         layout.operator(
             "hairy_brush.setup", text="Write on Selected Mesh", icon="MESH_UVSPHERE"

@@ -86,6 +86,7 @@ REF_RATE = 30.0  # time slices per second
 MAX_PAPER_SIDE_PX = 8192
 MAX_PAPER_PIXELS = 8192 * 8192
 PAPER_CAPACITY_RANGE = (1e-3, 1e6)  # a preset's wetness capacity
+PAPER_TEXTURE_MAX = 0.3  # the strongest paper texture (sim.paper.texture; 0.05: xuan's own)
 INK_FACTOR_RANGE = (-1.0, 1.0)  # an ink preset's per-mm factors of Eq. 5
 
 
@@ -207,6 +208,8 @@ class PaperSpec:
     color: tuple = (1.0, 1.0, 1.0)
     capacity: float = 1.0
     fibre: float = 0.0  # how much the grain shows in thin ink, 0..1 (model addition, paper_grain)
+    texture: float = 0.0  # how much the sheet's clouds and fibres show, 0..PAPER_TEXTURE_MAX
+    # (model addition, sim.paper.texture; 0: the flat colour)
 
 
 @dataclass(frozen=True)
@@ -337,6 +340,7 @@ def paper_from_preset(preset: Preset | None) -> PaperSpec:
         color=_preset_vec(preset, d, "color", PaperSpec.color, 0.0, 1.0),
         capacity=_preset_num(preset, d, "capacity", PaperSpec.capacity, *PAPER_CAPACITY_RANGE),
         fibre=_preset_num(preset, d, "fibre", PaperSpec.fibre, 0.0, 1.0),
+        texture=_preset_num(preset, d, "texture", PaperSpec.texture, 0.0, PAPER_TEXTURE_MAX),
     )
 
 

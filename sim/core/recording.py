@@ -20,6 +20,7 @@ from .params import (
     MAX_PAPER_PIXELS,
     MAX_PAPER_SIDE_PX,
     PAPER_CAPACITY_RANGE,
+    PAPER_TEXTURE_MAX,
     BrushGeometry,
     InkSpec,
     ParameterError,
@@ -405,7 +406,7 @@ def _color(col, where: str) -> tuple:
 
 
 def _paper_overrides(paper: dict) -> dict:
-    """The 'paper' section's own colour, capacity and fibre, checked."""
+    """The 'paper' section's own colour, capacity, fibre and texture, checked."""
     out = {}
     if "color" in paper:
         out["color"] = _color(paper["color"], "paper.color")
@@ -413,6 +414,8 @@ def _paper_overrides(paper: dict) -> dict:
         out["capacity"] = _num(paper["capacity"], "'paper.capacity'", *PAPER_CAPACITY_RANGE)
     if "fibre" in paper:
         out["fibre"] = _num(paper["fibre"], "'paper.fibre'", 0.0, 1.0)
+    if "texture" in paper:
+        out["texture"] = _num(paper["texture"], "'paper.texture'", 0.0, PAPER_TEXTURE_MAX)
     return out
 
 

@@ -62,6 +62,7 @@ class Simulation:
             dry_per_step=self.q.dry * DRY_RATE * self.dt,
             grain_seed=recording.seed,
             fibre=self.paper_spec.fibre,
+            texture=self.paper_spec.texture if surface is None else 0.0,  # a mesh is not xuan
         )
         self.predictor = InertiaPredictor(self.dt)
         self.dips = recording.dips_or_default()

@@ -59,7 +59,6 @@ def print_image(
     iy, wy = weights(ink.shape[0], height_px)
     ix, wx = weights(ink.shape[1], width_px)
     fill = mean_ink_colour(paper.ink) if matte else None
-    color = np.asarray(paper.color, np.float32)
     top = (1 << bits) - 1
     out = np.empty((height_px, width_px, 4 if matte else 3), np.uint16 if bits == 16 else np.uint8)
     for y0 in range(0, height_px, BAND_ROWS):
@@ -70,9 +69,25 @@ def print_image(
         band = resample_rows(ink[lo:hi].astype(np.float32), rows - lo, wy[y0 : y0 + BAND_ROWS])
         band = np.moveaxis(resample_rows(np.moveaxis(band, 1, 0), ix, wx), 0, 1)
         density = np.clip(band, 0.0, 1.0)
-        pic = ink_matte(density, fill) if matte else color * (1.0 - density)
+        if matte:
+            pic = ink_matte(density, fill)
+        else:
+            pic = _sheet(paper, band.shape, y0, height_px) * (1.0 - density)
         out[y0 : y0 + BAND_ROWS] = np.floor(pic * top + 0.5)
     return out
+
+
+def _sheet(paper, shape, y0: int, height_px: int) -> np.ndarray:
+    """The paper's colour at rows y0.. (top first) of a print ``height_px`` high (``shape``:
+    the band's (rows, columns)): the sheet with its texture (``Paper.sheet``) made at the
+    print's own resolution, so its clouds and fibres keep their size in millimetres; the flat
+    colour for a paper without one."""
+    if getattr(paper, "sheet", None) is None:
+        return np.asarray(paper.color, np.float32)
+    rows, cols = shape[0], shape[1]
+    ppm = paper.ppm * height_px / paper.ink.shape[0]
+    bottom = slice(height_px - y0 - rows, height_px - y0)  # paper rows count from the bottom
+    return paper.sheet(bottom, slice(0, cols), ppm)[::-1]
 
 
 def print_format(path) -> str:

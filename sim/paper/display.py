@@ -16,6 +16,7 @@ import numpy as np
 from .paper import Paper
 
 SRGB_LEVELS = 4096  # steps of the sRGB -> linear table
+BLANK_ROWS = 64  # rows of the blank sheet made at a time (a row of the paper's tiles)
 
 
 def srgb_to_linear(v) -> np.ndarray:
@@ -56,7 +57,10 @@ class PaperView:
             # a whole refresh: the blank paper's colour, then every tile that ever changed
             if self.pixels is None or self.pixels.shape[:2] != paper.shape:
                 self.pixels = np.empty(paper.shape + (4,), dtype=np.float32)
-            self.pixels[..., :3] = encode(paper.visible(np.zeros(3, np.float32)), self.linear)
+            for y0 in range(0, paper.H, BLANK_ROWS):  # the blank sheet, a band of rows at a time
+                ys = slice(y0, min(y0 + BLANK_ROWS, paper.H))
+                blank = paper.visible(np.zeros(3, np.float32), ys, slice(0, paper.W))
+                self.pixels[ys, :, :3] = encode(blank, self.linear)  # (its tiles' tone is kept)
             self.pixels[..., 3] = 1.0
             self._paper, self._version = paper, 0
         rows = _row_runs(paper.tiles_since(self._version))
@@ -64,7 +68,7 @@ class PaperView:
         for ty, tx0, tx1 in rows:
             ys = paper.tile_box(ty, tx0)[0]
             xs = slice(paper.tile_box(ty, tx0)[1].start, paper.tile_box(ty, tx1)[1].stop)
-            self.pixels[ys, xs, :3] = encode(paper.visible(paper.ink[ys, xs]), self.linear)
+            self.pixels[ys, xs, :3] = encode(paper.visible(paper.ink[ys, xs], ys, xs), self.linear)
             done += (ys.stop - ys.start) * (xs.stop - xs.start)
         self._version = paper.version
         return done

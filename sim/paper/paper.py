@@ -27,6 +27,8 @@ from __future__ import annotations
 import numpy as np
 
 from ..image.png import to_uint8
+from .grain import paper_grain
+from .texture import paper_tone, sheet_tone
 
 _RGB = np.dtype((np.void, 12))  # a pixel's three float32 ink densities as one item
 DRY_RATE = 1.0  # capacity units per second at dry = 1
@@ -52,6 +54,7 @@ class Paper:
         dry_per_step: float = 0.0,
         grain_seed: int = 0,
         fibre: float = 0.0,
+        texture: float = 0.0,
     ):
         self.W, self.H = int(width_px), int(height_px)
         self.grain_seed = int(grain_seed)  # which sheet: the recording's seed (paper_grain)
@@ -63,6 +66,7 @@ class Paper:
         self.last = np.zeros((self.H, self.W), dtype=np.int32)
         self.step = 0
         self.dry_per_step = float(dry_per_step)  # Eq. 24's "- dry", per sample
+        self.texture = float(texture)  # how much the sheet's clouds and fibres show (paper_tone)
         self.fibre = float(fibre)  # how much the grain slows thin ink (paper_grain), 0: not
         # saturation spreads one pixel ring per pass: passes scale with resolution so that the
         # halo has the same size in millimetres at any px_per_mm
@@ -246,10 +250,27 @@ class Paper:
 
     def rgb(self) -> np.ndarray:
         """Visible colour (H, W, 3) float32 in [0, 1], bottom row first."""
-        return self.visible(self.ink)
+        return self.visible(self.ink, slice(0, self.H), slice(0, self.W))
 
-    def visible(self, ink) -> np.ndarray:
-        return self.color * (1.0 - np.clip(ink, 0.0, 1.0))
+    def visible(self, ink, rows: slice, cols: slice) -> np.ndarray:
+        """The colour seen at the pixels (``rows``, ``cols``: paper indices, bottom row first)
+        holding ``ink`` ((h, w, 3), or one ink for all of them): the sheet's colour, with its
+        clouds and fibres (``paper_tone``), under the ink."""
+        ink = np.broadcast_to(ink, (rows.stop - rows.start, cols.stop - cols.start, 3))
+        under = 1.0 - np.clip(ink, 0.0, 1.0)
+        if self.texture <= 0.0:
+            return self.color * under
+        return self.sheet(rows, cols) * under
+
+    def sheet(self, rows: slice, cols: slice, ppm: float | None = None) -> np.ndarray:
+        """The bare sheet's colour (h, w, 3) at the pixels (``rows``, ``cols``) of a grid of
+        ``ppm`` pixels a millimetre (the paper's own by default; a print's finer one keeps the
+        clouds and fibres their size in mm): its colour times its tone (``paper_tone``)."""
+        if ppm is None:  # the paper's own pixels: made a tile at a time, once (sheet_tone)
+            tone = sheet_tone(rows, cols, self.ppm, self.texture, self.grain_seed, TILE)
+        else:
+            tone = paper_tone(rows, cols, float(ppm), self.texture, self.grain_seed)
+        return np.clip(self.color * tone[..., None], 0.0, 1.0)
 
     def rgb8(self, chunk_rows: int = 256) -> np.ndarray:
         """Visible colour as (H, W, 3) uint8, TOP row first (an image file's order), made a band
@@ -257,8 +278,8 @@ class Paper:
         out = np.empty((self.H, self.W, 3), dtype=np.uint8)
         for y0 in range(0, self.H, chunk_rows):
             y1 = min(y0 + chunk_rows, self.H)
-            band = self.ink[self.H - y1 : self.H - y0][::-1]
-            out[y0:y1] = to_uint8(self.visible(band))
+            rows = slice(self.H - y1, self.H - y0)
+            out[y0:y1] = to_uint8(self.visible(self.ink[rows], rows, slice(0, self.W))[::-1])
         return out
 
     def snapshot(self) -> dict:
@@ -292,24 +313,6 @@ class Paper:
 # (drying, and saturation, Eq. 25).
 FULL_WET = 0.25
 GRAIN_DEPTH = 0.25  # the grain changes the offer a pixel takes by up to +- GRAIN_DEPTH fibre / 2
-
-
-def paper_grain(index, seed: int = 0) -> np.ndarray:
-    """Model addition (not in the paper): the sheet's grain, a fixed value in [0, 1) per pixel
-    (a hash of the pixel's index in the sheet, so the same pixel has the same grain in every
-    step, in a snapshot and in a replay; no generator is drawn, so the brush's draws are
-    unchanged). A pixel where the grain is high takes a little less of the liquid the hair
-    offers, one where it is low a little more (times 1 - GRAIN_DEPTH fibre (grain - 1/2),
-    ``fibre`` the sheet's): where the hair is loaded every pixel still takes the ink's colour;
-    where it offers little (a dry or fast stroke) the grain shows in the grey."""
-    # the seed picks the sheet (the recording's seed: the one seeded generator's, so the same
-    # recording and seed give the same sheet, another seed another one)
-    offset = (0x9E3779B97F4A7C15 + int(seed) * 0xD1B54A32D192ED03) % 2**64
-    x = np.atleast_1d(np.asarray(index, dtype=np.uint64)) + np.uint64(offset)  # wraps mod 2**64
-    x = (x ^ (x >> np.uint64(30))) * np.uint64(0xBF58476D1CE4E5B9)
-    x = (x ^ (x >> np.uint64(27))) * np.uint64(0x94D049BB133111EB)
-    x = (x ^ (x >> np.uint64(31))).reshape(np.shape(index))
-    return (x >> np.uint64(40)).astype(np.float64) / float(1 << 24)
 
 
 def _visit_ranks(locs, size: int) -> tuple[np.ndarray, np.ndarray]:

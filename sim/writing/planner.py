@@ -180,12 +180,49 @@ def _entry_ramp(path, width, touch=ENTRY_TOUCH) -> np.ndarray:
     (``ENTRY_TOUCH``) while the brush already moves along the stroke, and the belly presses
     over the first stroke width of the way (a smoothstep), as a calligrapher enters - not a
     stationary press, which splays the hair into a round blob."""
-    seg = np.linalg.norm(np.diff(path, axis=0), axis=1)
-    s = np.concatenate([[0.0], np.cumsum(seg)])
-    ramp = float(np.clip(0.5 * np.max(width[: max(len(width) // 3, 1)]), 0.5, 0.25 * s[-1]))
-    t = np.clip(s / max(ramp, 1e-6), 0.0, 1.0)
+    s = _along(path)
+    t = np.clip(s / max(_ramp_length(s, width), 1e-6), 0.0, 1.0)
     entry = touch + (1.0 - touch) * t * t * (3.0 - 2.0 * t)
     return entry * _turn_ease(path, s)
+
+
+def _along(path) -> np.ndarray:
+    """Distance (mm) along ``path`` from its first point, per point."""
+    return np.concatenate([[0.0], np.cumsum(np.linalg.norm(np.diff(path, axis=0), axis=1))])
+
+
+def _ramp_length(s, width) -> float:
+    """How far (mm) into a movement the belly has pressed to the planned press (``_entry_ramp``):
+    half the stroke's width over its first third, at least 0.5 mm, at most a quarter of the
+    movement (``s``: distance along it per sample)."""
+    return float(np.clip(0.5 * np.max(width[: max(len(width) // 3, 1)]), 0.5, 0.25 * s[-1]))
+
+
+def entry_zone(pl: Plan, body) -> np.ndarray:
+    """For each body sample of a stroke, whether it lies in a movement's entry, where the belly
+    is still pressing down (``_entry_ramp``): the planned gesture (起笔), not yet the stroke's
+    band. A hook, which sets off pressed, has none."""
+    runs = _movements(body)
+    zone = [np.zeros(len(r), dtype=bool) for r in runs]
+    for r, (run, hook) in enumerate(zip(runs, _is_hook(pl, runs), strict=True)):
+        if not hook:
+            s = _along(pl.target[run])
+            zone[r] = s < _ramp_length(s, pl.width[run])
+    return np.concatenate(zone)
+
+
+def point_zone(pl: Plan, body) -> np.ndarray:
+    """For each body sample of a stroke, whether it lies in the last stretch of a movement that
+    ends in a point (``_point_reach``), as long as the stroke is wide there: where the belly
+    lets go, and the band read there narrows because the brush lifts off, not because it is
+    pressed too little."""
+    runs = _movements(body)
+    zone = [np.zeros(len(r), dtype=bool) for r in runs]
+    for r, run in enumerate(runs):
+        if r == len(runs) - 1 and _point_reach(pl.target[run], pl.width[run]) > 0.0:
+            s = _along(pl.target[run])
+            zone[r] = s > s[-1] - float(pl.width[run][-1])
+    return np.concatenate(zone)
 
 
 def _turn_ease(path, s) -> np.ndarray:
@@ -237,9 +274,39 @@ def _enter_and_leave(samples, pl, body, hover, hair, step_mm, corner=(None, None
     t1 = pl.tangent[body[-1]]
     f = np.arange(1, len(lift) + 1) / max(len(lift), 1)
     flick = 0.5 * step_mm if corner[1] is None else 0.0  # into a sharp turn: lift on the corner
-    samples[lift, :2] = samples[body[-1], :2] + (f * len(lift) * flick)[:, None] * t1
+    travel = f * len(lift) * flick
     top = hover if corner[1] is None else corner[1]
-    samples[lift, 2] = samples[body[-1], 2] + (top - samples[body[-1], 2]) * np.sqrt(f)
+    z0 = samples[body[-1], 2]
+    rise = z0 + (top - z0) * np.sqrt(f)
+    point = _point_reach(pl.target[body], pl.width[body]) if corner[1] is None else 0.0
+    if point > 0.0:  # 出锋: the belly lets go evenly as the brush sweeps on, out to the point
+        g = np.clip(f / POINT_LIFT, 0.0, 1.0)
+        travel = np.maximum(travel, g * point)
+        rise = np.where(f <= POINT_LIFT, z0 + (hair - z0) * g, rise)
+    samples[lift, :2] = samples[body[-1], :2] + travel[:, None] * t1
+    samples[lift, 2] = rise
+
+
+POINT_SHARE = 0.6  # a movement whose planned width ends below this share of its widest, ...
+POINT_PEAK = 0.6  # ... its widest point lying in this first share of it, ends in a point
+POINT_LIFT = 0.75  # share of the lift-off over which the belly lets go, sweeping out to the point
+
+
+def _point_reach(path, width) -> float:
+    """How far (mm) past its median's end a movement's outline runs on to its point (the
+    median stops short of it), for a movement that narrows to its end (出锋: a hook, a 撇, a
+    提; ``width`` planned per body sample along ``path``): from its widest, in its first
+    ``POINT_PEAK`` share, to an end below ``POINT_SHARE`` of that; the last width over the
+    rate it narrowed at, from half to twice that width. 0 for any other movement: a round or
+    pressed end (收笔), whose width falls only over the end's cap, a 捺 that swells to its end."""
+    n = len(width)
+    top = int(np.argmax(width))
+    w, w_max = float(width[-1]), float(width[top])
+    if n < 5 or top > POINT_PEAK * (n - 1) or w >= POINT_SHARE * w_max:
+        return 0.0
+    run = float(np.linalg.norm(np.diff(path[top:], axis=0), axis=1).sum())
+    rate = (w_max - w) / max(run, 1e-9)
+    return float(np.clip(w / max(rate, 1e-6), 0.5 * w, 2.0 * w))
 
 
 def _is_hook(pl: Plan, runs) -> list[bool]:

@@ -12,7 +12,7 @@ from typing import NamedTuple
 import numpy as np
 
 from ..engine.simulation import Simulation
-from .planner import LIFTING, WRITING, Plan, _movements, _smooth
+from .planner import LIFTING, WRITING, Plan, _movements, _smooth, entry_zone, point_zone
 from .response import Response, _coverage
 
 
@@ -137,10 +137,19 @@ def _practise(sim, a, b, body, want, step_mm, pl, probes):
     return old, cov
 
 
-def _correct(response, press, side, want, got, centre, valid, ceiling):
+def _correct(response, placed, want, band, ceiling, zones):
     """The next pass's press and sideways placement: where the reading is this stroke's own,
     a share of the width error through the response's slope, and of the band's offset; smoothed
-    along the stroke."""
+    along the stroke. ``placed``: the press and sideways placement per body sample; ``band``:
+    the band's width, centre offset and whether the reading is the stroke's own (``measure_band``);
+    ``entering``: the samples of a movement's entry (``entry_zone``), which keep their sideways
+    placement: there the band is the landing's head, and following its centre bent it into a
+    hooked claw; ``pointing``: the last stretch of a movement that ends in a point
+    (``point_zone``), where the press is not raised: the band narrows there as the belly lets
+    go, and pressing to widen it left a blunt end."""
+    press, side = placed
+    got, centre, valid = band
+    entering, pointing = zones
     w_env = np.maximum.accumulate(response.width_mm)
     slope_tab = np.gradient(w_env, response.press_mm)
     p_max = float(response.press_mm[-1])
@@ -148,8 +157,10 @@ def _correct(response, press, side, want, got, centre, valid, ceiling):
     slope = np.maximum(np.interp(press, response.press_mm, slope_tab), mean_slope)
     dp = np.where(valid, PRACTICE_GAIN * (want - got) / slope, 0.0)
     dp = np.where(valid & (got == 0) & (want > 0), 0.5, dp)
+    dp = np.where(pointing, np.minimum(dp, 0.0), dp)
     press = np.clip(press + _smooth(dp, 5), 0.0, ceiling)
-    side = side - _smooth(np.where(valid & (got > 0), PRACTICE_SIDE_GAIN * centre, 0.0), 5)
+    steady = valid & (got > 0) & ~entering
+    side = side - _smooth(np.where(steady, PRACTICE_SIDE_GAIN * centre, 0.0), 5)
     return press, side
 
 
@@ -195,6 +206,7 @@ def _practise_stroke(sim, a, b, passes, fill, own, ctx) -> None:
     hold = sim.hold()  # the stroke taken back before each new pass (the tiles it changed)
     inked_before = _coverage(sim, own.rows, own.cols)
     probes = _probes(sim, pl.target[body], pl.tangent[body], reach)
+    zones = (entry_zone(pl, body), point_zone(pl, body))
     best = None
     for k in range(passes):
         if k:
@@ -212,7 +224,8 @@ def _practise_stroke(sim, a, b, passes, fill, own, ctx) -> None:
             best = Pass(err, press.copy(), side.copy(), k, state)
         if k == passes - 1:
             break
-        press, side = _correct(response, press, side, want, got, centre, valid, ceiling)
+        band = (got, centre, valid)
+        press, side = _correct(response, (press, side), want, band, ceiling, zones)
     sim.let_go(hold)
     if best.number != k:  # the last pass was not the best: back to where the best left off
         sim.restore(best.state)

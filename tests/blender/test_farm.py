@@ -139,7 +139,8 @@ def test_relief_moves_the_surface_under_the_ink_only_by_the_depth(hb, mode, sign
     img = np.empty(len(st.paper_image.pixels), np.float32)
     st.paper_image.pixels.foreach_get(img)
     img = linear_to_srgb(img.reshape(400, 400, 4)[..., :3])  # as the engine's Paper.rgb
-    shown = np.clip(1.0 - img / img[0, 0], 0.0, 1.0).mean(axis=2)  # the density it shows
+    sheet = ext().blender.images.blank_sheet(st, st.paper_texture)  # the blank paper, textured
+    shown = np.clip(1.0 - img / sheet, 0.0, 1.0).mean(axis=2)  # the density it shows
     np.testing.assert_allclose(depth, shown, atol=0.01)
     px = np.clip(((xy + 0.1) * 1000 * 2.0).astype(int), 0, 399)
     win = np.stack(

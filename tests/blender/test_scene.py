@@ -38,9 +38,11 @@ def test_setup_builds_paper_and_brush_in_metres(hb):
         )
         .color
     )
-    np.testing.assert_allclose(
-        pixels(img)[..., :3], np.broadcast_to(color, (300, 450, 3)), atol=1e-3
-    )
+    # the blank sheet: the preset's colour with its texture (clouds and fibres, a few per cent)
+    sheet = ext().blender.images.blank_sheet(st, st.paper_texture)
+    np.testing.assert_allclose(pixels(img)[..., :3], sheet, atol=1e-3)
+    np.testing.assert_allclose(sheet.reshape(-1, 3).mean(axis=0), color, rtol=0.02)
+    assert st.paper_texture > 0 and sheet[..., 1].std() > 0.002
     mat = paper.data.materials[0]
     assert any(n.type == "TEX_IMAGE" and n.image == img for n in mat.node_tree.nodes)
     assert brush.type == "EMPTY" and brush.rotation_mode == "ZYX"

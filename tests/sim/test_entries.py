@@ -237,3 +237,88 @@ def test_a_hook_sets_off_pressed_from_its_foot(response):
     # press falls from there to the point
     p = hair - samples[hook, 2]
     assert p[0] > 0.8 * press[len(foot)] and p[-1] < 0.6 * p[: len(p) // 3].max()
+
+
+def test_a_movements_entry_is_the_stretch_the_belly_presses_down_over():
+    # 永's 竖钩: the foot movement's entry is the first samples, as far along the path as
+    # _entry_ramp presses over (half the width, at least 0.5 mm); the hook, which sets off
+    # pressed from the foot, has no entry; an L's 折 gives both its movements one
+    from sim.writing.planner import _along, _movements, _ramp_length, entry_zone
+
+    for ch, hooks in ((find_char("永"), [False, True]), (L_CHAR, [False, False])):
+        pl = plan(ch, 100.0, 0.5)
+        a, b = pl.strokes[1] if ch is not L_CHAR else pl.strokes[0]
+        body = np.flatnonzero(pl.phase[a:b] == WRITING) + a
+        zone = entry_zone(pl, body)
+        assert zone.shape == body.shape
+        at = 0
+        for run, hook in zip(_movements(body), hooks, strict=True):
+            z = zone[at : at + len(run)]
+            at += len(run)
+            if hook:
+                assert not z.any()
+                continue
+            s = _along(pl.target[run])
+            reach = _ramp_length(s, pl.width[run])
+            assert z[0] and not z[-1] and 0.5 <= reach < s[-1]
+            assert np.array_equal(z, s < reach)  # one run from the start, as far as the ramp
+
+
+def test_practice_keeps_an_entrys_sideways_placement():
+    # the band read at an entry is the landing's head: the next pass corrects its press there
+    # but not its sideways placement (following the head's centre bent it into a claw); on the
+    # rest of the stroke both are corrected
+    from sim.writing.practice import PRACTICE_SIDE_GAIN, _correct
+
+    resp = calibrate(_template())
+    n = 40
+    want = np.full(n, 3.0)
+    press = resp.press_for(want)
+    got, centre, valid = np.full(n, 2.0), np.full(n, 0.4), np.ones(n, dtype=bool)
+    entering = np.arange(n) < 10
+    ceiling = np.full(n, float(resp.press_mm[-1]))
+    pointing = np.arange(n) >= n - 10
+    new_press, side = _correct(
+        resp, (press, np.zeros(n)), want, (got, centre, valid), ceiling, (entering, pointing)
+    )
+    assert np.all(side[:8] == 0.0)  # the smoothing reaches two samples in from the far side
+    assert np.allclose(side[14:], -PRACTICE_SIDE_GAIN * 0.4)
+    # too thin everywhere: pressed harder, entry included, but not where the belly lets go into
+    # a point (the band narrows there because the brush lifts off)
+    assert np.all(new_press[: n - 12] > press[: n - 12])
+    assert np.all(new_press[n - 8 :] == press[n - 8 :])
+
+
+def test_a_movement_that_narrows_to_its_end_sweeps_on_out_to_its_point(response):
+    # 永's hook and its 撇s narrow to their ends: past the median's end the brush sweeps on as
+    # far as the outline runs to its point, letting the belly go evenly (it lifted on the spot
+    # before: a blunt end the width of the stroke); its 捺 (which swells to its end) and the
+    # horizontal's round end (whose width falls only over the end's cap) do not
+    from sim.core.params import HOVER_MM
+    from sim.writing.planner import POINT_LIFT, _fill, _movements, _point_reach, point_zone
+
+    ch = find_char("永")
+    pl = plan(ch, 100.0, 0.5)
+    hair = _template().resolve()[1].hair_length_mm
+    reach = []
+    for a, b in pl.strokes:
+        body = np.flatnonzero(pl.phase[a:b] == WRITING) + a
+        runs = _movements(body)
+        reach.append([_point_reach(pl.target[r], pl.width[r]) for r in runs])
+        zone = point_zone(pl, body)
+        assert zone[-1] == (reach[-1][-1] > 0) and not zone[: len(runs[0]) // 2].any()
+    assert reach[1][1] > 0 and reach[2][1] > 0 and reach[3][0] > 0  # hook, 横撇's 撇, 撇
+    assert reach[4] == [0.0]  # the 捺
+    assert reach[2][0] == 0.0  # 横撇's horizontal, into the corner
+    a, b = pl.strokes[3]
+    body = np.flatnonzero(pl.phase[a:b] == WRITING) + a
+    samples = np.zeros((len(pl.target), 6))
+    samples[:, :2], samples[:, 2] = pl.target, hair + HOVER_MM
+    press = response.press_for(pl.width[body])
+    _fill(samples, pl, response, (a, b), press, np.zeros(len(body)), (hair + HOVER_MM, hair, 0.5))
+    lift = np.arange(body[-1] + 1, b)
+    on = lift[: int(POINT_LIFT * len(lift))]
+    z = samples[on, 2]
+    assert np.all(np.diff(z) > 0) and np.all(z <= hair + 1e-9)  # letting go, still touching
+    gone = float(np.linalg.norm(samples[on[-1], :2] - samples[body[-1], :2]))
+    assert gone >= 0.9 * reach[3][0]  # swept on out to the point

@@ -83,11 +83,13 @@ def test_render_matte_writes_rgba_with_the_inks_density_as_alpha(tmp_path):
     alpha = np.clip(sim.paper.ink.max(axis=2), 0, 1)[::-1]
     np.testing.assert_allclose(matte[..., 3] / 255, alpha, atol=0.5 / 255 + 1e-6)
     assert alpha.max() > 0.8 and (alpha == 0).mean() > 0.5  # a stroke on bare paper
-    # over white it is the paper image divided by the paper's colour
+    # over white it is the paper image divided by the sheet's own colour (with its texture)
     m = matte.astype(float) / 255
     over_white = m[..., 3:] * m[..., :3] + (1 - m[..., 3:])
-    color = np.asarray(sim.paper.color)
-    np.testing.assert_allclose(over_white, paper / color, atol=3 / 255)
+    H, W = sim.paper.shape
+    sheet = sim.paper.visible(np.zeros(3), slice(0, H), slice(0, W))[::-1]
+    assert sim.paper.texture > 0 and sheet.std() > 0.002  # the default paper shows its texture
+    np.testing.assert_allclose(over_white, paper / sheet, atol=3 / 255)
 
 
 def test_write_and_compose_have_the_matte_option_too():

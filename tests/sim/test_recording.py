@@ -167,7 +167,12 @@ def test_the_papers_colour_and_capacity_travel_with_the_recording():
     spec = back.resolve()[2]
     assert spec.color == (0.9, 0.8, 0.6) and spec.capacity == 0.25
     blank = Simulation(back).image()
-    assert np.allclose(blank[0, 0], (0.9, 0.8, 0.6))
+    # the sheet's colour, with the default paper's texture about it (clouds and fibres, a few
+    # per cent), and exactly it with the texture off
+    assert np.allclose(blank.reshape(-1, 3).mean(axis=0), (0.9, 0.8, 0.6), rtol=0.02)
+    assert 0.002 < blank[..., 0].std() < 0.03
+    d["paper"]["texture"] = 0.0
+    assert np.all(Simulation(from_dict(d)).image() == np.float32([0.9, 0.8, 0.6]))
     for bad, msg in (([1, 2], "must be"), ([0.5, 0.5, 2.0], "color"), ("x", "must be")):
         d["paper"]["color"] = bad
         with pytest.raises(RecordingError, match=msg):
@@ -176,3 +181,8 @@ def test_the_papers_colour_and_capacity_travel_with_the_recording():
     d["paper"]["capacity"] = -1
     with pytest.raises(RecordingError, match="capacity"):
         from_dict(d)
+    d["paper"]["capacity"] = 1.0
+    for bad in (-0.1, 0.31, float("nan"), "x"):
+        d["paper"]["texture"] = bad
+        with pytest.raises(RecordingError, match="paper.texture"):
+            from_dict(d)

@@ -143,6 +143,7 @@ def work_image8(paper, work: dict | None, seed: int, chunk_rows: int = 256) -> n
     out = np.empty((paper.H, paper.W, 3), dtype=np.uint8)
     for y0 in range(0, paper.H, chunk_rows):
         y1 = min(y0 + chunk_rows, paper.H)
-        band = paper.ink[paper.H - y1 : paper.H - y0][::-1]
-        out[y0:y1] = to_uint8(over.apply(paper.visible(band), y0))
+        rows = slice(paper.H - y1, paper.H - y0)
+        band = paper.visible(paper.ink[rows], rows, slice(0, paper.W))[::-1]
+        out[y0:y1] = to_uint8(over.apply(band, y0))
     return out

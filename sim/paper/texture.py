@@ -1,0 +1,117 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
+"""Model addition (not in the paper): the look of the sheet itself. Xuan paper is not an even
+colour: its pulp lies thicker and thinner in soft clouds a few millimetres across, and its
+fibres show as fine light and dark threads a millimetre or a few long, lying every way. A scan of
+real calligraphy shows both under and between the ink; a flat colour is what gives a rendering
+away. ``paper_tone`` gives, per pixel, the factor the sheet's colour is multiplied by there:
+
+    tone = 1 + texture * (MOTTLE * clouds + THREADS * fibres)
+
+``clouds`` is value noise at two scales in millimetres (CLOUD_MM), ``fibres`` thin ridges of
+value noise stretched along a few directions (FIBRE_MM long, as thin as a pixel allows), each
+in [-1, 1]. ``texture`` is the paper's (0: the flat colour, as before). Every value comes from
+a hash of the pixel's place in millimetres and of the sheet's seed (``paper_grain``'s hash):
+the same sheet at every step, in any window, tile or band it is asked for, and the same
+threads in mm at any resolution. No generator is drawn, so the brush's draws are unchanged.
+"""
+
+from __future__ import annotations
+
+from functools import lru_cache
+
+import numpy as np
+
+from .grain import paper_grain
+
+CLOUD_MM = (6.0, 1.6)  # sizes of the pulp's clouds (value noise scales), mm
+CLOUD_SHARE = (0.7, 0.3)  # their weights
+FIBRE_MM = (2.5, 0.06)  # a fibre's length and thickness (before the pixel's limit), mm
+FIBRE_WAYS = 6  # directions the fibres lie in (turned by the seed), each bent by the clouds
+FIBRE_BEND_MM = 0.6  # how far the small clouds push a fibre sideways (they curl, not hatch)
+FIBRE_SHARE = 0.12  # share of a fibre noise's range at either end that shows as a thread
+MOTTLE = 0.6  # the clouds' and ...
+THREADS = 0.4  # ... the fibres' share of the texture
+TONE_TILES = 2048  # tiles of tone kept (``sheet_tone``; 16 KB each at 64 px: 32 MB at most)
+_OCTAVE = 1 << 40  # index offsets that keep the noises' lattices apart
+_HALF = 1 << 19  # lattice indices are offset by this to stay positive (sheets < 2**19 cells)
+
+
+def _lattice(ix, iy, salt: int, seed: int) -> np.ndarray:
+    """A value in [0, 1) per lattice point (ix, iy) of noise number ``salt``."""
+    index = (iy + _HALF).astype(np.uint64) * np.uint64(2 * _HALF) + (ix + _HALF).astype(np.uint64)
+    return paper_grain(index + np.uint64(salt * _OCTAVE), seed)
+
+
+def _value_noise(u, v, salt: int, seed: int) -> np.ndarray:
+    """Smooth value noise in [-1, 1] at lattice coordinates (u, v) (arrays of one shape): the
+    lattice values of the window's cells hashed once, then looked up per pixel."""
+    iu, iv = np.floor(u), np.floor(v)
+    fu, fv = u - iu, v - iv
+    fu, fv = fu * fu * (3.0 - 2.0 * fu), fv * fv * (3.0 - 2.0 * fv)
+    iu, iv = iu.astype(np.int64), iv.astype(np.int64)
+    u0, v0 = int(iu.min()), int(iv.min())
+    gu = np.arange(u0, int(iu.max()) + 2)[None, :]
+    gv = np.arange(v0, int(iv.max()) + 2)[:, None]
+    table = _lattice(
+        np.broadcast_to(gu, (gv.size, gu.size)), np.broadcast_to(gv, (gv.size, gu.size)), salt, seed
+    )
+    flat, stride = table.ravel(), gu.size
+    at = (iv - v0) * stride + (iu - u0)
+    a, b = flat[at], flat[at + 1]
+    c, d = flat[at + stride], flat[at + stride + 1]
+    top = a + (b - a) * fu
+    return 2.0 * (top + (c + (d - c) * fu - top) * fv) - 1.0
+
+
+def paper_tone(rows: slice, cols: slice, ppm: float, texture: float, seed: int = 0):
+    """The factor (len(rows), len(cols)) float32 the paper's colour takes at the pixels of the
+    window (paper array indices, bottom row first; pixel centres at (index + 1/2) / ppm mm).
+    1 everywhere for ``texture`` 0."""
+    h, w = rows.stop - rows.start, cols.stop - cols.start
+    if texture <= 0.0 or h <= 0 or w <= 0:
+        return np.ones((max(h, 0), max(w, 0)), dtype=np.float32)
+    y = np.broadcast_to(((np.arange(rows.start, rows.stop) + 0.5) / ppm)[:, None], (h, w))
+    x = np.broadcast_to(((np.arange(cols.start, cols.stop) + 0.5) / ppm)[None, :], (h, w))
+    layers = [_value_noise(x / size, y / size, k, seed) for k, size in enumerate(CLOUD_MM)]
+    clouds = sum(share * n for share, n in zip(CLOUD_SHARE, layers, strict=True))
+    fibres = np.zeros((h, w))
+    length, thick = FIBRE_MM[0], max(FIBRE_MM[1], 0.7 / ppm)
+    turn = np.pi * float(paper_grain(np.array([7]), seed)[0])
+    bend = FIBRE_BEND_MM * layers[-1]
+    for k in range(FIBRE_WAYS):
+        a = turn + np.pi * k / FIBRE_WAYS
+        along = x * np.cos(a) + y * np.sin(a)
+        across = -x * np.sin(a) + y * np.cos(a) + bend
+        n = _value_noise(along / length, across / thick, len(CLOUD_MM) + k, seed)
+        fibres += np.clip((np.abs(n) - (1.0 - FIBRE_SHARE)) / FIBRE_SHARE, 0.0, 1.0) * np.sign(n)
+    fibres = np.clip(fibres, -1.0, 1.0)
+    return (1.0 + texture * (MOTTLE * clouds + THREADS * fibres)).astype(np.float32)
+
+
+@lru_cache(maxsize=TONE_TILES)
+def _tile_tone(ty: int, tx: int, tile: int, ppm: float, texture: float, seed: int):
+    """``paper_tone`` of the tile (ty, tx), ``tile`` pixels a side, kept (read-only)."""
+    tone = paper_tone(
+        slice(ty * tile, (ty + 1) * tile), slice(tx * tile, (tx + 1) * tile), ppm, texture, seed
+    )
+    tone.flags.writeable = False
+    return tone
+
+
+def sheet_tone(rows: slice, cols: slice, ppm: float, texture: float, seed: int, tile: int):
+    """``paper_tone`` of the window, put together from tiles of ``tile`` pixels that are made
+    once and kept (the same values: each pixel's tone is its own): a display refreshing the
+    tiles the brush changed, or going back to an earlier frame, makes none of them again."""
+    h, w = rows.stop - rows.start, cols.stop - cols.start
+    if texture <= 0.0 or h <= 0 or w <= 0:
+        return paper_tone(rows, cols, ppm, texture, seed)
+    out = np.empty((h, w), dtype=np.float32)
+    for ty in range(rows.start // tile, (rows.stop - 1) // tile + 1):
+        r0, r1 = max(rows.start, ty * tile), min(rows.stop, (ty + 1) * tile)
+        for tx in range(cols.start // tile, (cols.stop - 1) // tile + 1):
+            c0, c1 = max(cols.start, tx * tile), min(cols.stop, (tx + 1) * tile)
+            t = _tile_tone(ty, tx, tile, ppm, texture, seed)
+            out[r0 - rows.start : r1 - rows.start, c0 - cols.start : c1 - cols.start] = t[
+                r0 - ty * tile : r1 - ty * tile, c0 - tx * tile : c1 - tx * tile
+            ]
+    return out
