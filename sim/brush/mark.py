@@ -108,11 +108,6 @@ def slice_grids(X):
     p00, p01 = Xw[gg, ii, jj], Xw[gg, ii, jj + 1]
     p10, p11 = Xw[gg, ii + 1, jj], Xw[gg, ii + 1, jj + 1]
 
-    def crossing(pa, pb):
-        za, zb = pa[:, 2], pb[:, 2]
-        t = za / np.where(za != zb, za - zb, 1.0)
-        return pa + t[:, None] * (pb - pa)
-
     # crossing points of the four edges of each cell (computed per edge, so shared edges agree)
     e0 = crossing(p00, p01)
     e1 = crossing(p01, p11)
@@ -128,6 +123,30 @@ def slice_grids(X):
             segs.append(stack1([E[r, a[ok]], E[r, b[ok]]]))
             owner.append(gg[r])
     return np.concatenate(segs, axis=0), np.concatenate(owner)
+
+
+def crossing(pa, pb):
+    """Where the grid edges pa -> pb (P, 3) cross z = 0 (linear along the edge)."""
+    za, zb = pa[:, 2], pb[:, 2]
+    t = za / np.where(za != zb, za - zb, 1.0)
+    return pa + t[:, None] * (pb - pa)
+
+
+def edge_crossings(X):
+    """Where the edges of the periodic-in-t grids X (k, Ns, Nt, 3) cross z = 0, each edge once
+    and oriented as ``slice_grids`` computes it (along t, and from row to row): the points
+    (P, 2) in the paper plane and the grid of each. They are the ends of ``slice_grids``'s
+    segments (every cell of marching squares joins all its crossing edges), so their bounding
+    box is the segments' - what the dynamics need of the cut (Eq. 10) - without joining them
+    (issue 28: ``fill_marks`` joins them for many samples at once)."""
+    Xw = np.concatenate([X, X[:, :, :1]], axis=2)  # periodic in t: column Nt is column 0
+    inw = Xw[..., 2] <= 0.0
+    gh, ih, jh = np.nonzero(inw[:, :, :-1] != inw[:, :, 1:])  # along t
+    gv, iv, jv = np.nonzero(inw[:, :-1, :-1] != inw[:, 1:, :-1])  # from row to row
+    pts = np.concatenate(
+        [crossing(Xw[gh, ih, jh], Xw[gh, ih, jh + 1]), crossing(Xw[gv, iv, jv], Xw[gv, iv + 1, jv])]
+    )
+    return pts[:, :2], np.concatenate([gh, gv])
 
 
 def slice_grid(X) -> np.ndarray:
@@ -209,9 +228,8 @@ class Cut:
     prims: np.ndarray  # (k,) primitives with a cut
     box: np.ndarray  # (k, 4) each cut's bounding box, mm: xmin, xmax, ymin, ymax
     paper: tuple  # the paper's (H, W), pixels
-    sides: int  # the points of the surface's grid around each row (the ring's)
-    xy: np.ndarray  # (M, 2, 2) all cuts' cur_u, grouped by cut
-    count: np.ndarray  # (k,) the segments of each cut
+    ring: np.ndarray  # (Nt, 2) the unit circle at the grid's points around each row
+    touching: np.ndarray  # the primitives whose solid reaches the paper (their grids are cut)
     rows: SurfaceRows  # the surface rows of every primitive
     area: np.ndarray  # (k,) S_i
     height: np.ndarray  # (k,) hei_i
@@ -262,23 +280,23 @@ def cut_marks(brush, sec, ink_rows, ppm: float, paper_shape) -> Cut | None:
         + rows_U[touching, r0:r1][:, :, None, :] * ring[None, None, :, 0, None]
         + rows_V[touching, r0:r1][:, :, None, :] * ring[None, None, :, 1, None]
     )
-    all_segs, owner = slice_grids(X)
-    if owner.size == 0:
+    pts, grid = edge_crossings(X)
+    if grid.size == 0:
         return None
-    # each touching primitive's cut: bounding box, S_i and hei_i (Eq. 10), pixel window
-    k = len(touching)
-    xy_all = all_segs[:, :, :2]
-    cnt = np.bincount(owner, minlength=k)
-    order = np.argsort(owner, kind="stable")
-    xy_sorted = xy_all[order]
-    cuts = np.nonzero(cnt)[0]  # grids with a cut
-    first = (cnt.cumsum() - cnt)[cuts]
-    pts_x = xy_sorted[..., 0].min(axis=1), xy_sorted[..., 0].max(axis=1)
-    pts_y = xy_sorted[..., 1].min(axis=1), xy_sorted[..., 1].max(axis=1)
-    xmin = np.minimum.reduceat(pts_x[0], first)
-    xmax = np.maximum.reduceat(pts_x[1], first)
-    ymin = np.minimum.reduceat(pts_y[0], first)
-    ymax = np.maximum.reduceat(pts_y[1], first)
+    # each touching primitive's cut: bounding box, S_i and hei_i (Eq. 10)
+    if len(touching) == 1:
+        cuts = np.zeros(1, dtype=np.intp)
+        xmin, xmax = pts[:, 0].min(keepdims=True), pts[:, 0].max(keepdims=True)
+        ymin, ymax = pts[:, 1].min(keepdims=True), pts[:, 1].max(keepdims=True)
+    else:
+        order = np.argsort(grid, kind="stable")
+        grid, pts = grid[order], pts[order]
+        first = np.flatnonzero(np.r_[True, grid[1:] != grid[:-1]])
+        cuts = grid[first]  # grids with a cut
+        xmin = np.minimum.reduceat(pts[:, 0], first)
+        xmax = np.maximum.reduceat(pts[:, 0], first)
+        ymin = np.minimum.reduceat(pts[:, 1], first)
+        ymax = np.maximum.reduceat(pts[:, 1], first)
     prims = touching[cuts]
     area = (xmax - xmin) * (ymax - ymin)
     centroid = stack1([(xmin + xmax) / 2, (ymin + ymax) / 2, np.zeros(len(cuts))])
@@ -287,9 +305,8 @@ def cut_marks(brush, sec, ink_rows, ppm: float, paper_shape) -> Cut | None:
         prims=prims,
         box=stack1([xmin, xmax, ymin, ymax]),
         paper=(H, W),
-        sides=ring.shape[0],
-        xy=xy_sorted,
-        count=cnt[cuts],
+        ring=ring,
+        touching=touching,
         rows=SurfaceRows(rows_c, rows_U, rows_V, rows_T, Zmin, ink_rows),
         area=area,
         height=height,
@@ -319,12 +336,40 @@ def _windows(cuts: list[Cut], ppm: float) -> Windows:
     iy1 = np.minimum(np.ceil(ymax * ppm - 0.5).astype(np.int64) + 1, H)
     h = np.maximum(iy1 - iy0, 0)
     w = np.maximum(ix1 - ix0, 0)
-    sag = 1.0 - np.cos(np.pi / cuts[0].sides)
+    sag = 1.0 - np.cos(np.pi / cuts[0].ring.shape[0])
     U = np.concatenate([c.rows.U[c.prims] for c in cuts])
     V = np.concatenate([c.rows.V[c.prims] for c in cuts])
     semi = np.max(np.hypot(norm(U), norm(V)), axis=1)
     hh = np.where(w > 0, h, 0)  # a window without columns has no pixels
     return Windows(stack1([iy0, ix0, hh, w]), stack1([h, w]), sag * semi * ppm)
+
+
+def _cur_u(cuts: list[Cut]):
+    """The intersection curves cur_u of the cuts of many steps, by marching squares over all
+    their grids at once (``slice_grids``): (segments (M, 2, 2) grouped by cut, in each cut's
+    order, and the segments of every cut). Every grid is taken over all its rows: a row that
+    reaches no lower than 1e-9 above the paper has every ring point above it (rounding is far
+    smaller), so the rows ``cut_marks`` leaves out add only cells wholly off the paper, and
+    each cut's segments are the same, in the same order."""
+    X = np.concatenate([_grid(c) for c in cuts])
+    segs, owner = slice_grids(X)
+    order = np.argsort(owner, kind="stable")
+    count = np.bincount(owner, minlength=len(X))
+    count = count[count > 0]
+    if len(count) != sum(len(c.prims) for c in cuts):  # the grids cut_marks found cut
+        raise RuntimeError("cur_u: the cuts' grids and their segments disagree")
+    return segs[order][:, :, :2], count
+
+
+def _grid(c: Cut) -> np.ndarray:
+    """The surface grid (k, Ns, Nt, 3) of a cut's touching primitives, every row."""
+    t, r = c.touching, c.rows
+    ring = c.ring
+    return (
+        r.centre[t][:, :, None, :]
+        + r.U[t][:, :, None, :] * ring[None, None, :, 0, None]
+        + r.V[t][:, :, None, :] * ring[None, None, :, 1, None]
+    )
 
 
 def fill_marks(cuts: list[Cut | None], ppm: float) -> list[list[Mark]]:
@@ -336,16 +381,15 @@ def fill_marks(cuts: list[Cut | None], ppm: float) -> list[list[Mark]]:
     if not real:
         return [[] for _ in cuts]
     win, shape, chord = _windows(real, ppm)
-    count = np.concatenate([c.count for c in real])
+    xy, count = _cur_u(real)
     seg_win = np.repeat(np.arange(len(count)), count)  # the cut of every segment
     seg_at = (count.cumsum() - count).tolist()
     if len(real) == 1:
         c = real[0]
-        prims, xy, rows = c.prims, c.xy, c.rows
+        prims, rows = c.prims, c.rows
     else:
         offs = np.cumsum([0] + [c.rows.centre.shape[0] for c in real[:-1]])
         prims = np.concatenate([c.prims + o for c, o in zip(real, offs, strict=True)])
-        xy = np.concatenate([c.xy for c in real])
         rows = SurfaceRows._make(
             np.concatenate(parts) for parts in zip(*(c.rows for c in real), strict=True)
         )

@@ -37,14 +37,17 @@ def _step(rng, kind, ppm, s):
     return marks, st
 
 
-@pytest.mark.parametrize("kind", ["straight", "curve", "zigzag", "still"])
+KINDS = ["straight", "curve", "zigzag", "still"]
+
+
+@pytest.mark.parametrize("kind", KINDS)
 @pytest.mark.parametrize("ppm", [3.0, 10.24, 20.48])
 def test_bundles_of_many_samples_at_once_are_those_of_one_at_a_time(kind, ppm):
-    rng = np.random.default_rng(hash((kind, ppm, 28)) % 2**32)
-    steps = [_step(rng, kind, ppm, s) for s in range(int(rng.integers(2, 12)))]
+    rng = np.random.default_rng([28, KINDS.index(kind), int(ppm * 100)])
+    steps = [_step(rng, kind, ppm, s) for s in range(int(rng.integers(4, 12)))]
     marks, states = [m for m, _ in steps], [st for _, st in steps]
     got = bristles.lay_steps(bristles.across_steps(marks, states, ppm), states, ppm)
-    assert sum(mk.rows.size for m in marks for mk in m) > 100
+    assert sum(mk.rows.size for m in marks for mk in m) > 30
     for m, st, g in zip(marks, states, got, strict=True):
         want = bristles.lay(bristles.across(m, st, ppm), st, ppm)
         assert len(g) == len(want)
@@ -123,3 +126,23 @@ def test_one_collocation_system_on_floats_is_the_arrays_elimination():
         one = nurbs.solve_collocation(A, pts)
         two = nurbs.solve_collocation(np.concatenate([A, A]), np.concatenate([pts, pts]))
         assert one.shape == pts.shape and one.tobytes() == two[:1].tobytes()
+
+
+def test_the_edges_crossing_the_paper_are_the_ends_of_cur_u():
+    """``mark.edge_crossings`` (what the dynamics take of a cut) gives exactly the ends of the
+    marching squares' segments (``slice_grids``, joined later for the marks), grid by grid."""
+    from sim.brush import mark
+
+    rng = np.random.default_rng(17)
+    saddles = 0
+    for _ in range(60):
+        X = rng.normal(size=(int(rng.integers(1, 4)), int(rng.integers(2, 9)), 24, 3))
+        X[..., 2] += rng.uniform(-1.0, 1.0)
+        pts, grid = mark.edge_crossings(X)
+        segs, owner = mark.slice_grids(X)
+        for g in range(len(X)):
+            ends = {tuple(p) for p in segs[owner == g][:, :, :2].reshape(-1, 2).tolist()}
+            assert {tuple(p) for p in pts[grid == g].tolist()} == ends
+        inw = X[..., 2] <= 0
+        saddles += int(np.count_nonzero(inw[:, :-1, :-1] & inw[:, 1:, 1:] & ~inw[:, :-1, 1:]))
+    assert saddles > 0
