@@ -230,6 +230,7 @@ class Cut:
     paper: tuple  # the paper's (H, W), pixels
     ring: np.ndarray  # (Nt, 2) the unit circle at the grid's points around each row
     touching: np.ndarray  # the primitives whose solid reaches the paper (their grids are cut)
+    near: tuple  # the rows (first, end) next to one that reaches the paper: where cur_u can be
     rows: SurfaceRows  # the surface rows of every primitive
     area: np.ndarray  # (k,) S_i
     height: np.ndarray  # (k,) hei_i
@@ -307,6 +308,7 @@ def cut_marks(brush, sec, ink_rows, ppm: float, paper_shape) -> Cut | None:
         paper=(H, W),
         ring=ring,
         touching=touching,
+        near=(r0, min(r1, rows_c.shape[1])),
         rows=SurfaceRows(rows_c, rows_U, rows_V, rows_T, Zmin, ink_rows),
         area=area,
         height=height,
@@ -347,28 +349,29 @@ def _windows(cuts: list[Cut], ppm: float) -> Windows:
 def _cur_u(cuts: list[Cut]):
     """The intersection curves cur_u of the cuts of many steps, by marching squares over all
     their grids at once (``slice_grids``): (segments (M, 2, 2) grouped by cut, in each cut's
-    order, and the segments of every cut). Every grid is taken over all its rows: a row that
-    reaches no lower than 1e-9 above the paper has every ring point above it (rounding is far
-    smaller), so the rows ``cut_marks`` leaves out add only cells wholly off the paper, and
-    each cut's segments are the same, in the same order."""
-    X = np.concatenate([_grid(c) for c in cuts])
+    order, and the segments of every cut). Every grid is taken over the rows near the paper in
+    any of the steps: a row that reaches no lower than 1e-9 above the paper has every ring point
+    above it (rounding is far smaller), so the rows ``cut_marks`` left out of a step's grids add
+    only cells wholly off the paper, and each cut's segments are the same, in the same order."""
+    r0 = min(c.near[0] for c in cuts)
+    r1 = max(c.near[1] for c in cuts)
+    X = np.concatenate([_grid(c, r0, r1) for c in cuts])
     segs, owner = slice_grids(X)
     order = np.argsort(owner, kind="stable")
     count = np.bincount(owner, minlength=len(X))
     count = count[count > 0]
     if len(count) != sum(len(c.prims) for c in cuts):  # the grids cut_marks found cut
         raise RuntimeError("cur_u: the cuts' grids and their segments disagree")
-    return segs[order][:, :, :2], count
+    return segs[:, :, :2][order], count
 
 
-def _grid(c: Cut) -> np.ndarray:
-    """The surface grid (k, Ns, Nt, 3) of a cut's touching primitives, every row."""
-    t, r = c.touching, c.rows
-    ring = c.ring
+def _grid(c: Cut, r0: int, r1: int) -> np.ndarray:
+    """The surface grid (k, r1 - r0, Nt, 3) of a cut's touching primitives, rows r0..r1."""
+    t, r, ring = c.touching, c.rows, c.ring
     return (
-        r.centre[t][:, :, None, :]
-        + r.U[t][:, :, None, :] * ring[None, None, :, 0, None]
-        + r.V[t][:, :, None, :] * ring[None, None, :, 1, None]
+        r.centre[t, r0:r1][:, :, None, :]
+        + r.U[t, r0:r1][:, :, None, :] * ring[None, None, :, 0, None]
+        + r.V[t, r0:r1][:, :, None, :] * ring[None, None, :, 1, None]
     )
 
 
