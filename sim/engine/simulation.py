@@ -203,9 +203,10 @@ class Simulation:
             del self._filled[:stop]
 
     def _fill(self, pending) -> list:
-        """The marks of waiting samples, filled in together (Eq. 21-23) and, on the flat
-        paper, laid by the hair bundles (``bristles``); on a surface the bundles lay them once
-        they are splatted into the texture (``_deposit``)."""
+        """The marks of waiting samples, filled in together (Eq. 21-23). Small marks are
+        measured and laid by the hair bundles (``bristles``) here too, many samples at once;
+        a sample with large marks is left to ``_deposit`` (None in its place), which lays
+        them just before the paper takes them, while they are in the processor's cache."""
         t0 = time.perf_counter()
         ppm = self.paper.ppm
         _rows_ink([p.cut for p in pending], self.brush.layout.grid_s)
@@ -214,30 +215,34 @@ class Simulation:
         out = []
         for a, b in _groups([sum(mk.rows.size for mk in m) for m in marks], LAY_PIXELS):
             part, states = marks[a:b], [p.bristles for p in pending[a:b]]
-            if b - a == 1:  # large marks: a sample at a time
-                part = [bristles.across(part[0], states[0], ppm)]
-                if self.surface is None:
-                    part = [bristles.lay(part[0], states[0], ppm)]
-            else:
-                part = bristles.across_steps(part, states, ppm)  # on the chart, on a surface
-                if self.surface is None:
-                    part = bristles.lay_steps(part, states, ppm)  # the hair bundles (Eq. 27)
-            out += part
+            if b - a == 1:  # large marks: a sample at a time, as the paper takes them
+                out.append((part[0], False))
+                continue
+            part = bristles.across_steps(part, states, ppm)  # on the chart, on a surface
+            if self.surface is None:
+                part = bristles.lay_steps(part, states, ppm)  # the hair bundles (Eq. 27)
+            out += [(m, True) for m in part]
         self._tick("paper", t0)
         return out
 
-    def _deposit(self, pending, marks_per_step):
-        """Deposit the filled marks of waiting samples, in order (Eq. 24-27)."""
+    def _deposit(self, pending, filled):
+        """Deposit the filled marks of waiting samples, in order (Eq. 24-27): ``filled`` has
+        each sample's marks and whether the bundles have measured them (``_fill``)."""
         t0 = time.perf_counter()
-        for p, marks in zip(pending, marks_per_step, strict=True):
+        ppm = self.paper.ppm
+        for p, (marks, measured) in zip(pending, filled, strict=True):
+            if not measured:
+                marks = bristles.across(marks, p.bristles, ppm)  # on the chart, on a surface
             if self.surface is None:
+                if not measured:
+                    marks = bristles.lay(marks, p.bristles, ppm)  # the hair bundles (Eq. 27)
                 self.paper.deposit(marks, self.q, self.dt, p.step)  # Eq. 24-27
                 self.last_marks = marks
                 continue
             t1 = time.perf_counter()
             groups = self.surface.splat(marks, p.step - 1) or [[]]  # texels under the marks
             self._tick("surface splat", t1)
-            groups = [bristles.lay(group, p.bristles, self.paper.ppm) for group in groups]
+            groups = [bristles.lay(group, p.bristles, ppm) for group in groups]
             for group in groups:  # far apart in the texture (a seam): a window each
                 self.paper.deposit(group, self.q, self.dt, p.step)
             self.last_marks = [mk for group in groups for mk in group]
