@@ -48,6 +48,7 @@ from typing import NamedTuple
 
 import numpy as np
 
+from ..core.frames import clip
 from . import trailpath
 from .state import BUNDLES, CONTACT_EPS
 
@@ -113,7 +114,7 @@ def contact_wetness(brush):
     """(on, wet_on): which key points lie on the paper (m, n) - the active point (Eq. 13), or
     the lowest one, always - and the mean wetness of each primitive's (m,)."""
     m = brush.m
-    act = np.where(brush.active >= 0, brush.active, np.argmin(brush.cc[..., 2], axis=1))
+    act = np.where(brush.active >= 0, brush.active, brush.cc[..., 2].argmin(axis=1))
     on = brush.cc[..., 2] <= CONTACT_EPS
     on[:, 0] = False
     on[np.arange(m), act] = True
@@ -135,11 +136,11 @@ def step(brush, speed: float, dt: float):
     follow = 1.0 - np.exp(-dt / SETTLE_S)
     brush.moist = np.where(brush.moist > 0, brush.moist + follow * (wet_on - brush.moist), wet_on)
     w = brush.moist[:, None] * brush.bundle
-    dryness = np.clip(1.0 - w / (W_DRY * (1.0 + speed / V_FLY)), 0.0, 1.0)
+    dryness = clip(1.0 - w / (W_DRY * (1.0 + speed / V_FLY)), 0.0, 1.0)
     p = np.minimum(q.ren * (q.ab * brush.gamma[:, None] + FLY * dryness), 1.0)
     dry = (brush.hair_u < p) & brush.touching[:, None]
     ramp = min(dt / RAMP_S, 1.0)
-    brush.gap = np.clip(brush.gap + np.where(dry, ramp, -ramp), 0.0, 1.0)
+    brush.gap = clip(brush.gap + np.where(dry, ramp, -ramp), 0.0, 1.0)
 
 
 def new_trail() -> np.ndarray:
@@ -158,6 +159,38 @@ def extend_trail(trail, xy, fresh: bool = False) -> np.ndarray:
     if np.isfinite(last[0]) and np.hypot(*(np.asarray(xy) - last)) < TRAIL_MM:
         return trail
     return np.concatenate([trail[1:], np.asarray(xy, dtype=float)[None]], axis=0)
+
+
+def _trail_path(st: BristleState) -> np.ndarray:
+    """The polyline the pixels are measured from (``across``): the trail, or at the stroke's
+    first contact the way the brush is going."""
+    path = st.trail
+    if len(path) < 2:  # the stroke's first contact: the way the brush is going
+        here = path[-1] if len(path) else np.zeros(2)
+        path = np.stack([here - st.travel, here])
+    return path
+
+
+def across_steps(marks_per_step, states, ppm: float) -> list:
+    """``across`` of many steps' marks (each step with its bundles' state) in one pass, bit
+    for bit as step by step (``trailpath.signed_distances_many``; issue 28)."""
+    live = [(s, mk) for s, marks in enumerate(marks_per_step) for mk in marks if mk.rows.size]
+    if not live:
+        return [list(marks) for marks in marks_per_step]
+    steps = sorted({s for s, _ in live})
+    which = {s: j for j, s in enumerate(steps)}
+    lateral = trailpath.signed_distances_many(
+        [_trail_path(states[s]) for s in steps],
+        np.concatenate([np.full(mk.rows.size, which[s]) for s, mk in live]),
+        np.concatenate([mk.rows + mk.iy0 for _, mk in live]),
+        np.concatenate([mk.cols + mk.ix0 for _, mk in live]),
+        ppm,
+    )
+    parts = iter(np.split(lateral, np.cumsum([mk.rows.size for _, mk in live])[:-1]))
+    return [
+        [replace(mk, lateral=next(parts)) if mk.rows.size else mk for mk in marks]
+        for marks in marks_per_step
+    ]
 
 
 def across(marks, st: BristleState, ppm: float) -> list:
@@ -221,6 +254,73 @@ def lay(marks, st: BristleState, ppm: float) -> list:
             )
         )
     return out
+
+
+def lay_steps(marks_per_step, states, ppm: float) -> list:
+    """``lay`` of many steps' marks (each step with its bundles' state) in one pass: every
+    mark's numbers (its bundles' bounds, gaps, shares, its pixels per unit) gathered per
+    pixel, then the same arithmetic, element by element, as mark by mark (issue 28)."""
+    live = [(s, mk) for s, marks in enumerate(marks_per_step) for mk in marks if mk.rows.size]
+    if not live:
+        return [list(marks) for marks in marks_per_step]
+    n = np.array([mk.rows.size for _, mk in live])
+    st_of = [states[s] for s, _ in live]
+    prim = [mk.primitive for _, mk in live]
+    radius = np.array([st.radius[i] for st, i in zip(st_of, prim, strict=True)])
+    px_k = np.array([np.float32(r * ppm) for r in radius.tolist()], dtype=np.float32)
+    bounds_k = np.concatenate(
+        [
+            np.full((len(live), 1), -1.0),
+            np.stack([st.edge[i] for st, i in zip(st_of, prim, strict=True)]),
+            np.ones((len(live), 1)),
+        ],
+        axis=1,
+    ).astype(np.float32)
+    centre_k = 0.5 * (bounds_k[:, :-1] + bounds_k[:, 1:])
+    half_k = 0.5 * (bounds_k[:, 1:] - bounds_k[:, :-1])
+    gap_rows = np.stack([st.gap[i] for st, i in zip(st_of, prim, strict=True)])
+    gap_k = (gap_rows * half_k).astype(np.float32)
+    share_k = np.stack([st.bundle[i] for st, i in zip(st_of, prim, strict=True)])
+    pool_k = np.array(
+        [np.float32(1.0 + POOL * V_POOL / (V_POOL + st.speed)) for st in st_of], dtype=np.float32
+    )
+    mark = np.repeat(np.arange(len(live)), n)  # every pixel's mark
+    lateral = np.concatenate([mk.lateral for _, mk in live])
+    u = np.clip(lateral / radius.astype(np.float32)[mark], -1.0, 1.0)
+    b = _bundle_of(bounds_k[:, 1:-1], mark, u)
+    near = np.where(u < centre_k[mark, b], b - 1, b + 1).clip(0, BUNDLES - 1)
+    px = px_k[mark]
+    h = np.float32(0.5) / px  # half a pixel, in the bundles' coordinate
+    own = _in_gap(u, h, centre_k[mark, b], gap_k[mark, b], px)
+    beside = np.where(near == b, 0.0, _in_gap(u, h, centre_k[mark, near], gap_k[mark, near], px))
+    share = np.clip(1.0 - own - beside, 0.0, 1.0)
+    bundle = share_k[mark, b].astype(np.float32)
+    cut = np.cumsum(n)[:-1]
+    wet = np.split(np.concatenate([mk.wet for _, mk in live]) * bundle * pool_k[mark], cut)
+    # (wet * bundle) * pool, as ``lay`` multiplies
+    shares = np.split(share.astype(np.float32), cut)
+    skips = np.split(share <= 0.0, cut)
+    laid = iter(
+        replace(mk, wet=w, col=mk.col * sh[:, None], skip=sk)
+        for (_, mk), w, sh, sk in zip(live, wet, shares, skips, strict=True)
+    )
+    return [[next(laid) if mk.rows.size else mk for mk in marks] for marks in marks_per_step]
+
+
+def _bundle_of(inner, mark, u) -> np.ndarray:
+    """np.searchsorted(inner[mark[i]], u[i]) for every i (``inner`` (k, BUNDLES - 1) float32,
+    each row ascending; u float32): the rows' values and u as integers in the same order as
+    the floats (-0 taken as +0, as a float compares), row by row, and one search."""
+    k, w = inner.shape
+    rows = _ordered(inner) + (np.arange(k, dtype=np.int64) << 32)[:, None]
+    at = np.searchsorted(rows.ravel(), _ordered(u) + (mark.astype(np.int64) << 32))
+    return at - mark * w
+
+
+def _ordered(x) -> np.ndarray:
+    """float32 values (no NaN) as int64 in the same order (and equal where they are equal)."""
+    i = (x + np.float32(0.0)).view(np.int32).astype(np.int64)  # -0 + 0 = +0
+    return np.where(i < 0, -(i & 0x7FFFFFFF), i)
 
 
 def _in_gap(u, h, centre, gap, px):

@@ -12,9 +12,11 @@ brush behaves, are listed in ``brush``'s module doc and noted where they are imp
 
 from __future__ import annotations
 
+import math
+
 import numpy as np
 
-from ..core.frames import cross, norm, rotation_matrix, unit
+from ..core.frames import clip, cross, diff, norm, rotation_matrix, stack1, unit
 from ..core.params import REF_RATE
 from .bristles import contact_wetness
 from .bristles import draw as draw_bundles
@@ -85,12 +87,12 @@ def insert_active_point(brush, new):
     below = z <= CONTACT_EPS
     below[:, 0] = False
     has = below.any(axis=1)
-    j = np.where(has, np.argmax(below, axis=1), n)  # first key point on/under the paper
-    jj = np.clip(j, 1, n - 1)
+    j = np.where(has, below.argmax(axis=1), n)  # first key point on/under the paper
+    jj = clip(j, 1, n - 1)
     idx = np.arange(m)
     p0, p1 = new[idx, jj - 1], new[idx, jj]
     z0, z1 = p0[:, 2], p1[:, 2]
-    lam = np.clip(z0 / np.maximum(z0 - z1, 1e-12), 0.0, 1.0)
+    lam = clip(z0 / np.maximum(z0 - z1, 1e-12), 0.0, 1.0)
     seg = norm(p1 - p0)
     snap = 0.15 * brush.L / (n - 1)
     near_prev = lam * seg < snap
@@ -112,7 +114,7 @@ def insert_active_point(brush, new):
     pos = np.where(insert, jj, n)  # rows without insertion append a dummy, dropped again
     ar = np.arange(n + 1)
     src = np.where(ar[None, :] < pos[:, None], ar[None, :], ar[None, :] - 1)
-    src = np.clip(src, 0, n - 1)
+    src = clip(src, 0, n - 1)
 
     def extend(field, value):
         if field.ndim == 2:
@@ -135,7 +137,7 @@ def insert_active_point(brush, new):
     gap = np.full((m, n + 1), np.inf)
     gap[:, 1:-1] = sarc[:, 2:] - sarc[:, :-2]
     gap[idx, pos] = np.inf
-    drop = np.where(insert, np.argmin(gap, axis=1), n)
+    drop = np.where(insert, gap.argmin(axis=1), n)
     keep = ar[None, :] != drop[:, None]
 
     def shrink(arr):
@@ -164,7 +166,10 @@ def constrain(brush, vel6):
         fb = np.tile(-vxy / sp, (m, 1))
     else:  # a vertical brush at rest lays its hair back along the way it came
         fb = np.tile(-brush.travel, (m, 1)) + 0.25 * brush.lay
-        fb /= np.linalg.norm(fb, axis=1, keepdims=True)
+        fb /= norm(fb, axis=1, keepdims=True)
+    if m == 1:  # one primitive: the same arithmetic on Python floats (fewer calls)
+        points[0, 1:] = _constrain_one(points[0].tolist(), brush.sarc[0].tolist(), fb[0].tolist())
+        return
     prev = points[:, 0]
     segs = brush.sarc[:, 1:] - brush.sarc[:, :-1]
     for j in range(1, n):
@@ -192,6 +197,45 @@ def constrain(brush, vel6):
         prev = p
 
 
+def _constrain_one(points, sarc, fb) -> list:
+    """``constrain``'s walk for one primitive, on Python floats: the same operations in the
+    same order as the arrays' (a length as sqrt((x^2 + y^2) + z^2), numpy's order; the larger
+    of two equal numbers the second, as np.maximum picks it: -0 and +0 keep their signs).
+    Returns the key points 2..n."""
+    px, py, pz = points[0]
+    out = []
+    for j in range(1, len(points)):
+        qx, qy, qz = points[j]
+        dx, dy, dz = qx - px, qy - py, qz - pz
+        dist = math.sqrt(dx * dx + dy * dy + dz * dz)
+        seg = sarc[j] - sarc[j - 1]
+        scale = _min(1.0, seg / _max(dist, 1e-12))
+        cx, cy, cz = px + dx * scale, py + dy * scale, pz + dz * scale
+        on_paper = (qz <= CONTACT_EPS) | (cz <= CONTACT_EPS)
+        h = _max(pz, 0.0)
+        if on_paper and seg > h:  # lies flat on the paper at its full arc distance
+            H = math.sqrt(_max(seg * seg - h * h, 0.0))
+            nd = math.sqrt(dx * dx + dy * dy)
+            if nd > 1e-9:
+                ux, uy = dx / _max(nd, 1e-12), dy / _max(nd, 1e-12)
+            else:
+                ux, uy = fb
+            cx, cy, cz = px + H * ux, py + H * uy, 0.0
+        px, py, pz = cx, cy, _max(cz, 0.0)
+        out.append((px, py, pz))
+    return out
+
+
+def _max(a: float, b: float) -> float:
+    """np.maximum of two floats: b where they are equal (its sign of zero), NaN if either is."""
+    return a if (a > b or a != a) else b
+
+
+def _min(a: float, b: float) -> float:
+    """np.minimum of two floats: b where they are equal, NaN if either is."""
+    return a if (a < b or a != a) else b
+
+
 def update_stress(brush, section_area, section_height, speed, dt):
     """Inner stress (Eq. 10, 11) and pressure (Eq. 12) of every primitive.
 
@@ -209,7 +253,7 @@ def update_stress(brush, section_area, section_height, speed, dt):
     rest[..., 2] = -brush.sarc
     # mc = cc0_1 - cc_1 is zero in the brush frame: its origin is the circle's centre
     disp = norm(rest[:, 1:] - local[:, 1:])
-    seglen = norm(np.diff(local, axis=1))
+    seglen = norm(diff(local, axis=1))
     hdd = np.sum(disp * seglen, axis=1) / np.maximum(seglen.sum(axis=1), 1e-12) / L
     his = hsd + hdd
     area = (np.pi * brush.a * brush.b / 4.0) / (np.pi * r * r)
@@ -239,7 +283,7 @@ def lose_wetness(brush, dt):
     touching = brush.touching
     if not touching.any():
         return
-    act = np.where(brush.active >= 0, brush.active, np.argmin(brush.cc[..., 2], axis=1))
+    act = np.where(brush.active >= 0, brush.active, brush.cc[..., 2].argmin(axis=1))
     j = np.arange(brush.n)[None, :]
     s = np.abs(j - act[:, None])
     d = np.where(s == 0, 1, 2)
@@ -268,7 +312,7 @@ def adjust_ellipse(brush, vel6, dt):
     # rotate the minor axis about the shaft
     c, s = np.cos(rot), np.sin(rot)
     ex, ey = eo[:, 0] * c - eo[:, 1] * s, eo[:, 0] * s + eo[:, 1] * c
-    brush.eori = unit(np.stack([ex, ey, eo[:, 2]], axis=1))
+    brush.eori = unit(stack1([ex, ey, eo[:, 2]]))
     area = brush.a * brush.b
     a = brush.a + inc * brush.r
     a = np.minimum(a, np.sqrt(area * MAX_FLATNESS))
@@ -281,11 +325,11 @@ def adjust_ellipse(brush, vel6, dt):
     tl = brush.tiplen + inc * brush.r  # Sec. 5.4: the tip control line lengthens by inc
     brush.tiplen = np.where(touching, np.minimum(tl, 0.5 * brush.a), tl * (1.0 - krec))
     # Eq. 17: loc' = nu loc + (1 - nu) (1/n) sum_j arc(P_1..P_{j+1}) / arc(P_1..P_n)
-    seg = norm(np.diff(brush.cc, axis=1))
-    cum = np.cumsum(seg, axis=1)
+    seg = norm(diff(brush.cc, axis=1))
+    cum = seg.cumsum(axis=1)
     ideal = np.sum(cum / np.maximum(cum[:, -1:], 1e-12), axis=1) / brush.n
     new_loc = q.nu * brush.loc + (1.0 - q.nu) * ideal
-    brush.loc = np.clip(np.where(touching, new_loc, brush.loc), 0.05, 0.9)
+    brush.loc = clip(np.where(touching, new_loc, brush.loc), 0.05, 0.9)
 
 
 def split(brush):

@@ -64,15 +64,19 @@ def rows_ink(brush, sec) -> np.ndarray:
     """Ink information at the surface rows' axis points V^ (Eq. 21): distance-weighted linear
     interpolation between the two key points that bracket each row along the axis. Returns
     (m, Ns, INK_WIDTH), the fields laid out as INK_FIELDS says."""
-    s = brush.layout.grid_s
-    t = sec.params  # (m, n)
+    return interpolate_rows(brush.layout.grid_s, sec.params, ink_keys(brush))
+
+
+def interpolate_rows(s, t, keys) -> np.ndarray:
+    """Eq. 21 at rows ``s`` (Ns,) of primitives whose key points lie at axis parameters ``t``
+    (m, n) and carry ``keys`` (m, n, INK_WIDTH) (``ink_keys``). Each primitive's rows are its
+    own: the primitives of many steps stacked give each step's rows, bit for bit."""
     m, n = t.shape
     j = np.clip(np.sum(t[:, None, :] <= s[None, :, None], axis=2) - 1, 0, n - 2)  # (m, Ns)
     t0 = np.take_along_axis(t, j, 1)
     t1 = np.take_along_axis(t, j + 1, 1)
     w1 = np.clip((s[None, :] - t0) / np.maximum(t1 - t0, 1e-12), 0.0, 1.0)
     w0 = 1.0 - w1
-    keys = ink_keys(brush)  # (m, n, INK_WIDTH), in paper coordinates
     jj = j[..., None]
     return w0[..., None] * np.take_along_axis(keys, jj, 1) + w1[..., None] * (
         np.take_along_axis(keys, jj + 1, 1)

@@ -30,7 +30,7 @@ from typing import NamedTuple
 
 import numpy as np
 
-from ..core.frames import dot, norm
+from ..core.frames import dot, norm, stack1
 from .ink import LOAD, TEXTURE, TEXTURE_NAMES
 from .state import INK_FIELDS
 
@@ -108,26 +108,45 @@ def slice_grids(X):
     p00, p01 = Xw[gg, ii, jj], Xw[gg, ii, jj + 1]
     p10, p11 = Xw[gg, ii + 1, jj], Xw[gg, ii + 1, jj + 1]
 
-    def crossing(pa, pb):
-        za, zb = pa[:, 2], pb[:, 2]
-        t = za / np.where(za != zb, za - zb, 1.0)
-        return pa + t[:, None] * (pb - pa)
-
     # crossing points of the four edges of each cell (computed per edge, so shared edges agree)
     e0 = crossing(p00, p01)
     e1 = crossing(p01, p11)
     e2 = crossing(p10, p11)
     e3 = crossing(p00, p10)
-    E = np.stack([e0, e1, e2, e3], axis=1)  # (C, 4, 3)
+    E = stack1([e0, e1, e2, e3])  # (C, 4, 3)
     segs, owner = [], []
     for k in range(2):
         a, b = _SEG_A[cs, k], _SEG_B[cs, k]
         ok = a >= 0
         if ok.any():
             r = np.nonzero(ok)[0]
-            segs.append(np.stack([E[r, a[ok]], E[r, b[ok]]], axis=1))
+            segs.append(stack1([E[r, a[ok]], E[r, b[ok]]]))
             owner.append(gg[r])
     return np.concatenate(segs, axis=0), np.concatenate(owner)
+
+
+def crossing(pa, pb):
+    """Where the grid edges pa -> pb (P, 3) cross z = 0 (linear along the edge)."""
+    za, zb = pa[:, 2], pb[:, 2]
+    t = za / np.where(za != zb, za - zb, 1.0)
+    return pa + t[:, None] * (pb - pa)
+
+
+def edge_crossings(X):
+    """Where the edges of the periodic-in-t grids X (k, Ns, Nt, 3) cross z = 0, each edge once
+    and oriented as ``slice_grids`` computes it (along t, and from row to row): the points
+    (P, 2) in the paper plane and the grid of each. They are the ends of ``slice_grids``'s
+    segments (every cell of marching squares joins all its crossing edges), so their bounding
+    box is the segments' - what the dynamics need of the cut (Eq. 10) - without joining them
+    (issue 28: ``fill_marks`` joins them for many samples at once)."""
+    Xw = np.concatenate([X, X[:, :, :1]], axis=2)  # periodic in t: column Nt is column 0
+    inw = Xw[..., 2] <= 0.0
+    gh, ih, jh = np.nonzero(inw[:, :, :-1] != inw[:, :, 1:])  # along t
+    gv, iv, jv = np.nonzero(inw[:, :-1, :-1] != inw[:, 1:, :-1])  # from row to row
+    pts = np.concatenate(
+        [crossing(Xw[gh, ih, jh], Xw[gh, ih, jh + 1]), crossing(Xw[gv, iv, jv], Xw[gv, iv + 1, jv])]
+    )
+    return pts[:, :2], np.concatenate([gh, gv])
 
 
 def slice_grid(X) -> np.ndarray:
@@ -202,21 +221,23 @@ class SurfaceRows(NamedTuple):
 @dataclass(kw_only=True)
 class Cut:
     """The first half of one step's marks: where every primitive's solid meets the paper
-    (cur_u, S_i and hei_i for the dynamics, Eq. 10) and its pixel window. ``fill_marks`` then
-    finds the scanline spans, the inked pixels and their ink, for many steps at once."""
+    (cur_u, S_i and hei_i for the dynamics, Eq. 10). ``fill_marks`` then finds the cuts' pixel
+    windows (``_windows``), the scanline spans, the inked pixels and their ink, for many steps
+    at once (issue 28: what only the marks need waits for them)."""
 
     prims: np.ndarray  # (k,) primitives with a cut
-    win: np.ndarray  # (k, 4) windows (iy0, ix0, rows, cols), rows 0 if there are no columns
-    shape: np.ndarray  # (k, 2) window (h, w)
-    xy: np.ndarray  # (M, 2, 2) all cuts' cur_u, grouped by cut
-    seg_win: np.ndarray  # (M,) the cut of every segment
-    chord: np.ndarray  # (k,) the grid's chord error against the true sections, pixels
+    box: np.ndarray  # (k, 4) each cut's bounding box, mm: xmin, xmax, ymin, ymax
+    paper: tuple  # the paper's (H, W), pixels
+    ring: np.ndarray  # (Nt, 2) the unit circle at the grid's points around each row
+    touching: np.ndarray  # the primitives whose solid reaches the paper (their grids are cut)
+    near: tuple  # the rows (first, end) next to one that reaches the paper: where cur_u can be
     rows: SurfaceRows  # the surface rows of every primitive
-    segments: list  # (M_i, 2, 2) cur_u of each cut
     area: np.ndarray  # (k,) S_i
     height: np.ndarray  # (k,) hei_i
     centre: np.ndarray  # (k, 2) mm: the middle of each cut's bounding box
     extent: np.ndarray  # (k, 2) mm: each cut's bounding box's width and height
+    # (params, keys): where ``rows.ink`` is still to be interpolated from (Eq. 21), or None
+    ink_source: tuple | None = None
 
     def contact(self):
         """The middle of the hair's contact with the paper (mm): the cuts' middles, weighted
@@ -260,55 +281,97 @@ def cut_marks(brush, sec, ink_rows, ppm: float, paper_shape) -> Cut | None:
         + rows_U[touching, r0:r1][:, :, None, :] * ring[None, None, :, 0, None]
         + rows_V[touching, r0:r1][:, :, None, :] * ring[None, None, :, 1, None]
     )
-    all_segs, owner = slice_grids(X)
-    if owner.size == 0:
+    pts, grid = edge_crossings(X)
+    if grid.size == 0:
         return None
-    # each touching primitive's cut: bounding box, S_i and hei_i (Eq. 10), pixel window
-    k = len(touching)
-    xy_all = all_segs[:, :, :2]
-    cnt = np.bincount(owner, minlength=k)
-    order = np.argsort(owner, kind="stable")
-    xy_sorted = xy_all[order]
-    cuts = np.nonzero(cnt)[0]  # grids with a cut
-    first = (np.cumsum(cnt) - cnt)[cuts]
-    pts_x = xy_sorted[..., 0].min(axis=1), xy_sorted[..., 0].max(axis=1)
-    pts_y = xy_sorted[..., 1].min(axis=1), xy_sorted[..., 1].max(axis=1)
-    xmin = np.minimum.reduceat(pts_x[0], first)
-    xmax = np.maximum.reduceat(pts_x[1], first)
-    ymin = np.minimum.reduceat(pts_y[0], first)
-    ymax = np.maximum.reduceat(pts_y[1], first)
+    # each touching primitive's cut: bounding box, S_i and hei_i (Eq. 10)
+    if len(touching) == 1:
+        cuts = np.zeros(1, dtype=np.intp)
+        xmin, xmax = pts[:, 0].min(keepdims=True), pts[:, 0].max(keepdims=True)
+        ymin, ymax = pts[:, 1].min(keepdims=True), pts[:, 1].max(keepdims=True)
+    else:
+        order = np.argsort(grid, kind="stable")
+        grid, pts = grid[order], pts[order]
+        first = np.flatnonzero(np.r_[True, grid[1:] != grid[:-1]])
+        cuts = grid[first]  # grids with a cut
+        xmin = np.minimum.reduceat(pts[:, 0], first)
+        xmax = np.maximum.reduceat(pts[:, 0], first)
+        ymin = np.minimum.reduceat(pts[:, 1], first)
+        ymax = np.maximum.reduceat(pts[:, 1], first)
     prims = touching[cuts]
     area = (xmax - xmin) * (ymax - ymin)
-    centroid = np.stack([(xmin + xmax) / 2, (ymin + ymax) / 2, np.zeros(len(cuts))], axis=1)
+    centroid = stack1([(xmin + xmax) / 2, (ymin + ymax) / 2, np.zeros(len(cuts))])
     height = norm(brush.cc[prims, -1] - centroid)
+    return Cut(
+        prims=prims,
+        box=stack1([xmin, xmax, ymin, ymax]),
+        paper=(H, W),
+        ring=ring,
+        touching=touching,
+        near=(r0, min(r1, rows_c.shape[1])),
+        rows=SurfaceRows(rows_c, rows_U, rows_V, rows_T, Zmin, ink_rows),
+        area=area,
+        height=height,
+        centre=centroid[:, :2],
+        extent=stack1([xmax - xmin, ymax - ymin]),
+    )
+
+
+class Windows(NamedTuple):
+    """The pixel windows of cuts (``_windows``), one row per cut of a primitive."""
+
+    win: np.ndarray  # (k, 4) windows (iy0, ix0, rows, cols), rows 0 if there are no columns
+    shape: np.ndarray  # (k, 2) window (h, w)
+    chord: np.ndarray  # (k,) the grid's chord error against the true sections, pixels
+
+
+def _windows(cuts: list[Cut], ppm: float) -> Windows:
+    """The pixel windows of the cuts of many steps (the paper's pixels around each bounding
+    box), and each one's chord error of the grid's polygon against the true sections: every
+    cut's numbers are its own, so all steps' at once are each step's."""
+    xmin, xmax, ymin, ymax = np.concatenate([c.box for c in cuts]).T
+    hw = np.repeat(np.array([c.paper for c in cuts]), [len(c.prims) for c in cuts], axis=0)
+    H, W = hw[:, 0], hw[:, 1]
     ix0 = np.maximum(np.floor(xmin * ppm - 0.5).astype(np.int64), 0)
     iy0 = np.maximum(np.floor(ymin * ppm - 0.5).astype(np.int64), 0)
     ix1 = np.minimum(np.ceil(xmax * ppm - 0.5).astype(np.int64) + 1, W)
     iy1 = np.minimum(np.ceil(ymax * ppm - 0.5).astype(np.int64) + 1, H)
     h = np.maximum(iy1 - iy0, 0)
     w = np.maximum(ix1 - ix0, 0)
-    # chord error of the grid's polygon against the true sections
-    sag = 1.0 - np.cos(np.pi / ring.shape[0])
-    semi = np.max(np.hypot(norm(rows_U[prims]), norm(rows_V[prims])), axis=1)
-    chord = sag * semi * ppm
-    slot = np.full(k, -1)
-    slot[cuts] = np.arange(len(cuts))
-    seg_win = slot[owner[order]]
+    sag = 1.0 - np.cos(np.pi / cuts[0].ring.shape[0])
+    U = np.concatenate([c.rows.U[c.prims] for c in cuts])
+    V = np.concatenate([c.rows.V[c.prims] for c in cuts])
+    semi = np.max(np.hypot(norm(U), norm(V)), axis=1)
     hh = np.where(w > 0, h, 0)  # a window without columns has no pixels
-    win = np.stack([iy0, ix0, hh, w], axis=1)
-    return Cut(
-        prims=prims,
-        win=win,
-        shape=np.stack([h, w], axis=1),
-        xy=xy_sorted,
-        seg_win=seg_win,
-        chord=chord,
-        rows=SurfaceRows(rows_c, rows_U, rows_V, rows_T, Zmin, ink_rows),
-        segments=np.split(xy_sorted, np.cumsum(cnt[cuts])[:-1]),
-        area=area,
-        height=height,
-        centre=centroid[:, :2],
-        extent=np.stack([xmax - xmin, ymax - ymin], axis=1),
+    return Windows(stack1([iy0, ix0, hh, w]), stack1([h, w]), sag * semi * ppm)
+
+
+def _cur_u(cuts: list[Cut]):
+    """The intersection curves cur_u of the cuts of many steps, by marching squares over all
+    their grids at once (``slice_grids``): (segments (M, 2, 2) grouped by cut, in each cut's
+    order, and the segments of every cut). Every grid is taken over the rows near the paper in
+    any of the steps: a row that reaches no lower than 1e-9 above the paper has every ring point
+    above it (rounding is far smaller), so the rows ``cut_marks`` left out of a step's grids add
+    only cells wholly off the paper, and each cut's segments are the same, in the same order."""
+    r0 = min(c.near[0] for c in cuts)
+    r1 = max(c.near[1] for c in cuts)
+    X = np.concatenate([_grid(c, r0, r1) for c in cuts])
+    segs, owner = slice_grids(X)
+    order = np.argsort(owner, kind="stable")
+    count = np.bincount(owner, minlength=len(X))
+    count = count[count > 0]
+    if len(count) != sum(len(c.prims) for c in cuts):  # the grids cut_marks found cut
+        raise RuntimeError("cur_u: the cuts' grids and their segments disagree")
+    return segs[:, :, :2][order], count
+
+
+def _grid(c: Cut, r0: int, r1: int) -> np.ndarray:
+    """The surface grid (k, r1 - r0, Nt, 3) of a cut's touching primitives, rows r0..r1."""
+    t, r, ring = c.touching, c.rows, c.ring
+    return (
+        r.centre[t, r0:r1][:, :, None, :]
+        + r.U[t, r0:r1][:, :, None, :] * ring[None, None, :, 0, None]
+        + r.V[t, r0:r1][:, :, None, :] * ring[None, None, :, 1, None]
     )
 
 
@@ -320,17 +383,16 @@ def fill_marks(cuts: list[Cut | None], ppm: float) -> list[list[Mark]]:
     real = [c for c in cuts if c is not None]
     if not real:
         return [[] for _ in cuts]
+    win, shape, chord = _windows(real, ppm)
+    xy, count = _cur_u(real)
+    seg_win = np.repeat(np.arange(len(count)), count)  # the cut of every segment
+    seg_at = (count.cumsum() - count).tolist()
     if len(real) == 1:
         c = real[0]
-        prims, win, xy, seg_win, chord, rows = c.prims, c.win, c.xy, c.seg_win, c.chord, c.rows
+        prims, rows = c.prims, c.rows
     else:
         offs = np.cumsum([0] + [c.rows.centre.shape[0] for c in real[:-1]])
         prims = np.concatenate([c.prims + o for c, o in zip(real, offs, strict=True)])
-        woffs = np.cumsum([0] + [len(c.prims) for c in real[:-1]])
-        seg_win = np.concatenate([c.seg_win + o for c, o in zip(real, woffs, strict=True)])
-        win = np.concatenate([c.win for c in real])
-        xy = np.concatenate([c.xy for c in real])
-        chord = np.concatenate([c.chord for c in real])
         rows = SurfaceRows._make(
             np.concatenate(parts) for parts in zip(*(c.rows for c in real), strict=True)
         )
@@ -347,6 +409,7 @@ def fill_marks(cuts: list[Cut | None], ppm: float) -> list[list[Mark]]:
         for jj, j in enumerate(redo.tolist()):
             pixels[j] = again[jj]
     out, at = [], 0
+    win_l, shape_l, count_l = win.tolist(), shape.tolist(), count.tolist()
     for c in cuts:
         if c is None:
             out.append([])
@@ -357,16 +420,16 @@ def fill_marks(cuts: list[Cut | None], ppm: float) -> list[list[Mark]]:
             marks.append(
                 Mark(
                     primitive=i,
-                    iy0=int(c.win[j, 0]),
-                    ix0=int(c.win[j, 1]),
+                    iy0=win_l[at + j][0],
+                    ix0=win_l[at + j][1],
                     rows=px.rows,
                     cols=px.cols,
                     wet=px.wet,
                     col=px.col,
                     lateral=px.lateral,
                     depth=px.depth,
-                    shape=(int(c.shape[j, 0]), int(c.shape[j, 1])),
-                    segments=c.segments[j],
+                    shape=tuple(shape_l[at + j]),
+                    segments=xy[seg_at[at + j] : seg_at[at + j] + count_l[at + j]],
                     area_bbox=float(c.area[j]),
                     height=float(c.height[j]),
                 )

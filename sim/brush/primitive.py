@@ -40,14 +40,16 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..core.frames import angles_from_matrix, cross, rotation_matrix, unit
+from ..core.frames import angles_from_matrix, clip, cross, rotation_matrix, unit
 from ..core.nurbs import (
     SweepLayout,
+    averaged_knots,
     bezier_form,
     bspline_bases,
+    chord_params,
     derivative_ctrl,
-    interpolate_cubic,
     rotation_minimising_frames,
+    solve_collocation,
     surface_control_net,
 )
 from ..core.params import BrushGeometry, InkSpec, QualityParams
@@ -151,12 +153,20 @@ class HairyBrush:
         """Sweep the bottom control circle, middle control ellipse and tip control line along
         the middle control axis (Sec. 2, 3.2) with rotation-minimising frames."""
         lay = self.layout
-        ctrl, knots, params = interpolate_cubic(self.cc)  # A_i through P_i,1..n (Sec. 3.2.3)
+        # A_i through P_i,1..n (Sec. 3.2.3), as ``interpolate_cubic``: the basis at the key
+        # points' parameters (the collocation matrix) and at the stations in one recursion
+        # (every parameter's basis is its own: the same numbers as two)
+        params = chord_params(self.cc)
+        knots = averaged_knots(params, 3)
         u = lay.station_u
-        bases = bspline_bases(knots, 3, np.broadcast_to(u, (self.m, len(u))))
-        centres = bases[3] @ ctrl
+        n = params.shape[-1]
+        stations = np.broadcast_to(u, (self.m, len(u)))
+        bases = bspline_bases(knots, 3, np.concatenate([params, stations], 1))
+        ctrl = solve_collocation(bases[3][:, :n], self.cc)
+        centres = np.ascontiguousarray(bases[3][:, n:]) @ ctrl
         dq, _ = derivative_ctrl(ctrl, knots, 3)
-        T = unit(bases[2][..., 1:-1] @ dq)  # the derivative's basis is degree 2 on knots[1:-1]
+        # the derivative's basis is degree 2 on knots[1:-1]
+        T = unit(np.ascontiguousarray(bases[2][:, n:])[..., 1:-1] @ dq)
         # initial frame: the bottom control circle's own x axis (cori = shaft direction)
         x0 = self.R[:, 0]
         r0 = x0 - np.einsum("ij,j->i", T[:, 0], x0)[:, None] * T[:, 0]
@@ -165,7 +175,7 @@ class HairyBrush:
         Bn = cross(T, N)
         # orientation of the middle control ellipse (Eq. 6): its minor axis eori, projected
         # into the normal plane at loc, fixes the profiles' angle within the swept frames
-        ks = np.clip(np.searchsorted(u, self.loc), 0, len(u) - 1)
+        ks = clip(np.searchsorted(u, self.loc), 0, len(u) - 1)
         idx = np.arange(self.m)
         Nl, Bl = N[idx, ks], Bn[idx, ks]
         minor = self.eori @ self.R.T
@@ -213,8 +223,8 @@ class HairyBrush:
         loc = self.loc[:, None]
         r = self.r
         a2, b2, l2 = (self.a / 2)[:, None], (self.b / 2)[:, None], (self.tiplen / 2)[:, None]
-        up = np.sin(0.5 * np.pi * np.clip(u / loc, 0.0, 1.0))
-        x = np.clip((u - loc) / (1.0 - loc), 0.0, 1.0)
+        up = np.sin(0.5 * np.pi * clip(u / loc, 0.0, 1.0))
+        x = clip((u - loc) / (1.0 - loc), 0.0, 1.0)
         down = 1.0 - x * x
         below = u <= loc
         alpha = np.where(below, r + (a2 - r) * up, l2 + (a2 - l2) * down)

@@ -3,13 +3,30 @@
 
 R = Rx(q) Ry(d) Rz(r): r turns the brush about its handle, d deflects it sideways (about the
 paper's y axis), q forward (about the x axis). The helpers skip numpy's Python wrappers on the
-hot paths and give the same sums and products as np.linalg.norm, np.cross and np.dot."""
+hot paths and give the same sums and products as np.linalg.norm, np.cross and np.dot, and the
+same numbers as np.clip, np.diff and np.stack (the brush's step calls them on arrays of a few
+numbers, where the wrappers cost more than the arithmetic: issue 28)."""
 
 from __future__ import annotations
 
 import numpy as np
 
 _add = np.add.reduce  # np.sum without its Python wrapper (the same sums)
+# the ufunc np.clip calls, without its Python wrappers (the same picks); numpy._core from 2.0
+clip = (getattr(np, "_core", None) or np.core).umath.clip
+
+
+def diff(a, axis: int = -1):
+    """np.diff(a, axis=axis) for an array a (the same subtraction)."""
+    hi = [slice(None)] * a.ndim
+    lo = [slice(None)] * a.ndim
+    hi[axis], lo[axis] = slice(1, None), slice(None, -1)
+    return a[tuple(hi)] - a[tuple(lo)]
+
+
+def stack1(arrays):
+    """np.stack(arrays, axis=1) for arrays of one shape (the same copy)."""
+    return np.concatenate([a[:, None] for a in arrays], axis=1)
 
 
 def rotation_matrix(d_deg: float, q_deg: float, r_deg: float) -> np.ndarray:

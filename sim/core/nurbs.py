@@ -21,6 +21,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from .frames import diff, norm
+
 # The 9-point rational quadratic unit circle (Piegl & Tiller, Ex. 7.2).
 _W = np.sqrt(0.5)
 CIRCLE_XY = np.array(
@@ -74,7 +76,7 @@ def averaged_knots(params, degree: int = 3) -> np.ndarray:
     n = params.shape[-1]
     lead = params.shape[:-1]
     inner = n - degree - 1
-    c = np.cumsum(params, axis=-1)
+    c = params.cumsum(axis=-1)
     c = np.concatenate([np.zeros(lead + (1,)), c], axis=-1)
     # u_{j+p} = (1/p) * sum_{i=j}^{j+p-1} params_i, j = 1..n-p-1
     j = np.arange(1, inner + 1)
@@ -85,9 +87,9 @@ def averaged_knots(params, degree: int = 3) -> np.ndarray:
 def chord_params(points) -> np.ndarray:
     """Chord-length parameters in [0, 1] for (..., n, dim) points."""
     points = np.asarray(points, dtype=float)
-    seg = np.linalg.norm(np.diff(points, axis=-2), axis=-1)
+    seg = norm(diff(points, axis=-2), axis=-1)
     seg = np.maximum(seg, 1e-9)
-    c = np.concatenate([np.zeros(seg.shape[:-1] + (1,)), np.cumsum(seg, axis=-1)], axis=-1)
+    c = np.concatenate([np.zeros(seg.shape[:-1] + (1,)), seg.cumsum(axis=-1)], axis=-1)
     return c / c[..., -1:]
 
 
@@ -113,6 +115,9 @@ def solve_collocation(A, B):
     matrix and the right-hand side are eliminated together, as one augmented matrix."""
     A = np.asarray(A, dtype=float)
     n = A.shape[-1]
+    if A.ndim == 3 and A.shape[0] == 1:  # one system: the same steps on Python floats
+        B = np.asarray(B, dtype=float)
+        return np.array([_solve_one(A[0].tolist(), B[0].tolist())]).reshape(B.shape)
     M = np.concatenate([A, np.asarray(B, dtype=float)], axis=-1)  # (..., n, n + k)
     for k in range(n - 1):
         f = M[..., k + 1 :, k] / M[..., k, k, None]
@@ -125,12 +130,36 @@ def solve_collocation(A, B):
     return X
 
 
+def _solve_one(A: list, B: list) -> list:
+    """``solve_collocation`` of one system on Python floats (lists of rows): the same
+    operations in the same order, element by element, as the arrays' elimination, without a
+    numpy call per step (issue 28)."""
+    n = len(A)
+    M = [a + b for a, b in zip(A, B, strict=True)]
+    for k in range(n - 1):
+        pivot = M[k]
+        d = pivot[k]
+        for i in range(k + 1, n):
+            row = M[i]
+            f = row[k] / d
+            for c in range(k, len(row)):
+                row[c] -= f * pivot[c]
+    X = [row[n:] for row in M]
+    for k in range(n - 1, -1, -1):
+        d = M[k][k]
+        xk = X[k] = [v / d for v in X[k]]
+        for i in range(k):
+            mik = M[i][k]
+            X[i] = [v - mik * w for v, w in zip(X[i], xk, strict=True)]
+    return X
+
+
 def derivative_ctrl(ctrl, knots, degree: int):
     """Control points and knots of the derivative curve (Piegl & Tiller Eq. 3.8)."""
     k = knots
     den = k[..., degree + 1 : -1] - k[..., 1 : -degree - 1]
     den = np.where(den > 0, den, 1.0)
-    q = degree * np.diff(ctrl, axis=-2) / den[..., None]
+    q = degree * diff(ctrl, axis=-2) / den[..., None]
     return q, k[..., 1:-1]
 
 
@@ -142,7 +171,7 @@ def rotation_minimising_frames(points, tangents, r0):
     the points and tangents: they are built for all steps at once, and so are their running
     products."""
     m, N, _ = points.shape
-    v1 = np.diff(points, axis=1)  # (m, N-1, 3)
+    v1 = diff(points, axis=1)  # (m, N-1, 3)
     c1 = np.einsum("mik,mik->mi", v1, v1)
     f1 = np.where(c1 > 1e-18, 2.0 / np.where(c1 > 1e-18, c1, 1.0), 0.0)
     t0 = tangents[:, :-1]
@@ -165,7 +194,7 @@ def rotation_minimising_frames(points, tangents, r0):
     out[:, 1:] = np.einsum("mnij,mj->mni", P, np.asarray(r0, dtype=float))
     # against round-off: exactly perpendicular to the tangents and of unit length
     out -= np.einsum("mik,mik->mi", out, tangents)[..., None] * tangents
-    out /= np.maximum(np.linalg.norm(out, axis=2), 1e-12)[..., None]
+    out /= np.maximum(norm(out, axis=2), 1e-12)[..., None]
     return out
 
 

@@ -12,8 +12,10 @@ import numpy as np
 
 from ..brush import bristles
 from ..brush.inertia import InertiaPredictor
+from ..brush.ink import interpolate_rows
 from ..brush.mark import cut_marks, fill_marks
 from ..brush.primitive import HairyBrush
+from ..brush.state import ink_keys
 from ..core.params import HOVER_MM
 from ..core.recording import Recording
 from ..paper.paper import DRY_RATE, Paper
@@ -22,6 +24,14 @@ from ..surface.paper import CHART_SHAPE
 # samples whose marks are filled in together by ``run`` (the brush never reads the paper, so its
 # dynamics can run ahead of the paper; each step's deposit still comes in order)
 BATCH_STEPS = 8
+# at most this many waiting samples have their marks filled in one pass when the paper catches
+# up with a brush that ran ahead (``advance``, ``settle``): fewer passes, each over more pixels
+# (issue 28); any grouping gives the same marks, bit for bit (``fill_marks``)
+FILL_STEPS = 32
+# the hair bundles measure and lay the marks of the filled samples together, as many samples
+# at a time as have about this many pixels: one pass of numpy calls for many small marks,
+# while large marks' temporaries stay in the processor's cache (issue 28)
+LAY_PIXELS = 1 << 13
 
 
 class PendingDeposit(NamedTuple):
@@ -59,6 +69,7 @@ class Simulation:
         self.index = 0  # next sample to process
         self.last_marks = []
         self._pending: list[PendingDeposit] = []  # moved but not yet deposited (see run)
+        self._filled: list = []  # the marks of the first waiting samples, filled in already
         self.timings = None  # a dict to keep the seconds spent in every stage (the benchmark)
         first = self._sample(0)
         self.brush.place(
@@ -121,12 +132,17 @@ class Simulation:
         sec = b.sections()
         t0 = self._tick("sweep", t0)
         shape = self.paper.shape if self.surface is None else CHART_SHAPE
-        cut = cut_marks(b, sec, b.rows_ink(sec), self.paper.ppm, shape)
+        # the ink at the surface rows (Eq. 21) only feeds the marks: it is interpolated when
+        # they are filled, for many samples at once (``_fill``), from the key points' ink now
+        cut = cut_marks(b, sec, None, self.paper.ppm, shape)
+        if cut is not None:
+            cut.ink_source = (sec.params, ink_keys(b))
         t0 = self._tick("cut", t0)
         area, height = cut.sizes(b.m) if cut is not None else (np.zeros(b.m), np.zeros(b.m))
         if cut is not None:
             b.follow(cut.contact())  # the path the hair bundles are drawn along (bristles)
-        speed = float(np.linalg.norm(vel[:3]))
+        v3 = vel[:3]
+        speed = float(np.sqrt(v3.dot(v3)))  # np.linalg.norm(vel[:3]), without its wrapper
         b.update_stress(area, height, speed, self.dt)  # Eq. 10-12
         across = np.array([-b.travel[1], b.travel[0]])
         b.sweep = (cut.widths(b.m, across) if cut is not None else np.zeros(b.m)) * speed
@@ -155,29 +171,81 @@ class Simulation:
             self.timings[stage] = self.timings.get(stage, 0.0) + (now - t0)
         return now
 
-    def _deposit_pending(self):
-        """Fill in the waiting samples' marks together, then deposit them in order."""
-        if not self._pending:
-            return
+    def advance(self, until: int):
+        """The brush alone up to sample ``until`` (not past the recording's end): its marks
+        wait for the paper, which ``settle`` or ``run`` brings up to it (the brush never reads
+        the paper)."""
+        end = min(until, len(self.rec.samples))
+        while self.index < end:
+            self._advance()
+
+    def settle(self, until: int):
+        """The paper up to sample ``until`` (as ``run(until)`` leaves it), the brush having run
+        at least that far (``advance``)."""
+        self._deposit_pending(until)
+
+    def _drop_pending(self):
+        """Forget the samples the paper has not taken (the brush is put back)."""
+        self._pending = []
+        self._filled = []
+
+    def _deposit_pending(self, until: int | None = None):
+        """Fill in the waiting samples' marks together (up to FILL_STEPS at a time), then
+        deposit them in order: all of them, or those of samples before ``until``."""
+        while self._pending and (until is None or self._pending[0].step <= until):
+            if not self._filled:
+                self._filled = self._fill(self._pending[:FILL_STEPS])
+            stop = len(self._filled)
+            if until is not None:
+                stop = min(stop, sum(1 for p in self._pending[:stop] if p.step <= until))
+            self._deposit(self._pending[:stop], self._filled[:stop])
+            del self._pending[:stop]
+            del self._filled[:stop]
+
+    def _fill(self, pending) -> list:
+        """The marks of waiting samples, filled in together (Eq. 21-23). Small marks are
+        measured and laid by the hair bundles (``bristles``) here too, many samples at once;
+        a sample with large marks is left to ``_deposit`` (None in its place), which lays
+        them just before the paper takes them, while they are in the processor's cache."""
         t0 = time.perf_counter()
-        marks_per_step = fill_marks([p.cut for p in self._pending], self.paper.ppm)
+        ppm = self.paper.ppm
+        _rows_ink([p.cut for p in pending], self.brush.layout.grid_s)
+        marks = fill_marks([p.cut for p in pending], ppm)
         t0 = self._tick("mark pixels", t0)
-        for p, marks in zip(self._pending, marks_per_step, strict=True):
+        out = []
+        for a, b in _groups([sum(mk.rows.size for mk in m) for m in marks], LAY_PIXELS):
+            part, states = marks[a:b], [p.bristles for p in pending[a:b]]
+            if b - a == 1:  # large marks: a sample at a time, as the paper takes them
+                out.append((part[0], False))
+                continue
+            part = bristles.across_steps(part, states, ppm)  # on the chart, on a surface
             if self.surface is None:
-                marks = bristles.across(marks, p.bristles, self.paper.ppm)
-                marks = bristles.lay(marks, p.bristles, self.paper.ppm)  # the hair bundles (Eq. 27)
+                part = bristles.lay_steps(part, states, ppm)  # the hair bundles (Eq. 27)
+            out += [(m, True) for m in part]
+        self._tick("paper", t0)
+        return out
+
+    def _deposit(self, pending, filled):
+        """Deposit the filled marks of waiting samples, in order (Eq. 24-27): ``filled`` has
+        each sample's marks and whether the bundles have measured them (``_fill``)."""
+        t0 = time.perf_counter()
+        ppm = self.paper.ppm
+        for p, (marks, measured) in zip(pending, filled, strict=True):
+            if not measured:
+                marks = bristles.across(marks, p.bristles, ppm)  # on the chart, on a surface
+            if self.surface is None:
+                if not measured:
+                    marks = bristles.lay(marks, p.bristles, ppm)  # the hair bundles (Eq. 27)
                 self.paper.deposit(marks, self.q, self.dt, p.step)  # Eq. 24-27
                 self.last_marks = marks
                 continue
             t1 = time.perf_counter()
-            marks = bristles.across(marks, p.bristles, self.paper.ppm)  # on the chart
             groups = self.surface.splat(marks, p.step - 1) or [[]]  # texels under the marks
             self._tick("surface splat", t1)
-            groups = [bristles.lay(group, p.bristles, self.paper.ppm) for group in groups]
+            groups = [bristles.lay(group, p.bristles, ppm) for group in groups]
             for group in groups:  # far apart in the texture (a seam): a window each
                 self.paper.deposit(group, self.q, self.dt, p.step)
             self.last_marks = [mk for group in groups for mk in group]
-        self._pending = []
         self._tick("paper", t0)
 
     def run(self, until: int | None = None, progress=None):
@@ -240,11 +308,41 @@ class Simulation:
 
     def _set_state(self, state: dict):
         """Everything of a snapshot or hold but the paper."""
-        self._pending = []
+        self._drop_pending()
         self.index = state["index"]
         self.brush.restore(state["brush"])
         self.rng.bit_generator.state = state["rng"]
         self.predictor.set_state(state["predictor"])
+
+
+def _groups(sizes, budget: int):
+    """Runs [a, b) of consecutive items whose sizes add up to about ``budget`` (at least one
+    item each)."""
+    a, total = 0, 0
+    for i, size in enumerate(sizes):
+        if i > a and total + size > budget:
+            yield a, i
+            a, total = i, 0
+        total += size
+    if a < len(sizes):
+        yield a, len(sizes)
+
+
+def _rows_ink(cuts, grid_s):
+    """Every cut's ink at its surface rows' axis points V^ (Eq. 21), all samples' at once, from
+    the key points' ink each kept (``Cut.ink_source``)."""
+    todo = [c for c in cuts if c is not None and c.ink_source is not None]
+    if not todo:
+        return
+    t = np.concatenate([c.ink_source[0] for c in todo])
+    keys = np.concatenate([c.ink_source[1] for c in todo])
+    rows = interpolate_rows(grid_s, t, keys)
+    at = 0
+    for c in todo:
+        m = c.ink_source[0].shape[0]
+        c.rows = c.rows._replace(ink=rows[at : at + m])
+        c.ink_source = None
+        at += m
 
 
 def render(recording: Recording, until: int | None = None, progress=None) -> np.ndarray:

@@ -84,7 +84,7 @@ class Timeline:
     def _restore(self, k: int):
         """Put the simulation at snapshot k, rewriting only the tiles that can differ."""
         sim, paper = self.sim, self.sim.paper
-        sim._pending = []
+        sim._drop_pending()
         lo, hi = sorted((k, self._base))
         tiles = {tuple(t) for t in paper.tiles_since(self._base_version).tolist()}
         for j, snap in self.snaps.items():

@@ -128,8 +128,9 @@ def _practise(sim, a, b, body, want, step_mm, pl, probes):
     done = np.searchsorted(times, np.minimum(_movement_ends(pl.phase, body), b))
     old = np.zeros(rows.shape, dtype=bool)
     cov = np.zeros(rows.shape, dtype=bool)
+    sim.advance(b)  # the brush never reads the paper: it runs ahead, its marks filled together
     for n, t in enumerate(times):
-        sim.run(until=t)  # the deposits batched up to the reading (the same ink as step by step)
+        sim.settle(t)  # the paper up to the reading (the same ink as step by step)
         for out, sel in ((old, which == n), (cov, done == n)):
             if sel.any():
                 out[sel] = _coverage(sim, rows[sel], cols[sel])
