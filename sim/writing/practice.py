@@ -185,14 +185,20 @@ def _extent(ink: np.ndarray, along: np.ndarray) -> np.ndarray:
     return far.max(axis=-1)
 
 
-def _end_probes(sim, pl: Plan, body, own: _Window) -> _Ends:
-    """The fans of rays out of both ends of each movement of a stroke (``body``'s runs) and
-    the outline's reach along them: from ``END_BACK`` widths inside the end to ``END_LOOK``
-    widths past it, one pixel a step."""
+def _end_probes(sim, pl: Plan, body, own: _Window, whole: np.ndarray) -> _Ends:
+    """The fans of rays out of the free ends of a stroke (the start of its first movement,
+    the end of its last; ``body``'s runs) and the outline's reach along them: from
+    ``END_BACK`` widths inside the end to ``END_LOOK`` widths past it, one pixel a step. Where
+    the character's ink (``whole``: all the outlines, on the paper) runs on past the end into
+    another stroke, the end touches it: its outline is taken to run on too (the end is carried
+    on to it if the ink falls short, never drawn back from it)."""
     ppm = sim.paper.ppm
     which, rows, cols, along, limit = [], [], [], [], []
-    for m, run in enumerate(_movements(body)):
+    runs = _movements(body)
+    for m, run in enumerate(runs):
         for e, (i, sign) in enumerate(((run[0], -1.0), (run[-1], 1.0))):
+            if (m, e) not in ((0, 0), (len(runs) - 1, 1)):
+                continue  # a sharp corner: its shape is the foot's and the turn's
             w = max(float(pl.width[i]), 1.0 / ppm)
             out = sign * pl.tangent[i]
             d = np.arange(-END_BACK * w, END_LOOK * w + 1e-9, 1.0 / ppm)
@@ -214,14 +220,18 @@ def _end_probes(sim, pl: Plan, body, own: _Window) -> _Ends:
     ok = (r >= 0) & (r < h) & (c >= 0) & (c < w)
     inside = np.where(ok, own.inside[np.clip(r, 0, h - 1), np.clip(c, 0, w - 1)], False)
     inside |= _coverage(sim, rows, cols)  # ink already there: an end running into a stroke
-    return _Ends(np.array(which), rows, cols, along, _extent(inside, along), np.array(limit))
+    want = _extent(inside, along)
+    look = along.max(axis=(1, 2))
+    touches = _extent(whole[rows, cols], along) >= look - 1e-9
+    want = np.where(touches & np.isfinite(want), look, want)
+    return _Ends(np.array(which), rows, cols, along, want, np.array(limit))
 
 
-def _reach_moves(sim, ends: _Ends, before, moves) -> np.ndarray:
-    """The next pass's end moves (movements, 2; mm): each end carried on by a share of how
-    much farther the outline (with the ink already on the paper) reaches than the ink does
-    (drawn back where the ink reaches farther), where the reading is the stroke's own (its foot
-    was paper before the stroke) and not an end running on into ink in both."""
+def _reach_error(sim, ends: _Ends, before) -> np.ndarray:
+    """How much farther (mm, per end) the outline (with the ink already on the paper) reaches
+    than the ink does (< 0: the ink runs on past it), where the reading is the stroke's own
+    (its foot was paper before the stroke) and not an end running on into ink in both; 0
+    elsewhere."""
     got = _extent(_coverage(sim, ends.rows, ends.cols), ends.along)
     look = ends.along.max(axis=(1, 2))
     own = ~before[:, :, 0].any(axis=1) & np.isfinite(ends.want) & np.isfinite(got)
@@ -229,6 +239,13 @@ def _reach_moves(sim, ends: _Ends, before, moves) -> np.ndarray:
     err = np.zeros(len(got))
     use = own & ~runs_on
     err[use] = ends.want[use] - got[use]
+    return err
+
+
+def _reach_moves(ends: _Ends, err, moves) -> np.ndarray:
+    """The next pass's end moves (movements, 2; mm): each end carried on (drawn back) by
+    ``END_GAIN`` of its reach error ``err`` (``_reach_error``), at most ``END_MAX`` widths in
+    all."""
     out = moves.copy()
     m, e = ends.which[:, 0], ends.which[:, 1]
     out[m, e] = np.clip(moves[m, e] + END_GAIN * err, -ends.limit, ends.limit)
@@ -259,11 +276,16 @@ def _ceiling(pl: Plan, body, response: Response) -> np.ndarray:
     return top
 
 
-def _practise_stroke(sim, a, b, passes, fill, own, ctx, reach_ends: bool = False) -> None:
+def _practise_stroke(sim, a, b, passes, fill, own, ctx, whole=None) -> None:
     """Write samples a..b (one stroke) with ``fill(a, b, press, side)``; with passes > 1,
     practise it: write, read the band, correct, take it back (a snapshot), write again; the
     pass that best fills the stroke's own outline ``own`` stays: the simulation goes back to
-    where that pass left it (a snapshot taken then), the recording gets its samples again."""
+    where that pass left it (a snapshot taken then), the recording gets its samples again.
+    With ``whole`` (the whole character's outlines on the paper: ``exact_ends``) each pass
+    also reads how far the ink of the stroke's free ends reaches against the outline
+    (``_reach_error``), the next pass carries them on or draws them back (``_reach_moves``),
+    and the pass that stays is the one whose IoU less its ends' error over the stroke's
+    length is best: a stroke 5 % too long is as wrong as one 5 % short of its area."""
     pl, response, step_mm, reach = ctx
     body = np.flatnonzero(pl.phase[a:b] == WRITING) + a
     want = pl.width[body]
@@ -278,9 +300,10 @@ def _practise_stroke(sim, a, b, passes, fill, own, ctx, reach_ends: bool = False
     inked_before = _coverage(sim, own.rows, own.cols)
     probes = _probes(sim, pl.target[body], pl.tangent[body], reach)
     moves = np.zeros((len(_movements(body)), 2))
-    if reach_ends:
-        ends = _end_probes(sim, pl, body, own)
+    if whole is not None:
+        ends = _end_probes(sim, pl, body, own, whole)
         ends_before = _coverage(sim, ends.rows, ends.cols)
+        length = max(float(np.linalg.norm(np.diff(pl.target[body], axis=0), axis=1).sum()), 1e-6)
     best = None
     for k in range(passes):
         if k:
@@ -293,13 +316,16 @@ def _practise_stroke(sim, a, b, passes, fill, own, ctx, reach_ends: bool = False
         new = _coverage(sim, own.rows, own.cols) & ~inked_before
         inter = np.count_nonzero(new & own.inside)
         err = -inter / max(np.count_nonzero(new | own.inside), 1)
+        if whole is not None:  # and the stroke as long as its outline: the ends' reach error
+            reach_err = _reach_error(sim, ends, ends_before)  # against the stroke's length
+            err += float(np.abs(reach_err).sum()) / length
         if best is None or err < best.error:
             state = sim.snapshot() if k < passes - 1 else None
             best = Pass(err, press.copy(), side.copy(), moves.copy(), k, state)
         if k == passes - 1:
             break
-        if reach_ends:
-            moves = _reach_moves(sim, ends, ends_before, moves)
+        if whole is not None:
+            moves = _reach_moves(ends, reach_err, moves)
         press, side = _correct(response, press, side, want, got, centre, valid, ceiling)
     sim.let_go(hold)
     if best.number != k:  # the last pass was not the best: back to where the best left off
