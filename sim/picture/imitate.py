@@ -131,6 +131,7 @@ def imitate(
             progress=writing(k),
             px_per_mm=px_per_mm,
             dip_every_mm=DIP_EVERY_STROKE,  # the picture's own tone is matched, not the brush's
+            exact_ends=True,  # the picture shows where each stroke's ink begins and ends
         )
         written = coverage_mask(sim)
         score = iou(written, target)

@@ -240,8 +240,16 @@ def _turn_ease(path, s) -> np.ndarray:
     return 1.0 - TURN_EASE * np.clip((turn - 0.9) / 1.4, 0.0, 1.0)
 
 
-def _enter_and_leave(samples, pl, body, hover, hair, step_mm, corner=(None, None)) -> None:
-    """The brush comes down moving along the movement's first direction, the tip touching where
+RUN_UP = 1.0  # the entry's run-up along the stroke (half steps a sample): the tip lands moving
+# on; 0 lands it on the start (where a picture's ink begins: the run-up's tip lays a hairline
+# before it)
+
+
+def _enter_and_leave(
+    samples, pl, body, hover, hair, step_mm, corner=(None, None), run_up=RUN_UP
+) -> None:
+    """The brush comes down moving along the movement's first direction (over ``run_up`` times
+    half a step a sample: with 0, straight down onto the start), the tip touching where
     the body begins, and lifts off moving on along the last direction (a flick, so that hooks
     and left-falling strokes end in a point, not a blot from a lift on the spot). ``corner``:
     the base's height at the sharp corner the movement begins after / ends at
@@ -258,7 +266,7 @@ def _enter_and_leave(samples, pl, body, hover, hair, step_mm, corner=(None, None
     entry = np.arange(a + 1, body[0])
     t0 = pl.tangent[body[0]]
     f = np.arange(1, len(entry) + 1) / max(len(entry), 1)
-    back = (len(entry) + 1 - np.arange(1, len(entry) + 1)) * 0.5 * step_mm
+    back = (len(entry) + 1 - np.arange(1, len(entry) + 1)) * 0.5 * step_mm * run_up
     if corner[0] is not None:  # after a sharp turn the tip comes down on the corner, not before it
         back = back * 0.0
     samples[entry, :2] = samples[body[0], :2] - back[:, None] * t0
@@ -351,12 +359,33 @@ def _turn_on_the_tip(samples, pl: Plan, span, heights) -> None:
         samples[run, 2] = z
 
 
-def _fill(samples, pl: Plan, response: Response, span, press, side, brush) -> np.ndarray:
+END_SPAN = 2.0  # stroke widths along a movement over which a moved end's shift fades out
+
+
+def _ends_moved(path, tangent, width, moves) -> np.ndarray:
+    """A movement's path with its start and end carried on (> 0) or drawn back (< 0) along the
+    way out of each end by ``moves`` (mm, start and end), the shift fading out over
+    ``END_SPAN`` widths inside the end, so the body of the stroke stays where it is."""
+    if len(path) < 2 or not np.any(moves):
+        return path
+    seg = np.linalg.norm(np.diff(path, axis=0), axis=1)
+    s = np.concatenate([[0.0], np.cumsum(seg)])
+    span = max(END_SPAN * float(np.max(width)), 1e-6)
+    w0 = np.clip(1.0 - s / span, 0.0, 1.0)[:, None]
+    w1 = np.clip(1.0 - (s[-1] - s) / span, 0.0, 1.0)[:, None]
+    return path - w0 * moves[0] * tangent[0] + w1 * moves[1] * tangent[-1]
+
+
+def _fill(
+    samples, pl: Plan, response: Response, span, press, side, brush, ends=None, run_up=RUN_UP
+):
     """Samples a..b (``span``) of one stroke of plan ``pl``: for each of its movements, come
     down, write with the given press and sideways placement per body sample (the press eased at
     the entry and at sharp turns, the base leading the ink by the response's lag), lift off
     (``_enter_and_leave``), and turn on the tip between them (``_turn_on_the_tip``). ``brush``
-    is (hover, hair length, step) in mm."""
+    is (hover, hair length, step) in mm; ``ends`` (movements, 2): how far each movement's start
+    and end are carried on along its way out (``_ends_moved``; practice's reach correction);
+    ``run_up``: the entries' (``_enter_and_leave``). Returns the body samples."""
     a, b = span
     hover, hair, step_mm = brush
     body = np.flatnonzero(pl.phase[a:b] == WRITING) + a
@@ -369,13 +398,16 @@ def _fill(samples, pl: Plan, response: Response, span, press, side, brush) -> np
         j1 = j0 + len(run)
         touch = 1.0 if hook[r] else ENTRY_TOUCH  # a hook sets off pressed
         p = press[j0:j1] * _entry_ramp(pl.target[run], pl.width[run], touch)
-        samples[run, :2] = _lead_along(pl.target[run], response.lag_for(p), r < len(runs) - 1)
+        path = pl.target[run]
+        if ends is not None:
+            path = _ends_moved(path, pl.tangent[run], pl.width[run], ends[r])
+        samples[run, :2] = _lead_along(path, response.lag_for(p), r < len(runs) - 1)
         samples[run, :2] += side[j0:j1, None] * normal[run]
         samples[run, 2] = hair - p
         nxt = None
         if r < len(runs) - 1:  # into a corner: to the tip, or a hook's foot kept pressed
             nxt = hair - HOOK_KEEP * p[-1] if hook[r + 1] else hair * (1.0 - TURN_TOUCH)
-        _enter_and_leave(samples, pl, run, hover, hair, step_mm, (at, nxt))
+        _enter_and_leave(samples, pl, run, hover, hair, step_mm, (at, nxt), run_up)
         if nxt is not None:
             heights.append(nxt)
         at = nxt

@@ -18,12 +18,14 @@ from .response import Response, _coverage
 
 class Pass(NamedTuple):
     """One practice pass of a stroke: how far its ink is from the outline (lower is better),
-    the press and sideways placement it was written with, its number, and the simulation as
+    the press, sideways placement and end moves (``_reach_moves``) it was written with, its
+    number, and the simulation as
     the pass left it (a snapshot; None for a pass the simulation is still at)."""
 
     error: float
     press: np.ndarray
     side: np.ndarray
+    moves: np.ndarray
     number: int
     state: dict | None
 
@@ -164,6 +166,104 @@ def _correct(response, placed, want, band, ceiling, zones):
     return press, side
 
 
+END_GAIN = 0.7  # share of an end's reach error corrected for the next pass
+END_MAX = 0.6  # widths an end may be carried on or drawn back in all
+END_BACK = 0.5  # widths inside a movement's end its reach is read from
+END_LOOK = 1.5  # widths past the end the inks are followed (further: the ink runs on)
+END_FAN = np.radians(np.linspace(-60.0, 60.0, 9))  # rays round the way out of an end
+
+
+class _Ends(NamedTuple):
+    """Where each movement end's reach is read: the end's (movement, 0 start / 1 end), the
+    paper pixels of a fan of rays out of it (rows, cols: (ends, rays, steps)), each step's
+    distance along the way out (mm, from the end), how far the stroke's outline reaches there
+    (mm, ``_extent``) and the most an end may move (mm)."""
+
+    which: np.ndarray
+    rows: np.ndarray
+    cols: np.ndarray
+    along: np.ndarray
+    want: np.ndarray
+    limit: np.ndarray
+
+
+def _extent(ink: np.ndarray, along: np.ndarray) -> np.ndarray:
+    """How far along the way out an end's ink reaches: along each ray of the fan, the ink
+    unbroken from the ray's foot (inside the end), its last step's distance along the way out;
+    the farthest of the fan (``along`` is (ends, rays, steps); nothing where the foot is paper:
+    -inf)."""
+    run = np.cumprod(ink, axis=-1).astype(bool)
+    far = np.where(run, along, -np.inf).max(axis=-1)
+    return far.max(axis=-1)
+
+
+def _end_probes(sim, pl: Plan, body, own: _Window, whole: np.ndarray) -> _Ends:
+    """The fans of rays out of the free ends of a stroke (the start of its first movement,
+    the end of its last; ``body``'s runs) and the outline's reach along them: from
+    ``END_BACK`` widths inside the end to ``END_LOOK`` widths past it, one pixel a step. Where
+    the character's ink (``whole``: all the outlines, on the paper) runs on past the end into
+    another stroke, the end touches it: its outline is taken to run on too (the end is carried
+    on to it if the ink falls short, never drawn back from it)."""
+    ppm = sim.paper.ppm
+    which, rows, cols, along, limit = [], [], [], [], []
+    runs = _movements(body)
+    for m, run in enumerate(runs):
+        for e, (i, sign) in enumerate(((run[0], -1.0), (run[-1], 1.0))):
+            if (m, e) not in ((0, 0), (len(runs) - 1, 1)):
+                continue  # a sharp corner: its shape is the foot's and the turn's
+            w = max(float(pl.width[i]), 1.0 / ppm)
+            out = sign * pl.tangent[i]
+            d = np.arange(-END_BACK * w, END_LOOK * w + 1e-9, 1.0 / ppm)
+            c, sn = np.cos(END_FAN), np.sin(END_FAN)
+            rays = np.stack([c * out[0] - sn * out[1], sn * out[0] + c * out[1]], axis=1)
+            pts = pl.target[i] + d[None, :, None] * rays[:, None, :]
+            cols.append(np.clip((pts[..., 0] * ppm).astype(int), 0, sim.paper.W - 1))
+            rows.append(np.clip((pts[..., 1] * ppm).astype(int), 0, sim.paper.H - 1))
+            along.append(d[None, :] * c[:, None])
+            which.append((m, e))
+            limit.append(END_MAX * w)
+    k = max(len(r[0]) for r in rows)
+    rows, cols, along = (
+        np.stack([np.pad(x, ((0, 0), (0, k - x.shape[1])), "edge") for x in a])
+        for a in (rows, cols, along)
+    )  # the fans of the wider ends are longer: the others padded with their last step
+    r, c = rows - own.rows.start, cols - own.cols.start
+    h, w = own.inside.shape
+    ok = (r >= 0) & (r < h) & (c >= 0) & (c < w)
+    inside = np.where(ok, own.inside[np.clip(r, 0, h - 1), np.clip(c, 0, w - 1)], False)
+    inside |= _coverage(sim, rows, cols)  # ink already there: an end running into a stroke
+    want = _extent(inside, along)
+    look = along.max(axis=(1, 2))
+    touches = _extent(whole[rows, cols], along) >= look - 1e-9
+    want = np.where(touches & np.isfinite(want), look, want)
+    return _Ends(np.array(which), rows, cols, along, want, np.array(limit))
+
+
+def _reach_error(sim, ends: _Ends, before) -> np.ndarray:
+    """How much farther (mm, per end) the outline (with the ink already on the paper) reaches
+    than the ink does (< 0: the ink runs on past it), where the reading is the stroke's own
+    (its foot was paper before the stroke) and not an end running on into ink in both; 0
+    elsewhere."""
+    got = _extent(_coverage(sim, ends.rows, ends.cols), ends.along)
+    look = ends.along.max(axis=(1, 2))
+    own = ~before[:, :, 0].any(axis=1) & np.isfinite(ends.want) & np.isfinite(got)
+    runs_on = (ends.want >= look - 1e-9) & (got >= look - 1e-9)
+    err = np.zeros(len(got))
+    use = own & ~runs_on
+    err[use] = ends.want[use] - got[use]
+    return err
+
+
+def _reach_moves(ends: _Ends, err, moves) -> np.ndarray:
+    """The next pass's end moves (movements, 2; mm): each end carried on (drawn back) by
+    ``END_GAIN`` of its reach error ``err`` (``_reach_error``), at most ``END_MAX`` widths in
+    all."""
+    out = moves.copy()
+    m, e = ends.which[:, 0], ends.which[:, 1]
+    out[m, e] = np.clip(moves[m, e] + END_GAIN * err, -ends.limit, ends.limit)
+    return out
+
+
 CORNER_WIDTH = 0.9  # share of the widest band the brush is pressed for into a corner (measured:
 # 0.8 is cleaner still but costs texture, 0.748 -> 0.73 on the bundled characters)
 
@@ -188,11 +288,16 @@ def _ceiling(pl: Plan, body, response: Response) -> np.ndarray:
     return top
 
 
-def _practise_stroke(sim, a, b, passes, fill, own, ctx) -> None:
+def _practise_stroke(sim, a, b, passes, fill, own, ctx, whole=None) -> None:
     """Write samples a..b (one stroke) with ``fill(a, b, press, side)``; with passes > 1,
     practise it: write, read the band, correct, take it back (a snapshot), write again; the
     pass that best fills the stroke's own outline ``own`` stays: the simulation goes back to
-    where that pass left it (a snapshot taken then), the recording gets its samples again."""
+    where that pass left it (a snapshot taken then), the recording gets its samples again.
+    With ``whole`` (the whole character's outlines on the paper: ``exact_ends``) each pass
+    also reads how far the ink of the stroke's free ends reaches against the outline
+    (``_reach_error``), the next pass carries them on or draws them back (``_reach_moves``),
+    and the pass that stays is the one whose IoU less its ends' error over the stroke's
+    length is best: a stroke 5 % too long is as wrong as one 5 % short of its area."""
     pl, response, step_mm, reach = ctx
     body = np.flatnonzero(pl.phase[a:b] == WRITING) + a
     want = pl.width[body]
@@ -207,26 +312,36 @@ def _practise_stroke(sim, a, b, passes, fill, own, ctx) -> None:
     inked_before = _coverage(sim, own.rows, own.cols)
     probes = _probes(sim, pl.target[body], pl.tangent[body], reach)
     zones = (entry_zone(pl, body), point_zone(pl, body))
+    moves = np.zeros((len(_movements(body)), 2))
+    if whole is not None:
+        ends = _end_probes(sim, pl, body, own, whole)
+        ends_before = _coverage(sim, ends.rows, ends.cols)
+        length = max(float(np.linalg.norm(np.diff(pl.target[body], axis=0), axis=1).sum()), 1e-6)
     best = None
     for k in range(passes):
         if k:
             sim.take_back(hold)
             hold = sim.hold()
-        fill(a, b, press, side)
+        fill(a, b, press, side, moves)
         old, cov = _practise(sim, a, b, body, want, step_mm, pl, probes)
         got, centre, valid = measure_band(sim.paper.ppm, cov, old)
         # the pass that best fills the stroke's own outline stays (new ink against it)
         new = _coverage(sim, own.rows, own.cols) & ~inked_before
         inter = np.count_nonzero(new & own.inside)
         err = -inter / max(np.count_nonzero(new | own.inside), 1)
+        if whole is not None:  # and the stroke as long as its outline: the ends' reach error
+            reach_err = _reach_error(sim, ends, ends_before)  # against the stroke's length
+            err += float(np.abs(reach_err).sum()) / length
         if best is None or err < best.error:
             state = sim.snapshot() if k < passes - 1 else None
-            best = Pass(err, press.copy(), side.copy(), k, state)
+            best = Pass(err, press.copy(), side.copy(), moves.copy(), k, state)
         if k == passes - 1:
             break
+        if whole is not None:
+            moves = _reach_moves(ends, reach_err, moves)
         band = (got, centre, valid)
         press, side = _correct(response, (press, side), want, band, ceiling, zones)
     sim.let_go(hold)
     if best.number != k:  # the last pass was not the best: back to where the best left off
         sim.restore(best.state)
-        fill(a, b, best.press, best.side)
+        fill(a, b, best.press, best.side, best.moves)

@@ -22,7 +22,7 @@ from ..core.recording import PAPER_MM_RANGE, PX_PER_MM_RANGE, Dip, Recording, qu
 from ..engine.simulation import Simulation
 from .hanzi import check_char
 from .outline import EM, median_radii, rasterise
-from .planner import _fill, plan
+from .planner import RUN_UP, _fill, plan
 from .practice import _practise_stroke, _stroke_masks
 from .response import Response, _coverage, _settings, calibrate
 
@@ -97,6 +97,7 @@ def write_character(
     passes: int = DEFAULT_PASSES,
     progress=None,
     px_per_mm: float | None = None,
+    exact_ends: bool = False,
 ) -> tuple[Recording, Response, Simulation]:
     """Write ``char`` with the brush on an n_px x n_px sheet that is exactly the em box, with the
     template's brush, paper, ink, quality, rate and seed (``px_per_mm`` instead of n_px / size
@@ -108,6 +109,10 @@ def write_character(
     does (Sec. 7.2): it writes the stroke, reads the band it left across the median against the
     outline's width, corrects the press (through the response's slope) and the sideways
     placement, takes the stroke back (a snapshot) and writes it again; the best pass stays.
+    With ``exact_ends`` (imitating a picture, whose ink shows where each stroke begins and
+    ends) the brush lands on each stroke's start instead of running on to it (``RUN_UP``), and
+    the practice also reads how far the ink of each end reaches against the outline and carries
+    the end on or draws it back (``practice._reach_moves``).
 
     Bad arguments raise ParameterError (CharacterError for bad character data) before any
     work."""
@@ -137,9 +142,17 @@ def write_character(
     sim = Simulation(rec)
     reach = max(float(pl.width.max()), 1.0)
     masks = _stroke_masks(char, sim.paper.H, sim.paper.W) if passes > 1 else None
+    whole = None  # the whole character on the paper, for practising the ends' reach
+    if exact_ends and masks is not None:
+        whole = np.zeros((sim.paper.H, sim.paper.W), dtype=bool)
+        for m in masks:
+            whole[m.rows, m.cols] |= m.inside
 
-    def fill(a, b, press, side):
-        return _fill(samples, pl, response, (a, b), press, side, (hover, hair, step_mm))
+    brush = (hover, hair, step_mm)
+    run_up = 0.0 if exact_ends else RUN_UP
+
+    def fill(a, b, press, side, ends=None):
+        return _fill(samples, pl, response, (a, b), press, side, brush, ends, run_up)
 
     full = full_load(template)
     for n_stroke, (a, b) in enumerate(pl.strokes):
@@ -148,7 +161,8 @@ def write_character(
             rec.dips.append(Dip(a, ink.depth, tuple(ink.color), ink.wetness))
             sim.dips = rec.dips
         own = masks[n_stroke] if passes > 1 else None
-        _practise_stroke(sim, a, b, passes, fill, own, (pl, response, step_mm, reach))
+        ctx = (pl, response, step_mm, reach)
+        _practise_stroke(sim, a, b, passes, fill, own, ctx, whole)
         if progress is not None:
             progress(b / N)
     sim.run()
