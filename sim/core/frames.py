@@ -12,8 +12,10 @@ from __future__ import annotations
 import numpy as np
 
 _add = np.add.reduce  # np.sum without its Python wrapper (the same sums)
-# the ufunc np.clip calls, without its Python wrappers (the same picks); numpy._core from 2.0
-clip = (getattr(np, "_core", None) or np.core).umath.clip
+# the ufunc np.clip calls, without its Python wrappers (the same picks): numpy._core from 2.0,
+# numpy.core before (1.26 has a numpy._core too, without umath, once something imports it)
+_NUMPY_2 = np.lib.NumpyVersion(np.__version__) >= "2.0.0"
+clip = (np._core if _NUMPY_2 else np.core).umath.clip
 
 
 def diff(a, axis: int = -1):
