@@ -113,34 +113,42 @@ def signed_distances(path, rows, cols, ppm: float) -> np.ndarray:
     r0, c0 = int(rows.min()), int(cols.min())
     hb, wb = int(rows.max()) - r0 + 1, int(cols.max()) - c0 + 1
     key = (rows - r0).astype(np.int64) * wb + (cols - c0)
-    if hb * wb <= 8 * rows.size + (1 << 20):  # each pixel once: a mask of the box
-        seen = np.zeros(hb * wb, dtype=bool)
-        seen[key] = True
-        uniq = np.flatnonzero(seen)
-        slot = np.cumsum(seen) - 1
-        inverse = slot[key]
-    else:  # marks far apart: sort instead
-        uniq, inverse = np.unique(key, return_inverse=True)
+    uniq, inverse = _each_once(key, hb * wb)
     ur, uc = uniq // wb, uniq % wb
     x = (uc + c0 + 0.5) / ppm  # as (column + 0.5) / ppm: the same doubles
     y = (ur + r0 + 0.5) / ppm
-    lat = np.empty(uniq.size)
     n_seg = len(seg[0])
     if uniq.size * n_seg <= PLAIN_ELEMENTS:  # few pixels: sorting out segments costs more
         _, lat = _measure(x, y, seg, 0, n_seg)
         out[:] = lat[inverse]
         return out
     lo_s, hi_s = _segment_ranges(seg, ur, uc, r0, c0, ppm, path)
-    width = hi_s - lo_s
+    out[:] = _in_blocks(_measure_runs, x, y, seg, lo_s, hi_s - lo_s)[inverse]
+    return out
+
+
+def _each_once(key, size: int):
+    """The distinct ``key``s (ints in [0, size)) ascending and where each key is among them:
+    through a mask of the box when it is not too large for the keys, else by sorting."""
+    if size <= 8 * key.size + (1 << 20):
+        seen = np.zeros(size, dtype=bool)
+        seen[key] = True
+        return np.flatnonzero(seen), (np.cumsum(seen) - 1)[key]
+    return np.unique(key, return_inverse=True)
+
+
+def _in_blocks(measure, x, y, seg, first, width) -> np.ndarray:
+    """``measure(x, y, seg, first, width)`` of the points in blocks of about BLOCK_ELEMENTS
+    (point, segment) pairs (point i against ``width[i]`` segments from ``first[i]``)."""
+    lat = np.empty(x.size)
     ends = np.cumsum(width)
     at = 0
-    while at < uniq.size:  # pixels in blocks of about BLOCK_ELEMENTS (pixel, segment) pairs
+    while at < x.size:
         stop = max(int(np.searchsorted(ends, ends[at] - width[at] + BLOCK_ELEMENTS)), at + 1)
         blk = slice(at, stop)
-        lat[blk] = _measure_runs(x[blk], y[blk], seg, lo_s[blk], width[blk])
+        lat[blk] = measure(x[blk], y[blk], seg, first[blk], width[blk])
         at = stop
-    out[:] = lat[inverse]
-    return out
+    return lat
 
 
 def signed_distances_many(paths, owner, rows, cols, ppm: float) -> np.ndarray:
@@ -162,28 +170,13 @@ def signed_distances_many(paths, owner, rows, cols, ppm: float) -> np.ndarray:
     r0, c0, wb, base = (v[owner] for v in box[:4])
     key = base + (rows - r0) * wb + (cols - c0)
     size = int(box[3][-1] + (box[4][-1] if len(paths) else 0))
-    if size <= 8 * rows.size + (1 << 20):  # each pixel once a step: a mask of the boxes
-        seen = np.zeros(size, dtype=bool)
-        seen[key] = True
-        uniq = np.flatnonzero(seen)
-        inverse = (np.cumsum(seen) - 1)[key]
-    else:  # boxes far too large: sort instead
-        uniq, inverse = np.unique(key, return_inverse=True)
+    uniq, inverse = _each_once(key, size)  # each pixel once a step
     us = np.searchsorted(box[3], uniq, side="right") - 1  # the pixel's step
     ur, uc = np.divmod(uniq - box[3][us], box[2][us])  # its row and column in the step's box
     x = (uc + box[1][us] + 0.5) / ppm  # as (column + 0.5) / ppm: the same doubles
     y = (ur + box[0][us] + 0.5) / ppm
     lo_s, hi_s = _segment_ranges_many(seg, seg_at, n_seg, (us, ur, uc), box[:2], ppm, paths)
-    width = hi_s - lo_s
-    lat = np.empty(uniq.size)
-    ends = np.cumsum(width)
-    at = 0
-    while at < uniq.size:  # pixels in blocks of about BLOCK_ELEMENTS (pixel, segment) pairs
-        stop = max(int(np.searchsorted(ends, ends[at] - width[at] + BLOCK_ELEMENTS)), at + 1)
-        blk = slice(at, stop)
-        lat[blk] = _measure_own_runs(x[blk], y[blk], seg, lo_s[blk], width[blk])
-        at = stop
-    out[:] = lat[inverse]
+    out[:] = _in_blocks(_measure_own_runs, x, y, seg, lo_s, hi_s - lo_s)[inverse]
     return out
 
 

@@ -368,8 +368,7 @@ def _ends_moved(path, tangent, width, moves) -> np.ndarray:
     ``END_SPAN`` widths inside the end, so the body of the stroke stays where it is."""
     if len(path) < 2 or not np.any(moves):
         return path
-    seg = np.linalg.norm(np.diff(path, axis=0), axis=1)
-    s = np.concatenate([[0.0], np.cumsum(seg)])
+    s = _along(path)
     span = max(END_SPAN * float(np.max(width)), 1e-6)
     w0 = np.clip(1.0 - s / span, 0.0, 1.0)[:, None]
     w1 = np.clip(1.0 - (s[-1] - s) / span, 0.0, 1.0)[:, None]
