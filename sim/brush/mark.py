@@ -30,7 +30,7 @@ from typing import NamedTuple
 
 import numpy as np
 
-from ..core.frames import dot, norm, stack1
+from ..core.frames import cross, dot, norm, stack1
 from .ink import LOAD, TEXTURE, TEXTURE_NAMES
 from .state import INK_FIELDS
 
@@ -1020,13 +1020,13 @@ def section_cover(U, V, p, q, ppm: float) -> np.ndarray:
     pixel is scaled by it (a pixel partly under the hair takes part of its colour), so the edge
     a section leaves is as smooth as the section, not the staircase of the pixel centres it
     holds. The section parallel to the paper (no horizontal line) takes h along U."""
-    N = np.cross(U, V)
+    N = cross(U, V)
     n = np.hypot(N[:, 0], N[:, 1])
-    along_u = n <= 1e-9 * np.maximum(np.einsum("ij,ij->i", U, U), 1e-12)
+    uu = np.maximum(np.einsum("ij,ij->i", U, U), 1e-12)
+    along_u = n <= 1e-9 * uu
     un = np.maximum(np.hypot(U[:, 0], U[:, 1]), 1e-12)
     hx = np.where(along_u, U[:, 0] / un, N[:, 1] / np.where(along_u, 1.0, n))
     hy = np.where(along_u, U[:, 1] / un, -N[:, 0] / np.where(along_u, 1.0, n))
-    uu = np.maximum(np.einsum("ij,ij->i", U, U), 1e-12)
     vv = np.maximum(np.einsum("ij,ij->i", V, V), 1e-12)
     alpha = (hx * U[:, 0] + hy * U[:, 1]) / uu
     beta = (hx * V[:, 0] + hy * V[:, 1]) / vv

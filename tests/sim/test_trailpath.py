@@ -75,10 +75,15 @@ def _trail(rng, kind, n=48, step=0.25):
 @pytest.mark.parametrize("kind", ["straight", "curve", "zigzag", "still"])
 @pytest.mark.parametrize("ppm", [3.0, 10.24, 20.48])
 @pytest.mark.parametrize("sort_out", [False, True])
-def test_fast_signed_distance_is_the_plain_measure_bit_for_bit(kind, ppm, sort_out, monkeypatch):
-    """Also with the segments sorted out by tiles for every size of mark (``sort_out``)."""
+@pytest.mark.parametrize("levels", [1, 2, 3])
+def test_fast_signed_distance_is_the_plain_measure_bit_for_bit(
+    kind, ppm, sort_out, levels, monkeypatch
+):
+    """Also with the segments sorted out by tiles for every size of mark (``sort_out``), in
+    one level of tiles or in several (blocks of tiles first)."""
     if sort_out:
         monkeypatch.setattr(trailpath, "PLAIN_ELEMENTS", 0)
+    monkeypatch.setattr(trailpath, "TILE_LEVELS", levels)
     rng = np.random.default_rng(hash((kind, ppm)) % 2**32)
     for trial in range(6):
         path = _trail(rng, kind, n=int(rng.integers(2, 49)))
