@@ -347,31 +347,29 @@ def wick_passes(capacity: float, ppm: float) -> int:
 
 def _wick(w, ink, draw, passes: int) -> None:
     """Capillary wicking (see WICK_MM) of the window's wetness ``w`` (h, w) and ink (h, w, 3),
-    in place, over ``passes`` passes; ``draw`` (h, w) in [0, 1] how well each pixel draws."""
-    planes = np.moveaxis(ink, -1, 0)
+    in place, over ``passes`` passes; ``draw`` (h, w) in [0, 1] how well each pixel draws.
+    Each pass moves liquid down the rows, then along them (each stable on its own)."""
+    rate = np.float32(WICK_RATE)
+    down = rate * draw[:-1] * draw[1:]  # between a pixel and the one below it, ...
+    along = rate * draw[:, :-1] * draw[:, 1:]  # ... and the one beside it
     for _ in range(passes):
-        wet = w > 0.0
-        if not wet.any():
+        if not (w > 0.0).any():
             return
         inflow = np.zeros_like(w)
-        carried = np.zeros_like(planes)
-        for axis in (0, 1):
-            a = [slice(None), slice(None)]
-            b = [slice(None), slice(None)]
-            a[axis], b[axis] = slice(None, -1), slice(1, None)
-            a, b = tuple(a), tuple(b)
-            flux = WICK_RATE * draw[a] * draw[b] * (w[a] - w[b])  # > 0: from a to b
+        carried = np.zeros_like(ink)
+        for g, a, b in ((down, np.s_[:-1], np.s_[1:]), (along, np.s_[:, :-1], np.s_[:, 1:])):
+            flux = g * (w[a] - w[b])  # > 0: from a to b
             to_b, to_a = np.maximum(flux, 0.0), np.maximum(-flux, 0.0)
             inflow[b] += to_b
             inflow[a] += to_a
-            carried[(slice(None),) + b] += to_b * planes[(slice(None),) + a]
-            carried[(slice(None),) + a] += to_a * planes[(slice(None),) + b]
+            carried[b] += to_b[..., None] * ink[a]
+            carried[a] += to_a[..., None] * ink[b]
             w[a] -= flux
             w[b] += flux
         got = inflow > 0.0
-        colour = carried / np.where(got, inflow, 1.0)
         take = np.where(got, WICK_PIGMENT * -np.expm1(-w / FULL_WET), 0.0)
-        np.maximum(planes, colour * take, out=planes)
+        take /= np.where(got, inflow, 1.0)  # the givers' colour, weighted by what they gave
+        np.maximum(ink, carried * take[..., None], out=ink)
 
 
 def _visit_ranks(locs, size: int) -> tuple[np.ndarray, np.ndarray]:
