@@ -328,9 +328,10 @@ GRAIN_DEPTH = 0.25  # the grain changes the offer a pixel takes by up to +- GRAI
 # further along a fibre than between fibres. Each pass moves, between every two neighbouring
 # pixels (four-neighbour), WICK_RATE times their difference in wetness times how well both draw
 # (``sheet_draw``: the sheet's fibres and pulp, in mm, from its seed); a pixel that takes
-# liquid takes the pigment it carries as Eq. 26's change does (1 - exp(-wetness / FULL_WET) of
-# the givers' colour, times WICK_PIGMENT: the pigment lags the water, so the fringe is lighter)
-# and keeps the darker of that and what it had. The passes per step follow the sheet's reach,
+# liquid takes the pigment it carries, laid over what it holds: 1 - exp(-taken / FULL_WET) of
+# the givers' colour, times WICK_PIGMENT (the pigment lags the water), so the fringe darkens as
+# the liquid keeps coming and stays lighter than the stroke, and a dry-brush gap inside a
+# stroke, as wet as its neighbours, takes almost none. The passes per step follow the sheet's reach,
 # WICK_MM / capacity**2 mm (a paper that holds little passes liquid on further: raw xuan about
 # 0.4 mm a step while wet, sized xuan 0.12 mm, smooth paper none).
 WICK_MM = 0.12
@@ -366,10 +367,11 @@ def _wick(w, ink, draw, passes: int) -> None:
             carried[a] += to_a[..., None] * ink[b]
             w[a] -= flux
             w[b] += flux
-        got = inflow > 0.0
-        take = np.where(got, WICK_PIGMENT * -np.expm1(-w / FULL_WET), 0.0)
-        take /= np.where(got, inflow, 1.0)  # the givers' colour, weighted by what they gave
-        np.maximum(ink, carried * take[..., None], out=ink)
+        # the pigment the liquid carried in: the givers' colour, weighted by what each gave,
+        # laid over what the pixel holds as Eq. 26's change lays it (more liquid, more of it)
+        take = WICK_PIGMENT * -np.expm1(-inflow / FULL_WET)
+        take /= np.where(inflow > 0.0, inflow, 1.0)
+        ink += (1.0 - ink) * (carried * take[..., None])
 
 
 def _visit_ranks(locs, size: int) -> tuple[np.ndarray, np.ndarray]:
