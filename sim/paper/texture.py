@@ -115,3 +115,17 @@ def sheet_tone(rows: slice, cols: slice, ppm: float, texture: float, seed: int, 
                 r0 - ty * tile : r1 - ty * tile, c0 - tx * tile : c1 - tx * tile
             ]
     return out
+
+
+DRAW_BASE = 0.7  # how well the sheet draws liquid where its tone is even, ...
+DRAW_SPREAD = 2.5  # ... and how much its fibres and pulp change that (per unit of tone)
+DRAW_MIN = 0.05
+
+
+def sheet_draw(rows: slice, cols: slice, ppm: float, seed: int, tile: int) -> np.ndarray:
+    """How well each pixel of the window draws liquid along the sheet (capillary wicking,
+    ``sim.paper.paper._wick``), in [DRAW_MIN, 1]: more on a fibre and where the pulp lies thick,
+    less between them; the sheet's own clouds and fibres (``paper_tone`` at full texture), so
+    the same in every window and at any resolution in mm."""
+    tone = sheet_tone(rows, cols, ppm, 1.0, seed, tile)
+    return np.clip(DRAW_BASE + DRAW_SPREAD * (tone - 1.0), DRAW_MIN, 1.0).astype(np.float32)

@@ -6,7 +6,8 @@ deposit to a Paper: ``types.MethodType(reference_deposit, paper)``."""
 
 import numpy as np
 
-from sim.paper.paper import FULL_WET, GRAIN_DEPTH, paper_grain
+from sim.paper.paper import FULL_WET, GRAIN_DEPTH, TILE, _wick, paper_grain
+from sim.paper.texture import sheet_draw
 
 _NEIGHBOURS = [(-1, -1), (-1, 0), (-1, 1), (0, -1), (0, 1), (1, -1), (1, 0), (1, 1)]
 
@@ -19,7 +20,7 @@ def reference_deposit(self, marks, q, dt: float, step: int, saturate=None):
     marks = [mk for mk in marks if mk.rows.size]
     if not marks:
         return
-    margin = self.sat_passes + 1
+    margin = self.sat_passes + self.wick_passes + 1
     y0 = max(min(mk.iy0 for mk in marks) - margin, 0)
     x0 = max(min(mk.ix0 for mk in marks) - margin, 0)
     y1 = min(max(mk.iy0 + mk.shape[0] for mk in marks) + margin, self.H)
@@ -63,6 +64,9 @@ def reference_deposit(self, marks, q, dt: float, step: int, saturate=None):
         sy0, sy1 = max(over[0].min() - 1, 0), over[0].max() + 2
         sx0, sx1 = max(over[1].min() - 1, 0), over[1].max() + 2
         saturate(w[sy0:sy1, sx0:sx1], ink[sy0:sy1, sx0:sx1], self.capacity)
+    if self.wick_passes:  # capillary wicking (a model addition, sim.paper.paper._wick)
+        draw = sheet_draw(slice(y0, y1), slice(x0, x1), self.ppm, self.grain_seed, TILE)
+        _wick(w, ink, draw, self.wick_passes)
     wet[...] = w
     last[...] = step
 

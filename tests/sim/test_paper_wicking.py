@@ -1,0 +1,58 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
+"""Capillary wicking (a model addition, ``sim.paper.paper._wick``): the sheet draws liquid and
+pigment a little way out of a stroke's edge along its fibres."""
+
+import numpy as np
+
+from sim.paper.paper import TILE, WICK_MAX_PASSES, Paper, _wick, wick_passes
+from sim.paper.texture import DRAW_MIN, sheet_draw
+
+
+def _edge(draw, passes=3):
+    """A wet, inked block (columns < 20) beside dry paper, wicked ``passes`` times."""
+    w = np.zeros((40, 40), np.float32)
+    ink = np.zeros((40, 40, 3), np.float32)
+    w[:, :20] = 0.6
+    ink[:, :20] = 0.95
+    w0 = w.copy()
+    _wick(w, ink, draw, passes)
+    return w0, w, ink
+
+
+def test_wicking_keeps_the_water_and_pulls_a_lighter_fringe_a_few_pixels_out():
+    draw = sheet_draw(slice(0, 40), slice(0, 40), 10.0, 3, TILE)
+    w0, w, ink = _edge(draw, 3)
+    assert abs(w.sum(dtype=np.float64) - w0.sum(dtype=np.float64)) < 1e-3  # the water kept
+    assert w[:, 20:].sum() > 0.01
+    fringe = ink[:, 20, 0]
+    assert fringe.max() > 0.05  # the sheet drew ink out of the edge
+    assert fringe.mean() < 0.95 * ink[:, 19, 0].mean()  # lighter than the stroke
+    assert not ink[:, 24:, 0].any()  # no further than a pixel a pass
+    assert ink[:, 21, 0].mean() < fringe.mean()  # fading outward
+
+
+def test_wicking_follows_the_sheet_uneven_along_a_straight_edge():
+    draw = sheet_draw(slice(0, 40), slice(0, 40), 10.0, 3, TILE)
+    assert draw.min() >= DRAW_MIN and draw.max() <= 1.0 and draw.std() > 0.05
+    _, _, ink = _edge(draw, 3)
+    assert ink[:, 20, 0].std() > 0.01  # a fibrous front, not a ruled line
+    _, _, even = _edge(np.full((40, 40), 0.5, np.float32), 3)
+    assert even[:, 20, 0].std() < 1e-6
+    _, w, none = _edge(np.zeros((40, 40), np.float32), 3)
+    assert not none[:, 20:].any() and not w[:, 20:].any()  # a sheet that draws nothing
+
+
+def test_passes_follow_the_sheet_and_its_resolution():
+    assert wick_passes(1000.0, 20.0) == 0  # smooth paper: none
+    raw, sized = wick_passes(0.55, 10.0), wick_passes(1.0, 10.0)
+    assert raw > sized >= 1
+    assert wick_passes(1.0, 20.0) >= 2 * sized - 1  # the same reach in mm at a finer grid
+    assert wick_passes(0.01, 50.0) == WICK_MAX_PASSES
+    assert Paper(32, 32, 10.0, capacity=0.55).wick_passes == raw
+
+
+def test_draw_is_the_same_in_any_window():
+    a = sheet_draw(slice(0, 128), slice(0, 128), 8.0, 5, TILE)
+    b = sheet_draw(slice(40, 90), slice(70, 120), 8.0, 5, TILE)
+    np.testing.assert_array_equal(a[40:90, 70:120], b)
+    assert not np.array_equal(a, sheet_draw(slice(0, 128), slice(0, 128), 8.0, 6, TILE))
