@@ -58,7 +58,7 @@ trained on real against all of them pooled, and each set's mean out-of-fold log-
 is printed (higher = more real-looking).
 
     python scripts/judge_proxy.py REAL_DIR [REAL_DIR ...] --ours OURS_DIR [--old OLD_DIR] \\
-        [--font CHARS --data DIR] [--width 10] [--jpeg 0] [--scan] [--crops OUT_DIR]
+        [--font CHARS --data DIR] [--width 10] [--jpeg 0] [--scan] [--groups] [--crops OUT_DIR]
 """
 
 from __future__ import annotations
@@ -83,6 +83,14 @@ MAX_UP = 1.25  # largest enlargement allowed when normalising the stroke width
 MIN_INK_PIXELS = 400  # an image with less ink (after normalising) is skipped
 TILE = 14  # tile side, in stroke widths (about one kaishu character)
 MAX_TILES = 8  # tiles taken from one image at most (evenly spread), so no image dominates
+# feature groups for --groups (AUC with only the group, and with all but the group)
+GROUPS = {
+    "edge profile": ("halo_1", "halo_2", "rim_1", "edge_width"),
+    "outline": ("rough_1", "rough_2", "rough_4", "edge_align", "corner_share", "turn_mean"),
+    "interior tone": ("core_mean", "core_sd", "core_hp1", "core_hp3", "streak_align", "mid_tone"),
+    "specks and gaps": ("specks", "pinholes", "gap_frac", "gap_edge"),
+    "width and ends": ("width_cv", "end_taper"),
+}
 # reported, not given to the classifier: the grain of the paper away from the ink is the
 # scanner's and the paper's, not the brush's (the simulator's paper is its own choice)
 REPORT_ONLY = ("paper_sd",)
@@ -592,6 +600,20 @@ def compare(real_rows, other_rows, label: str) -> dict:
     return {"against": label, "cv": cv, "features": table}
 
 
+def group_aucs(real_rows, other_rows) -> dict:
+    """Per feature group: the cross-validated AUC with only its features, and without them."""
+    x, y, g = matrix(real_rows + other_rows)
+    out = {}
+    for name, feats in GROUPS.items():
+        idx = [FEATURES.index(f) for f in feats]
+        rest = [i for i in CLF if i not in idx]
+        out[name] = {
+            "only": cross_validate(x[:, idx], y, g)["auc_images"],
+            "without": cross_validate(x[:, rest], y, g)["auc_images"],
+        }
+    return out
+
+
 def print_comparison(res: dict) -> None:
     lab = res["against"]
     cv = res["cv"]
@@ -683,6 +705,7 @@ def main(argv=None) -> int:
     ap.add_argument(
         "--scan", action="store_true", help="also judge each set through a plain camera model"
     )
+    ap.add_argument("--groups", action="store_true", help="AUC per feature group too")
     ap.add_argument("--crops", type=Path, help="folder for 4x crop sheets (real vs each set)")
     ap.add_argument("--json", type=Path, help="write the figures as JSON here")
     a = ap.parse_args(argv)
@@ -724,6 +747,11 @@ def main(argv=None) -> int:
         rows_by_set[lab] = rows
         res = compare(real, rows, lab)
         print_comparison(res)
+        if a.groups:
+            res["groups"] = group_aucs(real, rows)
+            print("  AUC per feature group (only / without):")
+            for name, v in res["groups"].items():
+                print(f"    {name:<16}{v['only']:6.3f} / {v['without']:6.3f}")
         if len(sources) > 1:
             res["by_source"] = {}
             for k, src in sources.items():
