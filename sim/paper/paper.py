@@ -362,7 +362,7 @@ GRAIN_DEPTH = 0.25  # the grain changes the offer a pixel takes by up to +- GRAI
 WICK_MM = 0.18
 WICK_RATE = 0.24  # <= 1/4 keeps every pass stable (one axis at a time, draw <= 1)
 WICK_PIGMENT = 0.8
-WICK_MAX_PASSES = 4
+WICK_MAX_PASSES = 2  # (a pass costs as much as a step's other paper work: the halo reaches further)
 
 
 def wick_steps(capacity: float, ppm: float) -> tuple[int, float]:
@@ -387,8 +387,8 @@ def wick_steps(capacity: float, ppm: float) -> tuple[int, float]:
 # first, and never darkens the stroke.
 HALO_MM = 1.3
 HALO_PIGMENT = 0.14
-HALO_MAX_PX = 32
-HALO_EVERY = 2  # steps between the halo's updates: the liquid creeps slowly, and the window
+HALO_MAX_PX = 16
+HALO_EVERY = 4  # steps between the halo's updates: the liquid creeps slowly, and the window
 # (the marks' and twice the bell's reach round them) covers what the brush laid in between
 
 
