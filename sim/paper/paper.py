@@ -74,7 +74,6 @@ class Paper:
         # halo has the same size in millimetres at any px_per_mm
         self.sat_passes = max(1, int(round(self.ppm / 4.0)))
         self.wick_passes, self.wick_rate = wick_steps(self.capacity, self.ppm)
-        self.halo_px = halo_px(self.capacity, self.ppm)
         self.version = 0  # bumped by every change; tile_ver holds each tile's last change
         self.tile_ver = np.zeros((-(-self.H // TILE), -(-self.W // TILE)), dtype=np.int64)
         self._holds = []
@@ -143,9 +142,7 @@ class Paper:
         if not marks:
             return
         y0, y1, x0, x1 = self._window(marks)
-        halo = self.halo_px > 0 and step % HALO_EVERY == 0
-        outer = self._halo_window(y0, y1, x0, x1) if halo else (y0, y1, x0, x1)
-        self._touch(*outer)
+        self._touch(y0, y1, x0, x1)
         wet = self.wet[y0:y1, x0:x1]
         ink = self.ink[y0:y1, x0:x1]
         last = self.last[y0:y1, x0:x1]
@@ -202,12 +199,12 @@ class Paper:
         w = np.where(dried, w, np.maximum(w - drystep, 0.0))
         self._saturate_window(w, ink)
         if self.wick_passes:
-            draw = sheet_draw(slice(y0, y1), slice(x0, x1), self.ppm, self.grain_seed, TILE)
+            draw = sheet_draw(
+                slice(y0, y1), slice(x0, x1), self.ppm, self.grain_seed, TILE, self.fibre
+            )
             _wick(w, ink, draw, self.wick_passes, self.wick_rate)
         wet[...] = w
         last[...] = step
-        if halo:
-            self._halo(outer, np.max(col, axis=0), step)
 
     def _window(self, marks) -> tuple[int, int, int, int]:
         """(y0, y1, x0, x1): the marks' pixels and the reach of saturation around them."""
@@ -217,23 +214,6 @@ class Paper:
         y1 = min(max(mk.iy0 + mk.shape[0] for mk in marks) + margin, self.H)
         x1 = min(max(mk.ix0 + mk.shape[1] for mk in marks) + margin, self.W)
         return y0, y1, x0, x1
-
-    def _halo_window(self, y0: int, y1: int, x0: int, x1: int) -> tuple[int, int, int, int]:
-        """The window grown by the reach of the water halo (``_halo``)."""
-        m = 2 * self.halo_px
-        return max(y0 - m, 0), min(y1 + m, self.H), max(x0 - m, 0), min(x1 + m, self.W)
-
-    def _halo(self, outer, colour, step: int):
-        """The water halo (see HALO_MM) around the wet ink of the window ``outer``."""
-        y0, y1, x0, x1 = outer
-        missed = (step - self.last[y0:y1, x0:x1]).astype(np.float32)
-        w = np.maximum(self.wet[y0:y1, x0:x1] - np.float32(self.dry_per_step) * missed, 0.0)
-        reach = _box(_box(w, self.halo_px, 0), self.halo_px, 1)
-        reach = _box(_box(reach, self.halo_px, 0), self.halo_px, 1)
-        draw = sheet_draw(slice(y0, y1), slice(x0, x1), self.ppm, self.grain_seed, TILE)
-        faint = HALO_PIGMENT * np.minimum(reach * np.float32(1.0 / FULL_WET), 1.0) * draw
-        ink = self.ink[y0:y1, x0:x1]
-        np.maximum(ink, faint[..., None] * colour.astype(np.float32), out=ink)
 
     def _saturate_window(self, w, ink):
         """Eq. 25, a pass per pixel ring of spread, over the neighbourhood of saturated pixels
@@ -362,7 +342,7 @@ GRAIN_DEPTH = 0.25  # the grain changes the offer a pixel takes by up to +- GRAI
 WICK_MM = 0.18
 WICK_RATE = 0.24  # <= 1/4 keeps every pass stable (one axis at a time, draw <= 1)
 WICK_PIGMENT = 0.8
-WICK_MAX_PASSES = 2  # (a pass costs as much as a step's other paper work: the halo reaches further)
+WICK_MAX_PASSES = 2  # (a pass costs about as much as the rest of a step's paper work)
 
 
 def wick_steps(capacity: float, ppm: float) -> tuple[int, float]:
@@ -374,42 +354,6 @@ def wick_steps(capacity: float, ppm: float) -> tuple[int, float]:
     spread = WICK_RATE * reach_px * reach_px
     passes = int(min(np.ceil(spread / WICK_RATE), WICK_MAX_PASSES))
     return passes, float(min(spread / passes, WICK_RATE))
-
-
-# Model addition (not in the paper): the water halo. Beyond the fringe the wick pulls, the
-# liquid of a wet stroke creeps on into the sheet for as long as the stroke is wet and carries
-# the finest of the pigment with it: a faint grey aura a millimetre or so round the ink, as a
-# scan of real writing shows. Its reach is the solution of that slow spreading, a bell of
-# HALO_MM / capacity mm (two box filters a side, each that wide, of the window's wetness), and
-# a pixel takes HALO_PIGMENT of the ink's colour where that reach brings a full load
-# (FULL_WET), less in proportion, times how well it draws (``sheet_draw``), keeping the darker
-# of that and what it had: the halo is as faint the hundredth time the brush passes as the
-# first, and never darkens the stroke.
-HALO_MM = 1.3
-HALO_PIGMENT = 0.14
-HALO_MAX_PX = 16
-HALO_EVERY = 4  # steps between the halo's updates: the liquid creeps slowly, and the window
-# (the marks' and twice the bell's reach round them) covers what the brush laid in between
-
-
-def halo_px(capacity: float, ppm: float) -> int:
-    """Half-width (px) of each box filter of the water halo (0: none, as on smooth paper)."""
-    return int(min(round(HALO_MM / max(capacity, 1e-9) * ppm), HALO_MAX_PX))
-
-
-def _box(a, r: int, axis: int) -> np.ndarray:
-    """Mean of ``a`` (2-D) over 2 r + 1 pixels along ``axis`` (zero beyond the ends)."""
-    if axis == 1:
-        return _box(a.T, r, 0).T
-    n = a.shape[0]
-    c = np.cumsum(a, axis=0, dtype=np.float32)
-    out = np.empty_like(c)
-    k = min(r, n - 1)
-    out[: n - k] = c[k:]  # the sum up to r ahead, ...
-    out[n - k :] = c[n - 1]  # ... or to the end
-    if n > r + 1:  # less what lies before the window, where there is some
-        out[r + 1 :] -= c[: n - r - 1]
-    return out * np.float32(1.0 / (2 * r + 1))
 
 
 def _wick(w, ink, draw, passes: int, rate: float = WICK_RATE) -> None:

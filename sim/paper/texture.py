@@ -118,14 +118,21 @@ def sheet_tone(rows: slice, cols: slice, ppm: float, texture: float, seed: int, 
 
 
 DRAW_BASE = 0.7  # how well the sheet draws liquid where its tone is even, ...
-DRAW_SPREAD = 2.5  # ... and how much its fibres and pulp change that (per unit of tone)
+DRAW_SPREAD = 4.0  # ... and how much its fibres and pulp change that (per unit of tone and of
+# the paper's fibre: sized xuan's 0.62 gives 2.5)
 DRAW_MIN = 0.05
 
 
-def sheet_draw(rows: slice, cols: slice, ppm: float, seed: int, tile: int) -> np.ndarray:
+def sheet_draw(
+    rows: slice, cols: slice, ppm: float, seed: int, tile: int, fibre: float = 0.62
+) -> np.ndarray:
     """How well each pixel of the window draws liquid along the sheet (capillary wicking,
     ``sim.paper.paper._wick``), in [DRAW_MIN, 1]: more on a fibre and where the pulp lies thick,
-    less between them; the sheet's own clouds and fibres (``paper_tone`` at full texture), so
-    the same in every window and at any resolution in mm."""
+    less between them, as much as the paper's ``fibre`` says (0: evenly); the sheet's own
+    clouds and fibres (``paper_tone`` at full texture), so the same in every window and at any
+    resolution in mm."""
+    if fibre <= 0.0:
+        return np.full((rows.stop - rows.start, cols.stop - cols.start), DRAW_BASE, np.float32)
     tone = sheet_tone(rows, cols, ppm, 1.0, seed, tile)
-    return np.clip(DRAW_BASE + DRAW_SPREAD * (tone - 1.0), DRAW_MIN, 1.0).astype(np.float32)
+    spread = DRAW_SPREAD * fibre
+    return np.clip(DRAW_BASE + spread * (tone - 1.0), DRAW_MIN, 1.0).astype(np.float32)

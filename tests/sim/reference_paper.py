@@ -6,7 +6,7 @@ deposit to a Paper: ``types.MethodType(reference_deposit, paper)``."""
 
 import numpy as np
 
-from sim.paper.paper import FULL_WET, GRAIN_DEPTH, HALO_EVERY, TILE, _wick, paper_grain
+from sim.paper.paper import FULL_WET, GRAIN_DEPTH, TILE, _wick, paper_grain
 from sim.paper.texture import sheet_draw
 
 _NEIGHBOURS = [(-1, -1), (-1, 0), (-1, 1), (0, -1), (0, 1), (1, -1), (1, 0), (1, 1)]
@@ -65,13 +65,10 @@ def reference_deposit(self, marks, q, dt: float, step: int, saturate=None):
         sx0, sx1 = max(over[1].min() - 1, 0), over[1].max() + 2
         saturate(w[sy0:sy1, sx0:sx1], ink[sy0:sy1, sx0:sx1], self.capacity)
     if self.wick_passes:  # capillary wicking (a model addition, sim.paper.paper._wick)
-        draw = sheet_draw(slice(y0, y1), slice(x0, x1), self.ppm, self.grain_seed, TILE)
+        draw = sheet_draw(slice(y0, y1), slice(x0, x1), self.ppm, self.grain_seed, TILE, self.fibre)
         _wick(w, ink, draw, self.wick_passes, self.wick_rate)
     wet[...] = w
     last[...] = step
-    if self.halo_px and step % HALO_EVERY == 0:  # the water halo (Paper._halo, an addition)
-        colour = np.max(np.concatenate([mk.col for mk in marks]).astype(np.float32), axis=0)
-        self._halo(self._halo_window(y0, y1, x0, x1), colour, step)
 
 
 def reference_saturate(w, ink, cap: float):

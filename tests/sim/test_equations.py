@@ -214,9 +214,17 @@ def _one_pixel_mark(wet, col):
     )
 
 
+def _plain_paper(*args, **kwargs) -> Paper:
+    """A paper with only the paper's equations: no wicking nor halo (model additions, tested
+    in test_paper_wicking)."""
+    paper = Paper(*args, **kwargs)
+    paper.wick_passes, paper.halo_px = 0, 0
+    return paper
+
+
 def test_eq24_eq26_absorption_and_colour():
     q = QualityParams(ab=0.5, ren=0.0, dry=0.0)
-    paper = Paper(4, 4, 1.0)  # no fibre: the grain is off
+    paper = _plain_paper(4, 4, 1.0)  # no fibre: the grain is off
     mk = _one_pixel_mark(0.8, [0.5, 0.5, 0.5])
     paper.deposit([mk], q, DT, 1)
     assert paper.wet[1, 1] == pytest.approx(0.4)  # Eq. 24: .5 * 0 + .5 * .8
@@ -232,7 +240,7 @@ def test_eq24_eq26_absorption_and_colour():
     paper.deposit([_one_pixel_mark(2.0, [0.5, 0.5, 0.5])], q, DT, 4)
     assert held < paper.ink[1, 1, 0] <= 0.5  # a wetter one (a pool) lays more, up to the ink's
     # the sheet's grain changes the offer a pixel takes, a pixel at a time, by +- fibre / 4
-    grainy = Paper(4, 4, 1.0, fibre=0.8)
+    grainy = _plain_paper(4, 4, 1.0, fibre=0.8)
     grainy.deposit([mk], q, DT, 1)
     g = 1.0 - GRAIN_DEPTH * 0.8 * (float(paper_grain(1 * 4 + 1)) - 0.5)
     assert grainy.ink[1, 1, 0] == pytest.approx(0.5 * (1.0 - np.exp(-0.8 * g / FULL_WET)), 1e-5)
@@ -241,7 +249,7 @@ def test_eq24_eq26_absorption_and_colour():
 def test_eq27_dry_brush_leaves_the_pixel_as_it_was():
     # Cr = 0 where the hair bundle lays no ink (its gap, sim.brush.bristles): no colour, but
     # Eq. 24's wetness still
-    paper = Paper(4, 4, 1.0)
+    paper = _plain_paper(4, 4, 1.0)
     mk = replace(_one_pixel_mark(0.8, [0.5, 0.5, 0.5]), skip=np.array([True]))
     paper.deposit([mk], QualityParams(ab=0.5, ren=1.0, dry=0.0), DT, 1)
     assert paper.ink[1, 1, 0] == 0 and paper.wet[1, 1] == pytest.approx(0.4)
@@ -250,7 +258,7 @@ def test_eq27_dry_brush_leaves_the_pixel_as_it_was():
 def test_eq24_lazy_drying_equals_drying_every_step():
     q = QualityParams(ab=0.3, ren=0.0)
     d = 0.02
-    lazy = Paper(4, 4, 1.0, dry_per_step=d)
+    lazy = _plain_paper(4, 4, 1.0, dry_per_step=d)
     mk = _one_pixel_mark(0.9, [1, 1, 1])
     lazy.deposit([mk], q, DT, 1)
     lazy.deposit([mk], q, DT, 10)

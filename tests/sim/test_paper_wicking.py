@@ -6,13 +6,11 @@ import numpy as np
 import pytest
 
 from sim.paper.paper import (
-    HALO_PIGMENT,
     TILE,
     WICK_MAX_PASSES,
     WICK_RATE,
     Paper,
     _wick,
-    halo_px,
     wick_steps,
 )
 from sim.paper.texture import DRAW_MIN, sheet_draw
@@ -72,38 +70,7 @@ def test_draw_is_the_same_in_any_window():
     b = sheet_draw(slice(40, 90), slice(70, 120), 8.0, 5, TILE)
     np.testing.assert_array_equal(a[40:90, 70:120], b)
     assert not np.array_equal(a, sheet_draw(slice(0, 128), slice(0, 128), 8.0, 6, TILE))
-
-
-def _wet_block(ppm=5.0, capacity=1.0):
-    """A paper with a wet, inked block (columns 30-49 of 80) brought up to step 5."""
-    paper = Paper(80, 80, ppm, capacity=capacity)
-    paper.wet[:, 30:50] = 0.6
-    paper.ink[:, 30:50] = 0.95
-    paper.last[...] = 5
-    return paper
-
-
-def test_the_water_halo_is_a_faint_aura_that_fades_and_never_darkens_the_stroke():
-    paper = _wet_block()
-    r = paper.halo_px
-    assert r >= 3
-    paper._halo(paper._halo_window(0, 80, 30, 50), np.full(3, 0.95, np.float32), 5)
-    out = paper.ink[:, :, 0]
-    near, far = out[:, 27].mean(), out[:, 30 - 3 * r].mean()
-    assert 0.02 < near < HALO_PIGMENT  # faint
-    assert far < near  # fading outward
-    assert not out[:, : 30 - 4 * r - 1].any()  # no further than the bell's reach
-    assert np.all(out[:, 30:50] == np.float32(0.95))  # the stroke as it was
-    assert out[:, 27].std() > 0.005  # uneven along the edge: the sheet's fibres
-    again = paper.ink.copy()
-    paper._halo(paper._halo_window(0, 80, 30, 50), np.full(3, 0.95, np.float32), 5)
-    np.testing.assert_array_equal(paper.ink, again)  # as faint the second time as the first
-
-
-def test_no_halo_on_smooth_paper_or_dry_ink():
-    assert halo_px(1000.0, 20.0) == 0
-    assert halo_px(0.55, 10.0) > halo_px(1.0, 10.0) > 0
-    paper = _wet_block()
-    paper.wet[...] = 0.0  # the stroke has dried
-    paper._halo(paper._halo_window(0, 80, 30, 50), np.full(3, 0.95, np.float32), 5)
-    assert not paper.ink[:, :30].any()
+    even = sheet_draw(slice(0, 64), slice(0, 64), 8.0, 5, TILE, fibre=0.0)  # no fibre: evenly
+    assert np.all(even == even[0, 0])
+    weak = sheet_draw(slice(0, 128), slice(0, 128), 8.0, 5, TILE, fibre=0.2)
+    assert 0.0 < weak.std() < a.std()
