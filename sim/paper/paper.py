@@ -74,6 +74,7 @@ class Paper:
         # halo has the same size in millimetres at any px_per_mm
         self.sat_passes = max(1, int(round(self.ppm / 4.0)))
         self.wick_passes, self.wick_rate = wick_steps(self.capacity, self.ppm)
+        self.wick_fibre = self.fibre  # how unevenly the sheet's fibres draw (_wick; 0: evenly)
         self.version = 0  # bumped by every change; tile_ver holds each tile's last change
         self.tile_ver = np.zeros((-(-self.H // TILE), -(-self.W // TILE)), dtype=np.int64)
         self._holds = []
@@ -200,7 +201,7 @@ class Paper:
         self._saturate_window(w, ink)
         if self.wick_passes:
             draw = sheet_draw(
-                slice(y0, y1), slice(x0, x1), self.ppm, self.grain_seed, TILE, self.fibre
+                slice(y0, y1), slice(x0, x1), self.ppm, self.grain_seed, TILE, self.wick_fibre
             )
             _wick(w, ink, draw, self.wick_passes, self.wick_rate)
         wet[...] = w

@@ -65,7 +65,9 @@ def reference_deposit(self, marks, q, dt: float, step: int, saturate=None):
         sx0, sx1 = max(over[1].min() - 1, 0), over[1].max() + 2
         saturate(w[sy0:sy1, sx0:sx1], ink[sy0:sy1, sx0:sx1], self.capacity)
     if self.wick_passes:  # capillary wicking (a model addition, sim.paper.paper._wick)
-        draw = sheet_draw(slice(y0, y1), slice(x0, x1), self.ppm, self.grain_seed, TILE, self.fibre)
+        draw = sheet_draw(
+            slice(y0, y1), slice(x0, x1), self.ppm, self.grain_seed, TILE, self.wick_fibre
+        )
         _wick(w, ink, draw, self.wick_passes, self.wick_rate)
     wet[...] = w
     last[...] = step
