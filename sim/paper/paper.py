@@ -338,12 +338,12 @@ GRAIN_DEPTH = 0.25  # the grain changes the offer a pixel takes by up to +- GRAI
 # mm a step while it is wet (a paper that holds little passes liquid on further: sized xuan
 # 0.18 mm, raw xuan 0.6 mm, smooth paper none), is the same in mm at any resolution: the
 # passes and their rate give the spreading (rate times passes) of that reach in pixels
-# squared, up to WICK_MAX_PASSES passes at WICK_RATE (beyond, on a very fine grid or a very
-# absorbent sheet, it reaches less).
+# squared, up to WICK_MAX_PASSES passes at WICK_RATE (beyond, above about 5.5 px a mm on sized
+# xuan or on a very absorbent sheet, it reaches less in mm: a pass a step is what it costs).
 WICK_MM = 0.18
 WICK_RATE = 0.24  # <= 1/4 keeps every pass stable (one axis at a time, draw <= 1)
 WICK_PIGMENT = 0.8
-WICK_MAX_PASSES = 2  # (a pass costs about as much as the rest of a step's paper work)
+WICK_MAX_PASSES = 1  # a pass costs about as much as the rest of a step's paper work
 
 
 def wick_steps(capacity: float, ppm: float) -> tuple[int, float]:

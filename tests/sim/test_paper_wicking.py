@@ -52,14 +52,19 @@ def test_wicking_follows_the_sheet_uneven_along_a_straight_edge():
 
 def test_the_reach_in_mm_is_the_same_at_any_resolution():
     assert wick_steps(1000.0, 20.0) == (0, 0.0)  # smooth paper: none
+    cap = WICK_MAX_PASSES * WICK_RATE
+    checked = 0
     for capacity in (1.0, 0.55):
-        for ppm in (2.7, 5.0, 10.0):  # reach in px, squared: (rate x passes) / ppm^2 the same
+        for ppm in (1.0, 2.0, 2.7):  # reach in px, squared: (rate x passes) / ppm^2 the same
             n, rate = wick_steps(capacity, ppm)
             n2, rate2 = wick_steps(capacity, 2 * ppm)
             assert 1 <= n <= WICK_MAX_PASSES and 0 < rate <= WICK_RATE
-            if n2 < WICK_MAX_PASSES:
+            if n2 * rate2 < cap:  # below the most a step does
                 assert n2 * rate2 == pytest.approx(4 * n * rate)
-    assert wick_steps(0.55, 10.0)[0] * wick_steps(0.55, 10.0)[1] > wick_steps(1.0, 10.0)[1]
+                checked += 1
+    assert checked >= 3
+    raw, sized = wick_steps(0.55, 2.0), wick_steps(1.0, 2.0)
+    assert raw[0] * raw[1] > sized[0] * sized[1]  # a paper that holds less passes more on
     assert wick_steps(0.01, 50.0) == (WICK_MAX_PASSES, WICK_RATE)
     paper = Paper(32, 32, 10.0, capacity=0.55)
     assert (paper.wick_passes, paper.wick_rate) == wick_steps(0.55, 10.0)
