@@ -215,10 +215,10 @@ def _one_pixel_mark(wet, col):
 
 
 def _plain_paper(*args, **kwargs) -> Paper:
-    """A paper with only the paper's equations: no wicking nor halo (model additions, tested
-    in test_paper_wicking)."""
+    """A paper with only the paper's equations: no wicking (a model addition, tested in
+    test_paper_wicking)."""
     paper = Paper(*args, **kwargs)
-    paper.wick_passes, paper.halo_px = 0, 0
+    paper.wick_passes = 0
     return paper
 
 

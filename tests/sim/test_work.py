@@ -274,7 +274,7 @@ def test_the_layout_items_hold_each_characters_ink(tiny):
     H = rec.height_px
     for item, ci in zip(items[:-1], inks, strict=True):  # the cells are in reading order
         x0, y0, x1, y1 = item["box"]
-        # ink that shows (a wet stroke's halo fades out below that)
+        # ink that shows (the wick's faintest fringe is below that)
         rows, cols = np.nonzero(ci.mask & (ci.ink.max(axis=-1) > INK_SEEN))
         assert rows.size, item
         r0, _, c0, _ = ci.window
