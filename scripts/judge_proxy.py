@@ -237,6 +237,17 @@ def _orient_agreement(d: np.ndarray, ref_gy, ref_gx, sigma: float):
     return c2 * rc2 + s2 * rs2, jxx + jyy
 
 
+def _small_centres(mask, small: float) -> np.ndarray:
+    """1.0 at the centre of each connected piece of ``mask`` smaller than ``small`` pixels."""
+    lab, n = ndi.label(mask)
+    out = np.zeros(mask.shape)
+    if n:
+        area = np.bincount(lab.ravel(), minlength=n + 1)[1:]
+        cy, cx = np.array(ndi.center_of_mass(mask, lab, range(1, n + 1))).T.reshape(2, -1)
+        out[cy[area < small].astype(int), cx[area < small].astype(int)] = 1.0
+    return out
+
+
 def feature_maps(d: np.ndarray, width: float) -> dict:
     """Per-pixel maps whose sums over a tile give the features (numerator/denominator pairs)."""
     m = d > 0.5
@@ -269,23 +280,8 @@ def feature_maps(d: np.ndarray, width: float) -> dict:
     maps["ealign_n"], maps["ealign_d"] = num * edge, wgt * edge
     # specks and pin-holes
     small = (width / 2) ** 2
-    lab, n = ndi.label(m)
-    area = np.bincount(lab.ravel(), minlength=n + 1)
-    speck = np.zeros_like(m)
-    if n:
-        cy, cx = np.array(ndi.center_of_mass(m, lab, range(1, n + 1))).T.reshape(2, -1)
-        for y, x in zip(cy[area[1:] < small], cx[area[1:] < small], strict=True):
-            speck[int(y), int(x)] = True
-    maps["speck"] = speck.astype(float)
-    holes = ndi.binary_fill_holes(m) & ~m
-    hl, hn = ndi.label(holes)
-    harea = np.bincount(hl.ravel(), minlength=hn + 1)
-    pin = np.zeros_like(m)
-    if hn:
-        hy, hx = np.array(ndi.center_of_mass(holes, hl, range(1, hn + 1))).T.reshape(2, -1)
-        for y, x in zip(hy[harea[1:] < small], hx[harea[1:] < small], strict=True):
-            pin[int(y), int(x)] = True
-    maps["pinhole"] = pin.astype(float)
+    maps["speck"] = _small_centres(m, small)
+    maps["pinhole"] = _small_centres(ndi.binary_fill_holes(m) & ~m, small)
     # the stroke's closed region (dry-brush gaps filled) and its core
     region = ndi.binary_closing(m, structure=morphology.disk(max(1, int(width / 5))))
     region |= ndi.binary_fill_holes(region) & (ndi.distance_transform_edt(region) > 0)
