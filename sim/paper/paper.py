@@ -329,8 +329,9 @@ GRAIN_DEPTH = 0.25  # the grain changes the offer a pixel takes by up to +- GRAI
 # neighbours along its fibres, and the liquid carries pigment with it: a real stroke's edge is
 # not the hair's cut drawn with a ruler but a front the sheet's fibres pulled a little way out,
 # further along a fibre than between fibres. Each pass moves, between every two neighbouring
-# pixels (four-neighbour), WICK_RATE times their difference in wetness times how well both draw
-# (``sheet_draw``: the sheet's fibres and pulp, in mm, from its seed); a pixel that takes
+# pixels (four-neighbour), a rate (at most WICK_RATE) times their difference in wetness times
+# how well both draw (``sheet_draw``: the sheet's fibres and pulp, in mm, from its seed, as
+# uneven as the paper's fibre); a pixel that takes
 # liquid takes the pigment it carries, laid over what it holds: 1 - exp(-taken / FULL_WET) of
 # the givers' colour, times WICK_PIGMENT (the pigment lags the water), so the fringe darkens as
 # the liquid keeps coming and stays lighter than the stroke, and a dry-brush gap inside a

@@ -123,9 +123,7 @@ DRAW_SPREAD = 4.0  # ... and how much its fibres and pulp change that (per unit 
 DRAW_MIN = 0.05
 
 
-def sheet_draw(
-    rows: slice, cols: slice, ppm: float, seed: int, tile: int, fibre: float = 0.62
-) -> np.ndarray:
+def sheet_draw(rows: slice, cols: slice, ppm: float, seed: int, tile: int, fibre: float):
     """How well each pixel of the window draws liquid along the sheet (capillary wicking,
     ``sim.paper.paper._wick``), in [DRAW_MIN, 1]: more on a fibre and where the pulp lies thick,
     less between them, as much as the paper's ``fibre`` says (0: evenly); the sheet's own

@@ -5,6 +5,7 @@ pigment a little way out of a stroke's edge along its fibres."""
 import numpy as np
 import pytest
 
+from sim.core.params import load_preset, paper_from_preset
 from sim.paper.paper import (
     TILE,
     WICK_MAX_PASSES,
@@ -14,6 +15,8 @@ from sim.paper.paper import (
     wick_steps,
 )
 from sim.paper.texture import DRAW_MIN, sheet_draw
+
+SIZED_FIBRE = paper_from_preset(load_preset("paper", "sized_xuan")).fibre  # the default paper's
 
 
 def _edge(draw, passes=3):
@@ -28,7 +31,7 @@ def _edge(draw, passes=3):
 
 
 def test_wicking_keeps_the_water_and_pulls_a_lighter_fringe_a_few_pixels_out():
-    draw = sheet_draw(slice(0, 40), slice(0, 40), 10.0, 3, TILE)
+    draw = sheet_draw(slice(0, 40), slice(0, 40), 10.0, 3, TILE, SIZED_FIBRE)
     w0, w, ink = _edge(draw, 3)
     assert abs(w.sum(dtype=np.float64) - w0.sum(dtype=np.float64)) < 1e-3  # the water kept
     assert w[:, 20:].sum() > 0.01
@@ -40,7 +43,7 @@ def test_wicking_keeps_the_water_and_pulls_a_lighter_fringe_a_few_pixels_out():
 
 
 def test_wicking_follows_the_sheet_uneven_along_a_straight_edge():
-    draw = sheet_draw(slice(0, 40), slice(0, 40), 10.0, 3, TILE)
+    draw = sheet_draw(slice(0, 40), slice(0, 40), 10.0, 3, TILE, SIZED_FIBRE)
     assert draw.min() >= DRAW_MIN and draw.max() <= 1.0 and draw.std() > 0.05
     _, _, ink = _edge(draw, 3)
     assert ink[:, 20, 0].std() > 0.01  # a fibrous front, not a ruled line
@@ -71,10 +74,12 @@ def test_the_reach_in_mm_is_the_same_at_any_resolution():
 
 
 def test_draw_is_the_same_in_any_window():
-    a = sheet_draw(slice(0, 128), slice(0, 128), 8.0, 5, TILE)
-    b = sheet_draw(slice(40, 90), slice(70, 120), 8.0, 5, TILE)
+    a = sheet_draw(slice(0, 128), slice(0, 128), 8.0, 5, TILE, SIZED_FIBRE)
+    b = sheet_draw(slice(40, 90), slice(70, 120), 8.0, 5, TILE, SIZED_FIBRE)
     np.testing.assert_array_equal(a[40:90, 70:120], b)
-    assert not np.array_equal(a, sheet_draw(slice(0, 128), slice(0, 128), 8.0, 6, TILE))
+    assert not np.array_equal(
+        a, sheet_draw(slice(0, 128), slice(0, 128), 8.0, 6, TILE, SIZED_FIBRE)
+    )
     even = sheet_draw(slice(0, 64), slice(0, 64), 8.0, 5, TILE, fibre=0.0)  # no fibre: evenly
     assert np.all(even == even[0, 0])
     weak = sheet_draw(slice(0, 128), slice(0, 128), 8.0, 5, TILE, fibre=0.2)
