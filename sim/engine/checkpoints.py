@@ -27,10 +27,11 @@ from pathlib import Path
 import numpy as np
 
 from ..core.files import write_atomic, write_json_atomic
+from ..paper.paper import WetStroke
 from .timeline import Snapshot, Timeline
 
 CACHE_FORMAT = "hairy-brush-checkpoints"
-CACHE_VERSION = 2  # 2: the key in every file, the files' sizes in the manifest
+CACHE_VERSION = 3  # 2: the key in every file, the files' sizes in the manifest; 3: the stroke
 MANIFEST = "manifest.json"
 CHECKPOINT = re.compile(r"checkpoint_(\d{8})\.npz")
 LEFTOVER_AGE_S = 3600.0  # a half-written cache folder older than this is an interrupted save's
@@ -77,6 +78,7 @@ def _save_snapshot(timeline: Timeline, index: int, folder: Path, key: str) -> di
         "key": key,
         "index": index,
         "paper_step": snap.paper_step,
+        "paper_stroke": snap.paper_stroke,
         "rng": snap.rng,
         "brush": {k: v for k, v in snap.brush.items() if not isinstance(v, np.ndarray)},
     }
@@ -186,7 +188,12 @@ def _read_snapshot(timeline: Timeline, folder: Path, entry, key: str):
         hist = [row for row in z["predictor_history"]]
         index = int(meta["index"])
         snap = Snapshot(
-            index, brush, meta["rng"], (hist, z["predictor_velocity"]), meta["paper_step"]
+            index,
+            brush,
+            meta["rng"],
+            (hist, z["predictor_velocity"]),
+            meta["paper_step"],
+            _stroke_of(meta.get("paper_stroke"), entry["name"]),
         )
         contents = []
         for j, (ty, tx) in enumerate(z["tiles"].tolist()):
@@ -196,6 +203,17 @@ def _read_snapshot(timeline: Timeline, folder: Path, entry, key: str):
             snap.tiles.add((ty, tx))
             snap.nbytes += sum(a.nbytes for a in content)
     return snap, contents
+
+
+def _stroke_of(value, name: str) -> WetStroke | None:
+    """The paper's stroke (``Paper.stroke``) as a checkpoint's JSON holds it (a list)."""
+    if value is None:
+        return None
+    try:
+        *head, colour = value
+        return WetStroke(*(int(v) for v in head), tuple(float(c) for c in colour))
+    except (TypeError, ValueError) as err:
+        raise CacheError(f"{name} holds a paper stroke that is not one") from err
 
 
 def _check_tile(paper, tile, content, name: str) -> None:

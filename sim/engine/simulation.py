@@ -64,8 +64,9 @@ class Simulation:
             fibre=self.paper_spec.fibre,
             texture=self.paper_spec.texture if surface is None else 0.0,  # a mesh is not xuan
         )
-        if surface is not None:  # nor do its texels lie evenly in mm: the ink wicks evenly
-            self.paper.wick_fibre = 0.0
+        if surface is not None:  # nor do its texels lie evenly in mm: the ink wicks evenly,
+            self.paper.wick_fibre = 0.0  # and no halo (a texel's neighbours are not the sheet's)
+            self.paper.halo_px = 0
         self.predictor = InertiaPredictor(self.dt)
         self.dips = recording.dips_or_default()
         self.index = 0  # next sample to process

@@ -32,6 +32,7 @@ class Snapshot:
     rng: dict
     predictor: object
     paper_step: int
+    paper_stroke: object = None  # the stroke the paper was in (Paper.stroke), or None
     tiles: set = field(default_factory=set)
     nbytes: int = 0
 
@@ -56,7 +57,12 @@ class Timeline:
         sim._deposit_pending()
         i = sim.index
         snap = Snapshot(
-            i, sim.brush.snapshot(), sim.rng.bit_generator.state, sim.predictor.state(), paper.step
+            i,
+            sim.brush.snapshot(),
+            sim.rng.bit_generator.state,
+            sim.predictor.state(),
+            paper.step,
+            paper.stroke,
         )
         for ty, tx in paper.tiles_since(self._base_version).tolist():
             content = paper.read_tile(ty, tx)
@@ -97,7 +103,7 @@ class Timeline:
         sim.brush.restore(snap.brush)
         sim.rng.bit_generator.state = snap.rng
         sim.predictor.set_state(snap.predictor)
-        paper.step = snap.paper_step
+        paper.step, paper.stroke = snap.paper_step, snap.paper_stroke
         self._base, self._base_version = k, paper.version
 
     # ------------------------------------------------------------------ seeking

@@ -4,7 +4,9 @@ saturation spreading to the eight neighbours (Eq. 25) and colour with the stocha
 weight (Eq. 26, 27; the draw of Eq. 27 is the brush's hair bundles', ``sim.brush.bristles``,
 given with each mark as its ``skip``), and, beyond the paper, capillary wicking: below
 saturation the sheet still draws liquid and pigment a little way out of a wet stroke along its
-fibres (``_wick``: crisp but not ruled edges on sized xuan, a wider soft edge on raw xuan).
+fibres (``_wick``: crisp but not ruled edges on sized xuan, a wider soft edge on raw xuan), and
+the water halo: as the brush leaves the paper, the liquid the stroke left creeps on with the
+finest pigment, a faint tint a millimetre or so round the ink (``_halo``, see HALO_MM).
 
 Buffers are float32, stored bottom row first (as Blender stores images). Ink is kept as density
 (0 = the paper's own colour, as Eq. 7 takes colour code 0 for the paper); the visible colour is
@@ -25,6 +27,8 @@ the content each tile had before its first change, so a stroke can be taken back
 """
 
 from __future__ import annotations
+
+from typing import NamedTuple
 
 import numpy as np
 
@@ -75,6 +79,8 @@ class Paper:
         self.sat_passes = max(1, int(round(self.ppm / 4.0)))
         self.wick_passes, self.wick_rate = wick_steps(self.capacity, self.ppm)
         self.wick_fibre = self.fibre  # how unevenly the sheet's fibres draw (_wick; 0: evenly)
+        self.halo_px = halo_px(self.capacity, self.ppm)  # the water halo's reach (_halo; 0: none)
+        self.stroke: WetStroke | None = None  # the stroke being written (for its halo)
         self.version = 0  # bumped by every change; tile_ver holds each tile's last change
         self.tile_ver = np.zeros((-(-self.H // TILE), -(-self.W // TILE)), dtype=np.int64)
         self._holds = []
@@ -116,7 +122,7 @@ class Paper:
 
     def hold(self) -> PaperHold:
         """From now on keep every tile as it was before its first change (see give_back)."""
-        h = PaperHold(self.step)
+        h = PaperHold(self.step, self.stroke)
         self._holds.append(h)
         return h
 
@@ -125,7 +131,7 @@ class Paper:
         self.release(hold)
         for (ty, tx), content in hold.tiles.items():
             self.write_tile(ty, tx, content)
-        self.step = hold.step
+        self.step, self.stroke = hold.step, hold.stroke
 
     def release(self, hold: PaperHold):
         if hold in self._holds:
@@ -141,6 +147,8 @@ class Paper:
         self.step = step
         marks = [mk for mk in marks if mk.rows.size]
         if not marks:
+            if self.stroke is not None:  # the brush has left the paper
+                self._halo()
             return
         y0, y1, x0, x1 = self._window(marks)
         self._touch(y0, y1, x0, x1)
@@ -159,6 +167,8 @@ class Paper:
         full = loc + ((y0 * self.W + x0) - (loc // ww) * (ww - self.W))  # index in the paper
         wet_tau = np.concatenate([mk.wet for mk in marks]).astype(np.float32, copy=False)
         col = np.concatenate([mk.col for mk in marks]).astype(np.float32, copy=False)
+        if self.halo_px:
+            self._follow(step, (y0, y1, x0, x1), col)
         col = col.reshape(-1).view(_RGB)
         skip = np.concatenate(
             [mk.skip if mk.skip is not None else np.zeros(mk.rows.size, bool) for mk in marks]
@@ -215,6 +225,49 @@ class Paper:
         y1 = min(max(mk.iy0 + mk.shape[0] for mk in marks) + margin, self.H)
         x1 = min(max(mk.ix0 + mk.shape[1] for mk in marks) + margin, self.W)
         return y0, y1, x0, x1
+
+    def _follow(self, step: int, window, col):
+        """Keep the stroke being written in ``stroke``: where its windows lie, the step it
+        began, the darkest colour its marks laid (the water halo's source, ``_halo``)."""
+        y0, y1, x0, x1 = window
+        darkest = tuple(float(c) for c in col.max(axis=0))
+        t = self.stroke
+        if t is None:
+            self.stroke = WetStroke(step, y0, y1, x0, x1, darkest)
+            return
+        self.stroke = WetStroke(
+            t.start,
+            min(t.y0, y0),
+            max(t.y1, y1),
+            min(t.x0, x0),
+            max(t.x1, x1),
+            tuple(max(a, b) for a, b in zip(t.colour, darkest, strict=True)),
+        )
+
+    def _halo(self):
+        """The water halo (see HALO_MM) of the stroke just written, as the brush leaves the
+        paper: a bell of the wetness its pixels were left with, laid as a faint tint of its
+        colour where that is darker than what a pixel holds. Only the tiles it darkens change."""
+        t, self.stroke = self.stroke, None
+        r = self.halo_px
+        y0, y1 = max(t.y0 - 2 * r, 0), min(t.y1 + 2 * r, self.H)
+        x0, x1 = max(t.x0 - 2 * r, 0), min(t.x1 + 2 * r, self.W)
+        last = self.last[y0:y1, x0:x1]
+        left = np.where(last >= t.start, self.wet[y0:y1, x0:x1], np.float32(0.0))
+        reach = _box(_box(_box(_box(left, r, 0), r, 1), r, 0), r, 1)
+        draw = sheet_draw(
+            slice(y0, y1), slice(x0, x1), self.ppm, self.grain_seed, TILE, self.wick_fibre
+        )
+        faint = HALO_PIGMENT * np.minimum(reach * np.float32(1.0 / FULL_WET), 1.0) * draw
+        tint = faint[..., None] * np.asarray(t.colour, dtype=np.float32)
+        ink = self.ink[y0:y1, x0:x1]
+        darker = np.nonzero((tint > ink).any(axis=2))
+        if darker[0].size == 0:
+            return
+        ry0, ry1 = int(darker[0].min()), int(darker[0].max()) + 1
+        rx0, rx1 = int(darker[1].min()), int(darker[1].max()) + 1
+        self._touch(y0 + ry0, y0 + ry1, x0 + rx0, x0 + rx1)
+        np.maximum(ink, tint, out=ink)
 
     def _saturate_window(self, w, ink):
         """Eq. 25, a pass per pixel ring of spread, over the neighbourhood of saturated pixels
@@ -297,6 +350,7 @@ class Paper:
             "ink": self.ink.copy(),
             "last": self.last.copy(),
             "step": self.step,
+            "stroke": self.stroke,
         }
 
     def restore(self, snap: dict):
@@ -305,6 +359,7 @@ class Paper:
         self.ink[...] = snap["ink"]
         self.last[...] = snap["last"]
         self.step = snap["step"]
+        self.stroke = snap.get("stroke")
 
 
 # Model change to Eq. 26 (not in the paper). The paper moves a pixel's colour toward the brush's
@@ -358,6 +413,54 @@ def wick_steps(capacity: float, ppm: float) -> tuple[int, float]:
     return passes, float(min(spread / passes, WICK_RATE))
 
 
+class WetStroke(NamedTuple):
+    """The stroke being written (``Paper.stroke``): the step its first mark was laid, the
+    union of its windows (paper pixels, y0:y1, x0:x1) and the darkest ink colour it laid."""
+
+    start: int
+    y0: int
+    y1: int
+    x0: int
+    x1: int
+    colour: tuple
+
+
+# Model addition (not in the paper): the water halo. Beyond the fringe the wick pulls, the
+# liquid a stroke leaves creeps on into the sheet while it dries and carries the finest of the
+# pigment with it: a faint grey aura a millimetre or so round the ink, as scans of real writing
+# show (a quarter of a stroke's width out, at a few per cent of its density). It is laid once
+# a stroke, as the brush leaves the paper (``Paper._halo``): its reach is the solution of that
+# slow spreading, a bell of HALO_MM / capacity mm (two box filters a side, each that wide) of
+# the wetness the stroke left in its pixels, and a pixel takes HALO_PIGMENT of the stroke's
+# colour where that reach brings a full load (FULL_WET), less in proportion, times how well it
+# draws (``sheet_draw``), keeping the darker of that and what it had: never darker than a
+# faint tint, never darkening the stroke itself. Smooth paper (capacity small) and a mesh's
+# texels (``Simulation`` sets halo_px 0: a texel's neighbours are not the sheet's) have none.
+HALO_MM = 1.3
+HALO_PIGMENT = 0.14
+HALO_MAX_PX = 16
+
+
+def halo_px(capacity: float, ppm: float) -> int:
+    """Half-width (px) of each box filter of the water halo (0: none)."""
+    return int(min(round(HALO_MM / max(capacity, 1e-9) * ppm), HALO_MAX_PX))
+
+
+def _box(a, r: int, axis: int) -> np.ndarray:
+    """Mean of ``a`` (2-D) over 2 r + 1 pixels along ``axis`` (zero beyond the ends)."""
+    if axis == 1:
+        return _box(a.T, r, 0).T
+    n = a.shape[0]
+    c = np.cumsum(a, axis=0, dtype=np.float32)
+    out = np.empty_like(c)
+    k = min(r, n - 1)
+    out[: n - k] = c[k:]  # the sum up to r ahead, ...
+    out[n - k :] = c[n - 1]  # ... or to the end
+    if n > r + 1:  # less what lies before the window, where there is some
+        out[r + 1 :] -= c[: n - r - 1]
+    return out * np.float32(1.0 / (2 * r + 1))
+
+
 def _wick(w, ink, draw, passes: int, rate: float = WICK_RATE) -> None:
     """Capillary wicking (see WICK_MM) of the window's wetness ``w`` (h, w) and ink (h, w, 3),
     in place, over ``passes`` passes at ``rate``; ``draw`` (h, w) in [0, 1] how well each pixel
@@ -404,8 +507,9 @@ def _visit_ranks(locs, size: int) -> tuple[np.ndarray, np.ndarray]:
 class PaperHold:
     """The tiles of a Paper as they were before their first change since ``Paper.hold()``."""
 
-    def __init__(self, step: int):
+    def __init__(self, step: int, stroke: WetStroke | None = None):
         self.step = step
+        self.stroke = stroke
         self.tiles: dict[tuple[int, int], tuple] = {}
         self.nbytes = 0
 

@@ -471,3 +471,22 @@ def test_a_killed_command_leaves_no_pool_worker_waiting_for_ever():
     finally:
         for pid in group_members(p.pid):
             os.kill(pid, 9)
+
+
+def test_a_checkpoint_with_a_paper_stroke_that_is_not_one_is_refused(tmp_path):
+    folder = tmp_path / "cache"
+    baked(STROKE_A, folder, "A")
+    path = sorted(folder.glob("checkpoint_*.npz"))[2]
+    with np.load(path, allow_pickle=False) as z:
+        arrays = {k: z[k] for k in z.files}
+    meta = json.loads(bytes(arrays["meta"]).decode("utf-8"))
+    meta["paper_stroke"] = [1, 2, "three"]
+    arrays["meta"] = np.frombuffer(json.dumps(meta).encode("utf-8"), dtype=np.uint8)
+    with open(path, "wb") as f:
+        np.savez_compressed(f, **arrays)
+    m = json.loads((folder / "manifest.json").read_text())
+    for entry in m["files"]:
+        entry["bytes"] = (folder / entry["name"]).stat().st_size
+    (folder / "manifest.json").write_text(json.dumps(m))
+    with pytest.raises(CacheError, match="paper stroke that is not one"):
+        load_checkpoints(timeline_of(STROKE_A), folder, "A")

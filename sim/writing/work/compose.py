@@ -427,7 +427,7 @@ def render_cell(sub: Recording) -> CellInk:
     r1 = min((int(tiles[:, 0].max()) + 1) * TILE, paper.H)
     c1 = min((int(tiles[:, 1].max()) + 1) * TILE, paper.W)
     sl = (slice(int(r0), r1), slice(int(c0), c1))
-    mask = paper.last[sl] > 0
+    mask = (paper.last[sl] > 0) | (paper.ink[sl] > 0).any(axis=2)  # (a halo leaves no last)
     return CellInk((int(r0), r1, int(c0), c1), mask, paper.ink[sl], paper.wet[sl], paper.last[sl])
 
 
@@ -475,7 +475,8 @@ def render(rec: Recording, mapper=local_map, progress=None):
         m = ci.mask
         paper.ink[r0:r1, c0:c1][m] = ci.ink[m]
         paper.wet[r0:r1, c0:c1][m] = ci.wet[m]
-        paper.last[r0:r1, c0:c1][m] = ci.last[m] + cell.samples[0]
+        touched = ci.last[m]
+        paper.last[r0:r1, c0:c1][m] = np.where(touched > 0, touched + cell.samples[0], 0)
     paper.step = len(rec.samples)
     return paper, inks
 

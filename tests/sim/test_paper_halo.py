@@ -1,0 +1,118 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
+"""The water halo (a model addition, ``sim.paper.paper.Paper._halo``): as the brush leaves the
+paper, the liquid a stroke left creeps on into the sheet with the finest pigment - a faint tint
+round the ink, laid once a stroke."""
+
+import numpy as np
+
+from sim.brush.mark import Mark
+from sim.core.params import QualityParams
+from sim.paper.paper import HALO_MAX_PX, HALO_PIGMENT, Paper, WetStroke, halo_px
+
+DT = 1.0 / 60.0
+Q = QualityParams(ab=0.5, ren=0.0, dry=0.0)
+
+
+def _band(row0: int, row1: int, col0: int, col1: int, wet=0.8, dark=0.9) -> Mark:
+    """A mark filling rows row0:row1, columns col0:col1 of the paper."""
+    rr, cc = np.mgrid[0 : row1 - row0, 0 : col1 - col0]
+    n = rr.size
+    return Mark(
+        primitive=0,
+        iy0=row0,
+        ix0=col0,
+        rows=rr.ravel(),
+        cols=cc.ravel(),
+        wet=np.full(n, wet),
+        col=np.full((n, 3), dark),
+        lateral=np.zeros(n),
+        depth=np.zeros(n),
+        shape=(row1 - row0, col1 - col0),
+        segments=np.zeros((0, 2, 2)),
+        area_bbox=1.0,
+        height=1.0,
+    )
+
+
+def _stroke(paper: Paper, steps: int = 6, lift: bool = True) -> None:
+    """A band written down the sheet over ``steps`` samples, then (``lift``) the brush off."""
+    for k in range(steps):
+        paper.deposit([_band(20 + 6 * k, 32 + 6 * k, 40, 60)], Q, DT, k + 1)
+    if lift:
+        paper.deposit([], Q, DT, steps + 1)
+
+
+def _sheet(**kw) -> Paper:
+    return Paper(100, 100, 8.0, capacity=1.0, fibre=0.5, **kw)
+
+
+def test_the_halo_is_laid_as_the_brush_leaves_a_faint_tint_fading_out():
+    before, after = _sheet(), _sheet()
+    _stroke(before, lift=False)
+    assert before.stroke is not None and before.stroke.start == 1
+    _stroke(after)
+    assert after.stroke is None
+    r = after.halo_px
+    assert 0 < r <= HALO_MAX_PX
+    core = after.ink[30:50, 45:55, 0]
+    np.testing.assert_array_equal(core, before.ink[30:50, 45:55, 0])  # the stroke not darker
+    near = after.ink[30:50, 60 + r // 2, 0]  # half a box out of its edge
+    far = after.ink[30:50, 60 + 2 * r - 1, 0]
+    assert not before.ink[30:50, 60 + r // 2, 0].any()  # nothing there before the lift
+    assert 0.0 < near.mean() <= HALO_PIGMENT * 0.9 + 1e-6  # a faint tint, never dark
+    assert far.mean() < near.mean()  # fading outward
+    reach = int(np.nonzero(after.wet.any(axis=0))[0].max()) + 2 * r  # the wet edge, the bell
+    assert not after.ink[:, reach + 1 :].any()  # no further than its bell reaches
+    assert np.array_equal(after.wet, before.wet)  # only pigment: the water is where it was
+
+
+def test_the_halo_takes_the_wetness_the_stroke_left_not_older_strokes():
+    paper = _sheet()
+    _stroke(paper)
+    once = paper.ink.copy()
+    paper.deposit([], Q, DT, 8)  # still lifted: nothing more
+    np.testing.assert_array_equal(paper.ink, once)
+    paper.deposit([_band(80, 84, 5, 9, wet=0.05)], Q, DT, 9)  # a faint touch far away
+    paper.deposit([], Q, DT, 10)
+    # the first stroke's pixels gave no second halo: near it nothing changed
+    np.testing.assert_array_equal(paper.ink[:70, 30:80], once[:70, 30:80])
+
+
+def test_smooth_paper_and_a_halo_of_no_reach_lay_nothing():
+    assert halo_px(1000.0, 8.0) == 0
+    smooth = Paper(100, 100, 8.0, capacity=1000.0)
+    _stroke(smooth)
+    assert not smooth.ink[:, 62:].any()
+    off = _sheet()
+    off.halo_px = 0  # as on a mesh's texels (Simulation)
+    _stroke(off)
+    assert off.stroke is None and not off.ink[:, 64:].any()
+
+
+def test_a_hold_and_a_snapshot_take_the_stroke_back_with_the_ink():
+    paper = _sheet()
+    for k in range(3):
+        paper.deposit([_band(20 + 6 * k, 32 + 6 * k, 40, 60)], Q, DT, k + 1)
+    snap = paper.snapshot()
+    hold = paper.hold()
+    for k in range(3, 6):
+        paper.deposit([_band(20 + 6 * k, 32 + 6 * k, 40, 60)], Q, DT, k + 1)
+    paper.deposit([], Q, DT, 7)
+    want = paper.ink.copy()
+    paper.give_back(hold)
+    assert isinstance(paper.stroke, WetStroke) and paper.stroke.start == 1
+    for k in range(3, 6):
+        paper.deposit([_band(20 + 6 * k, 32 + 6 * k, 40, 60)], Q, DT, k + 1)
+    paper.deposit([], Q, DT, 7)
+    np.testing.assert_array_equal(paper.ink, want)
+    paper.restore(snap)
+    assert paper.stroke == snap["stroke"]
+
+
+def test_the_halo_changes_only_the_tiles_it_darkens():
+    paper = Paper(512, 512, 8.0, capacity=1.0, fibre=0.5)
+    _stroke(paper, lift=False)
+    v = paper.version
+    paper.deposit([], Q, DT, 7)
+    changed = {tuple(t) for t in paper.tiles_since(v).tolist()}
+    assert changed and changed <= {(0, 0), (1, 0), (0, 1), (1, 1)}
