@@ -1,7 +1,8 @@
 # SPDX-License-Identifier: GPL-3.0-or-later
 """Practice passes (issue 28): a later pass is written again only from the last hold before the
 first sample its correction changes, bit for bit as the pass written from the stroke's start; a
-pass its correction does not change is not written at all. No Blender."""
+pass its correction does not change is not written at all; practice ends once a pass gains
+little. No Blender."""
 
 import numpy as np
 import pytest
@@ -73,6 +74,7 @@ def test_a_pass_begun_at_a_hold_is_the_pass_written_from_the_start(
         return p, s
 
     monkeypatch.setattr(practice, "_correct", late)
+    monkeypatch.setattr(practice, "SMALL_GAIN", -np.inf)  # every pass written
     ch = find_char("十")
     starts = [a for a, _ in _stroke_spans(ch, response)]
     begun = _spy_take_back(monkeypatch)
@@ -103,9 +105,27 @@ def _stroke_spans(ch, response):
 def test_a_pass_its_correction_does_not_change_is_not_written_again(response, monkeypatch):
     # no correction: every pass the first again, which is written once, as with one pass
     monkeypatch.setattr(practice, "_correct", lambda response, placed, *args: placed)
+    monkeypatch.setattr(practice, "SMALL_GAIN", -np.inf)  # every pass written (or not)
     ch = find_char("十")
     begun = _spy_take_back(monkeypatch)
     once = _write(ch, response, 1)
     for a, b in zip(_write(ch, response, 4), once, strict=True):
         assert a.tobytes() == b.tobytes()
     assert begun == []  # nothing taken back: no pass written twice
+
+
+@pytest.mark.slow
+def test_practice_ends_when_a_pass_gains_little(response, monkeypatch):
+    ch = find_char("十")
+    passes = _spy_passes(monkeypatch)
+    monkeypatch.setattr(practice, "SMALL_GAIN", -np.inf)  # never: every pass written
+    _write(ch, response, 4)
+    assert len(passes) == 4 * 2
+    twice = _write(ch, response, 2)
+    passes.clear()
+    monkeypatch.setattr(practice, "SMALL_GAIN_FROM", 1)
+    monkeypatch.setattr(practice, "SMALL_GAIN", 1.0)  # the second pass can never gain enough
+    ended = _write(ch, response, 4)
+    assert len(passes) == 2 * 2  # practice ended after the second pass of each stroke
+    for a, b in zip(ended, twice, strict=True):  # as if two passes had been asked for
+        assert a.tobytes() == b.tobytes()
