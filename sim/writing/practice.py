@@ -102,7 +102,8 @@ SMALL_GAIN = 0.01  # from pass SMALL_GAIN_FROM (0 the first) on, a pass that bri
 SMALL_GAIN_FROM = 2  # less than this much nearer its outline (IoU) than the best ends practice
 # (an approximation, issue 28; measured on the 9 held-out characters at 512 px: mean IoU
 # 0.9207 -> 0.9184 for about 0.8x the CPU time; ending it from the second pass on, or on
-# filling 0.95 of the outline, or after three passes, cost 0.002-0.0045 for 0.75-0.83x)
+# filling 0.95 of the outline, or after three passes, cost 0.002-0.0045 for 0.75-0.83x). Not
+# when imitating a picture (``exact_ends``): its passes are measured on its own (imitate.PASSES)
 PRACTICE_GAIN = 0.45  # share of a pass's width error corrected for the next (measured best)
 PRACTICE_SIDE_GAIN = 0.8  # share of the band's sideways offset corrected (issue 16: measured)
 
@@ -342,13 +343,12 @@ def _practise_stroke(sim, a, b, passes, fill, own, ctx, whole=None) -> None:
     same bit for bit. Practice ends after ``passes`` passes, or sooner when a pass from
     ``SMALL_GAIN_FROM`` on brings the stroke less than ``SMALL_GAIN`` nearer its outline than
     the best before it: the student stops once practice no longer pays (an approximation: the
-    passes left might still have found a better one). With ``whole`` (the whole character's
-    outlines on the paper:
-    ``exact_ends``) each pass also reads how far the ink of the stroke's free ends reaches
-    against the outline (``_reach_error``), the next pass carries them on or draws them back
-    (``_reach_moves``), and the pass that stays is the one whose IoU less its ends' error over
-    the stroke's length is best: a stroke 5 % too long is as wrong as one 5 % short of its
-    area."""
+    passes left might still have found a better one; not with ``whole``). With ``whole`` (the
+    whole character's outlines on the paper: ``exact_ends``) each pass also reads how far the
+    ink of the stroke's free ends reaches against the outline (``_reach_error``), the next pass
+    carries them on or draws them back (``_reach_moves``), and the pass that stays is the one
+    whose IoU less its ends' error over the stroke's length is best: a stroke 5 % too long is
+    as wrong as one 5 % short of its area."""
     pl, response, step_mm, reach = ctx
     body = np.flatnonzero(pl.phase[a:b] == WRITING) + a
     want = pl.width[body]
@@ -390,7 +390,7 @@ def _practise_stroke(sim, a, b, passes, fill, own, ctx, whole=None) -> None:
             best = best._replace(number=k)  # the same pass: the simulation is where it left off
         if k == passes - 1:
             break
-        if k >= SMALL_GAIN_FROM and gain < SMALL_GAIN:  # practice no longer pays
+        if whole is None and k >= SMALL_GAIN_FROM and gain < SMALL_GAIN:  # no longer pays
             break
         if whole is not None:
             moves = _reach_moves(ends, reach_err, moves)

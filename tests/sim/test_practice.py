@@ -129,3 +129,6 @@ def test_practice_ends_when_a_pass_gains_little(response, monkeypatch):
     assert len(passes) == 2 * 2  # practice ended after the second pass of each stroke
     for a, b in zip(ended, twice, strict=True):  # as if two passes had been asked for
         assert a.tobytes() == b.tobytes()
+    passes.clear()
+    _write(ch, response, 4, exact_ends=True)  # imitating a picture: every pass written
+    assert len(passes) == 4 * 2
