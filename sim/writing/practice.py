@@ -97,7 +97,9 @@ def _stroke_masks(char: dict, H: int, W: int) -> list[_Window]:
 
 
 RECORD_EVERY = 4  # samples between the coverage records of a practice pass
-HOLD_EVERY = 8  # samples (at least) between the holds a later pass of a stroke can begin from
+HOLD_EVERY = 8  # samples (at least) between the holds a later pass of a stroke can begin from;
+# further on, as far apart as the last hold is from the stroke's start (a correction mostly
+# changes a stroke from its first body sample: a few holds there, a held tile costs memory)
 SMALL_GAIN = 0.01  # from pass SMALL_GAIN_FROM (0 the first) on, a pass that brings the stroke
 SMALL_GAIN_FROM = 2  # less than this much nearer its outline (IoU) than the best ends practice
 # (an approximation, issue 28; measured on the 9 held-out characters at 512 px: mean IoU
@@ -151,14 +153,15 @@ def _practise(sim, start, rd: _Reading, probes, band, holds) -> None:
     before the next movement lays its ink across the cut. The readings are taken every few
     samples and as each movement lifts off, each at the pixels of the points that need it;
     those before ``start`` are kept (the stroke is the same up to there). At a reading every
-    ``HOLD_EVERY`` samples or more the simulation is held (``holds``: sample -> hold), so that a
-    later pass can begin there."""
+    ``HOLD_EVERY`` samples, and further on as far apart as the last hold is from the stroke's
+    start, the simulation is held (``holds``: sample -> hold), so that a later pass can begin
+    there."""
     rows, cols = probes
     old, cov = band
     todo = np.flatnonzero(rd.times >= start)
     kept, last = {}, start
     for t in rd.times[todo[:-1]]:
-        if t - last >= HOLD_EVERY:
+        if t - last >= max(HOLD_EVERY, last - rd.times[0]):
             sim.advance(int(t))  # the brush as it is at the hold
             kept[int(t)], last = sim.brush_hold(), t
     sim.advance(int(rd.times[-1]))  # the brush never reads the paper: it runs ahead
