@@ -281,11 +281,20 @@ class Simulation:
         self._deposit_pending()
         return self._state(self.paper.snapshot())
 
-    def hold(self) -> dict:
+    def hold(self, brush: dict | None = None) -> dict:
         """The simulation as it is now, to ``take_back`` later; unlike a snapshot it copies no
-        paper up front: the paper keeps each tile as it was before its first change."""
+        paper up front: the paper keeps each tile as it was before its first change. With
+        ``brush`` (``brush_hold`` at the sample ``settle`` has brought the paper to) the brush
+        may have run ahead (``advance``): the hold is of that sample, the waiting marks kept."""
+        if brush is not None:
+            return {**brush, "paper": self.paper.hold()}
         self._deposit_pending()
         return self._state(self.paper.hold())
+
+    def brush_hold(self) -> dict:
+        """The brush's part of a ``hold`` as it is now, while the paper lags behind it
+        (``advance``); ``hold(brush)`` completes it once the paper has caught up."""
+        return self._state(None)
 
     def restore(self, snap: dict):
         self._set_state(snap)
