@@ -28,10 +28,17 @@ V_REF = 50.0  # mm/s, speed scale in Eq. 12 and 16
 REC_RATE = 14.0  # 1/s, elastic recovery of free hair at e = 1
 CAP_RATE = 12.0  # 1/s, ink drawn along a primitive's axis to drier key points (belly to tip)
 MAX_FLATNESS = 5.0  # bound on a/b of the middle control ellipse
-WET_FACTOR_MAX = 20.0  # bound on n / sum(wet) in Eq. 10 (a dry brush would give infinity)
+# bound on n / sum(wet) in Eq. 10 (a dry brush would give infinity): dry hair is as stressed as
+# hair whose key points hold a third of a soaked one's liquid, and no more (issue 26). With the
+# bound at 20, a brush running dry pressed ever harder (Eq. 12), so it lost its ink ever faster
+# (Eq. 15) and dragged its hair ever further over the paper (Sec. 5.2.2): dry_ink's pressure
+# rose to 0.8-1.1 where a loaded brush has 0.15, and its hair flew out of the character. A
+# loaded brush, dipped again when it runs low, stays under 2.5 (the default writes the same).
+WET_FACTOR_MAX = 3.0
 SLIP = 0.3  # share of the way hair held on the paper slides after the brush each step
 SPEND = 0.003  # per mm^2: the ink fresh paper takes from the hair that passes (lose_wetness)
 SOAK = 0.003  # per mm^2 s: the ink the paper under the hair goes on taking (lose_wetness)
+W_SQUEEZE = 0.3  # wetness below which Eq. 15's squeeze takes less of a key point's ink
 
 
 def move(brush, pose6, vel6, dt: float):
@@ -279,7 +286,14 @@ def lose_wetness(brush, dt):
     points lying on the paper (the lowest one where none does), each in proportion to its
     wetness. Writing on, the brush runs from dark and wet after a dip to grey and dry over a
     few hundred millimetres of stroke; a pause spends a little more (the pool under the hair,
-    ``bristles.lay``)."""
+    ``bristles.lay``).
+
+    Model change (issue 26): Eq. 15 takes the same wetness a step whatever the key point holds,
+    so a brush dipped in little ink (dry_ink) was wrung out in a few centimetres and went on
+    losing at that rate to the last drop. Pressure squeezes out the liquid between the hairs,
+    not the film that capillarity holds on them: below W_SQUEEZE a key point gives up to
+    Eq. 15 in proportion to what it holds, and the paper's own take (above) spends the rest, a
+    share at a time, so a dry brush's streaks thin out along the stroke instead of stopping."""
     touching = brush.touching
     if not touching.any():
         return
@@ -288,6 +302,7 @@ def lose_wetness(brush, dt):
     s = np.abs(j - act[:, None])
     d = np.where(s == 0, 1, 2)
     loss = brush.q.ab * brush.gamma[:, None] / np.power(2.0, s + d) * (dt * REF_RATE)
+    loss = loss * np.minimum(brush.wet / W_SQUEEZE, 1.0)  # the last ink stays (doc)
     on, wet_on = contact_wetness(brush)
     held = np.where(on, brush.wet, 0.0)
     total = held.sum(axis=1)
