@@ -350,9 +350,20 @@ def adjust_ellipse(brush, vel6, dt):
 def split(brush):
     """Sec. 5.5: a primitive whose inner stress exceeds tre splits into k = floor(str/tre)
     primitives (Eq. 18), each with 1/k of the hair: a, b / sqrt(k) and len / k (Eq. 19).
-    Key points move by rand * (str - tre) (in units of r), rand a random unit vector, growing
-    from zero at the shared bottom control circle to full at the tip (hair fans out from the
-    ferrule)."""
+    Key points move by rand * (str - tre) (in units of r), growing from zero at the shared
+    bottom control circle to full at the tip (hair fans out from the ferrule).
+
+    Beyond the paper (issue 26), where the children go: the paper's rand is a random direction,
+    and nothing keeps a child inside the hair it came from; a soft brush (goat_soft, stress
+    several times tre) split step after step, every child thrown a random way by up to
+    (str - tre) r again, and clusters of hair left the stroke as blobs and broken pieces. A
+    real brush parts into clumps side by side across the stroke, within the width the hair
+    had, each drawing its own streak along it: here the k children lie side by side across
+    the way the brush travels, each at its share of the width with a random jitter (the
+    paper's rand) of half a share, moved by (str - tre) r at most and never further than a
+    child of width w / sqrt(k) can go inside its parent's width w across the way
+    (``_split_offsets``). A child splitting again stays inside its own width, so the hair of a
+    split brush never spreads wider than the belly it was."""
     tre = max(brush.q.tre, 1e-3)
     k = np.floor(brush.stress / tre).astype(int)
     k = np.where(brush.touching, k, 1)
@@ -374,13 +385,11 @@ def split(brush):
     reps = k
     src = np.repeat(np.arange(brush.m), reps)
     kk = np.repeat(k, reps).astype(float)
-    excess = np.repeat(np.maximum(brush.stress - tre, 0.0), reps)
     total = len(src)
-    dirs = brush.rng.normal(size=(total, 3))
-    dirs = unit(dirs)
     split_child = kk > 1
+    across = _split_offsets(brush, src, kk, tre)
     frac = brush.sarc[src] / brush.L
-    offset = (dirs[:, None, :] * (excess * brush.r)[:, None, None]) * frac[..., None]
+    offset = across[:, None, :] * frac[..., None]
     offset = np.where(split_child[:, None, None], offset, 0.0)
     take_primitives(brush, src)  # every field copied to the children, then what differs:
     brush.cc = brush.cc + offset
@@ -397,6 +406,27 @@ def split(brush):
     new = int(np.sum(k - 1))
     brush.splits += new
     return new
+
+
+def _split_offsets(brush, src, kk, tre) -> np.ndarray:
+    """Where each child of a split goes at the tip (``split``): (total, 3) mm in the paper's
+    frame, across the way the brush travels (``travel``), the children of one parent side by
+    side in order over the parent's width across it (its middle control ellipse, Eq. 6, seen
+    across the way), the outermost a child's half width inside its edges (and no further than
+    the paper's (str - tre) r), each jittered by half a share by the seeded generator."""
+    total = len(src)
+    first = np.r_[0, np.flatnonzero(np.diff(src)) + 1]  # each parent's first child
+    order = np.arange(total) - np.repeat(first, np.diff(np.r_[first, total]))
+    jitter = brush.rng.random(total) - 0.5
+    spread = np.maximum(0.5 - 0.5 / kk, 1e-12)  # the outermost child's place (none unsplit)
+    place = clip(((order + 0.5 + 0.5 * jitter) / kk - 0.5) / spread, -1.0, 1.0)
+    across = np.array([-brush.travel[1], brush.travel[0], 0.0])  # left of the way it goes
+    eo = brush.eori[src] @ brush.R.T  # the minor axis, paper frame
+    major = cross(np.broadcast_to(brush.R[:, 2], eo.shape), eo)
+    width = np.hypot(brush.a[src] * (major @ across), brush.b[src] * (eo @ across))
+    room = 0.5 * width * (1.0 - 1.0 / np.sqrt(kk))  # a child of width / sqrt(k) inside
+    reach = np.minimum(np.maximum(brush.stress[src] - tre, 0.0) * brush.r, room)
+    return across[None, :] * (place * reach)[:, None]
 
 
 def ink_flow(brush):
