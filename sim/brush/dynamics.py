@@ -28,10 +28,17 @@ V_REF = 50.0  # mm/s, speed scale in Eq. 12 and 16
 REC_RATE = 14.0  # 1/s, elastic recovery of free hair at e = 1
 CAP_RATE = 12.0  # 1/s, ink drawn along a primitive's axis to drier key points (belly to tip)
 MAX_FLATNESS = 5.0  # bound on a/b of the middle control ellipse
-WET_FACTOR_MAX = 20.0  # bound on n / sum(wet) in Eq. 10 (a dry brush would give infinity)
+# bound on n / sum(wet) in Eq. 10 (a dry brush would give infinity): dry hair is as stressed as
+# hair whose key points hold a third of a soaked one's liquid, and no more (issue 26). With the
+# bound at 20, a brush running dry pressed ever harder (Eq. 12), so it lost its ink ever faster
+# (Eq. 15) and dragged its hair ever further over the paper (Sec. 5.2.2): dry_ink's pressure
+# rose to 0.8-1.1 where a loaded brush has 0.15, and its hair flew out of the character. A
+# loaded brush, dipped again when it runs low, stays under 2.5 (the default writes the same).
+WET_FACTOR_MAX = 3.0
 SLIP = 0.3  # share of the way hair held on the paper slides after the brush each step
 SPEND = 0.003  # per mm^2: the ink fresh paper takes from the hair that passes (lose_wetness)
 SOAK = 0.003  # per mm^2 s: the ink the paper under the hair goes on taking (lose_wetness)
+W_SQUEEZE = 0.3  # wetness below which Eq. 15's squeeze takes less of a key point's ink
 
 
 def move(brush, pose6, vel6, dt: float):
@@ -279,7 +286,14 @@ def lose_wetness(brush, dt):
     points lying on the paper (the lowest one where none does), each in proportion to its
     wetness. Writing on, the brush runs from dark and wet after a dip to grey and dry over a
     few hundred millimetres of stroke; a pause spends a little more (the pool under the hair,
-    ``bristles.lay``)."""
+    ``bristles.lay``).
+
+    Model change (issue 26): Eq. 15 takes the same wetness a step whatever the key point holds,
+    so a brush dipped in little ink (dry_ink) was wrung out in a few centimetres and went on
+    losing at that rate to the last drop. Pressure squeezes out the liquid between the hairs,
+    not the film that capillarity holds on them: below W_SQUEEZE a key point gives up to
+    Eq. 15 in proportion to what it holds, and the paper's own take (above) spends the rest, a
+    share at a time, so a dry brush's streaks thin out along the stroke instead of stopping."""
     touching = brush.touching
     if not touching.any():
         return
@@ -288,6 +302,7 @@ def lose_wetness(brush, dt):
     s = np.abs(j - act[:, None])
     d = np.where(s == 0, 1, 2)
     loss = brush.q.ab * brush.gamma[:, None] / np.power(2.0, s + d) * (dt * REF_RATE)
+    loss = loss * np.minimum(brush.wet / W_SQUEEZE, 1.0)  # the last ink stays (doc)
     on, wet_on = contact_wetness(brush)
     held = np.where(on, brush.wet, 0.0)
     total = held.sum(axis=1)
@@ -335,9 +350,20 @@ def adjust_ellipse(brush, vel6, dt):
 def split(brush):
     """Sec. 5.5: a primitive whose inner stress exceeds tre splits into k = floor(str/tre)
     primitives (Eq. 18), each with 1/k of the hair: a, b / sqrt(k) and len / k (Eq. 19).
-    Key points move by rand * (str - tre) (in units of r), rand a random unit vector, growing
-    from zero at the shared bottom control circle to full at the tip (hair fans out from the
-    ferrule)."""
+    Key points move by rand * (str - tre) (in units of r), growing from zero at the shared
+    bottom control circle to full at the tip (hair fans out from the ferrule).
+
+    Beyond the paper (issue 26), where the children go: the paper's rand is a random direction,
+    and nothing keeps a child inside the hair it came from; a soft brush (goat_soft, stress
+    several times tre) split step after step, every child thrown a random way by up to
+    (str - tre) r again, and clusters of hair left the stroke as blobs and broken pieces. A
+    real brush parts into clumps side by side across the stroke, within the width the hair
+    had, each drawing its own streak along it: here the k children lie side by side across
+    the way the brush travels, each at its share of the width with a random jitter (the
+    paper's rand) of half a share, moved by (str - tre) r at most and never further than a
+    child of width w / sqrt(k) can go inside its parent's width w across the way
+    (``_split_offsets``). A child splitting again stays inside its own width, so the hair of a
+    split brush never spreads wider than the belly it was."""
     tre = max(brush.q.tre, 1e-3)
     k = np.floor(brush.stress / tre).astype(int)
     k = np.where(brush.touching, k, 1)
@@ -359,13 +385,11 @@ def split(brush):
     reps = k
     src = np.repeat(np.arange(brush.m), reps)
     kk = np.repeat(k, reps).astype(float)
-    excess = np.repeat(np.maximum(brush.stress - tre, 0.0), reps)
     total = len(src)
-    dirs = brush.rng.normal(size=(total, 3))
-    dirs = unit(dirs)
     split_child = kk > 1
+    across = _split_offsets(brush, src, kk, tre)
     frac = brush.sarc[src] / brush.L
-    offset = (dirs[:, None, :] * (excess * brush.r)[:, None, None]) * frac[..., None]
+    offset = across[:, None, :] * frac[..., None]
     offset = np.where(split_child[:, None, None], offset, 0.0)
     take_primitives(brush, src)  # every field copied to the children, then what differs:
     brush.cc = brush.cc + offset
@@ -382,6 +406,27 @@ def split(brush):
     new = int(np.sum(k - 1))
     brush.splits += new
     return new
+
+
+def _split_offsets(brush, src, kk, tre) -> np.ndarray:
+    """Where each child of a split goes at the tip (``split``): (total, 3) mm in the paper's
+    frame, across the way the brush travels (``travel``), the children of one parent side by
+    side in order over the parent's width across it (its middle control ellipse, Eq. 6, seen
+    across the way), the outermost a child's half width inside its edges (and no further than
+    the paper's (str - tre) r), each jittered by half a share by the seeded generator."""
+    total = len(src)
+    first = np.r_[0, np.flatnonzero(np.diff(src)) + 1]  # each parent's first child
+    order = np.arange(total) - np.repeat(first, np.diff(np.r_[first, total]))
+    jitter = brush.rng.random(total) - 0.5
+    spread = np.maximum(0.5 - 0.5 / kk, 1e-12)  # the outermost child's place (none unsplit)
+    place = clip(((order + 0.5 + 0.5 * jitter) / kk - 0.5) / spread, -1.0, 1.0)
+    across = np.array([-brush.travel[1], brush.travel[0], 0.0])  # left of the way it goes
+    eo = brush.eori[src] @ brush.R.T  # the minor axis, paper frame
+    major = cross(np.broadcast_to(brush.R[:, 2], eo.shape), eo)
+    width = np.hypot(brush.a[src] * (major @ across), brush.b[src] * (eo @ across))
+    room = 0.5 * width * (1.0 - 1.0 / np.sqrt(kk))  # a child of width / sqrt(k) inside
+    reach = np.minimum(np.maximum(brush.stress[src] - tre, 0.0) * brush.r, room)
+    return across[None, :] * (place * reach)[:, None]
 
 
 def ink_flow(brush):
