@@ -86,6 +86,7 @@ REF_RATE = 30.0  # time slices per second
 MAX_PAPER_SIDE_PX = 8192
 MAX_PAPER_PIXELS = 8192 * 8192
 PAPER_CAPACITY_RANGE = (1e-3, 1e6)  # a preset's wetness capacity
+INK_PIGMENT_RANGE = (0.05, 1.0)  # an ink's pigment per unit of liquid (1: full strength)
 PAPER_TEXTURE_MAX = 0.3  # the strongest paper texture (sim.paper.texture; 0.05: xuan's own)
 INK_FACTOR_RANGE = (-1.0, 1.0)  # an ink preset's per-mm factors of Eq. 5
 
@@ -221,6 +222,7 @@ class InkSpec:
     cr: float = -0.01  # radiation-mode colour factor per mm (Eq. 5)
     wv: tuple = (0.0, 0.0, 0.0)  # vector-mode wetness vector per mm, brush frame (Eq. 5)
     cv: tuple = (0.0, 0.0, 0.0)  # vector-mode colour vector per mm, brush frame (Eq. 5)
+    pigment: float = 1.0  # pigment per unit of liquid against a full-strength ink (see FULL_WET)
 
 
 @dataclass(frozen=True)
@@ -358,4 +360,5 @@ def ink_from_preset(preset: Preset | None) -> InkSpec:
         cr=_preset_num(preset, rad, "cr", InkSpec.cr, lo, hi),
         wv=_preset_vec(preset, vec, "wv", InkSpec.wv, lo, hi),
         cv=_preset_vec(preset, vec, "cv", InkSpec.cv, lo, hi),
+        pigment=_preset_num(preset, d, "pigment", InkSpec.pigment, *INK_PIGMENT_RANGE),
     )

@@ -64,6 +64,7 @@ class Simulation:
             fibre=self.paper_spec.fibre,
             texture=self.paper_spec.texture if surface is None else 0.0,  # a mesh is not xuan
         )
+        self.paper.pigment = self.ink.pigment  # how much pigment the ink's liquid carries
         if surface is not None:  # nor do its texels lie evenly in mm: the ink wicks evenly,
             self.paper.wick_fibre = 0.0  # and no halo (a texel's neighbours are not the sheet's)
             self.paper.halo_px = 0

@@ -81,6 +81,7 @@ class Paper:
         self.wick_fibre = self.fibre  # how unevenly the sheet's fibres draw (_wick; 0: evenly)
         self.halo_px = halo_px(self.capacity, self.ppm)  # the water halo's reach (_halo; 0: none)
         self.stroke: WetStroke | None = None  # the stroke being written (for its halo)
+        self.pigment = 1.0  # the ink's pigment per unit of liquid (see FULL_WET; 1: full)
         self.version = 0  # bumped by every change; tile_ver holds each tile's last change
         self.tile_ver = np.zeros((-(-self.H // TILE), -(-self.W // TILE)), dtype=np.int64)
         self._holds = []
@@ -202,7 +203,7 @@ class Paper:
             # Eq. 26-27 (model change, see FULL_WET): where the hair bundle lays ink (Cr not
             # 0) the pixel takes the colour the liquid offered to it can hold, and keeps the
             # darker of that and what it had (pigment laid is not taken back)
-            held = -np.expm1(-offer[sel] / FULL_WET)
+            held = -np.expm1(-offer[sel] / (FULL_WET / self.pigment))
             held = np.where(skip[sel], 0.0, held).astype(np.float32)
             old = np.take(inkv, fi).view(np.float32).reshape(-1, 3)
             np.maximum(old, col[sel] * held[:, None], out=old)
@@ -374,7 +375,10 @@ class Paper:
 # the hair lingers): a brush just dipped (offer about 1) lays 98% of the ink's colour, a brush
 # run low (offer 0.3) about 70% of it, a pause or a pressed turn pools darker, and Eq. 27's
 # Cr = 0 (the bundle's gap) leaves the pixel as it is. Eq. 24 still gives the pixel's wetness
-# (drying, and saturation, Eq. 25).
+# (drying, and saturation, Eq. 25). A diluted ink (``InkSpec.pigment`` below 1: light ink,
+# 淡墨) carries that much less pigment in the same liquid: a pixel needs FULL_WET / pigment of it
+# to take the ink's full colour, so a pale stroke is paler where the hair passes quickly and
+# darker where it lingers or the brush was just dipped, as diluted ink is, not one flat grey.
 FULL_WET = 0.25
 GRAIN_DEPTH = 0.25  # the grain changes the offer a pixel takes by up to +- GRAIN_DEPTH fibre / 2
 

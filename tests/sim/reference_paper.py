@@ -51,7 +51,7 @@ def reference_deposit(self, marks, q, dt: float, step: int, saturate=None):
         offer = mk.wet.astype(np.float32) * (1.0 - GRAIN_DEPTH * self.fibre * grain).astype(
             np.float32
         )
-        held = (-np.expm1(-offer / FULL_WET)).astype(np.float32)
+        held = (-np.expm1(-offer / (FULL_WET / self.pigment))).astype(np.float32)
         skip = mk.skip if mk.skip is not None else np.zeros(r.size, bool)
         held = np.where(skip, 0.0, held).astype(np.float32)
         ink[r, c] = np.maximum(ink[r, c], mk.col.astype(np.float32) * held[:, None])

@@ -314,3 +314,28 @@ def test_every_primitive_field_is_declared_once_and_kept_by_snapshots(brush):
     assert b.m == 4 and set(again) == set(snap)
     for k, v in snap.items():
         assert np.array_equal(again[k], v), k
+
+
+def test_a_diluted_ink_needs_more_liquid_for_its_colour():
+    """Light ink (``InkSpec.pigment`` below 1) carries less pigment in the same liquid: a quick,
+    thin offer lays a paler share of its colour than a full-strength ink's, a soaking one
+    nearly all of it - the tone of a pale stroke follows how long the hair lingered."""
+    from sim.core.params import ink_from_preset, load_preset
+
+    assert ink_from_preset(load_preset("ink", "sumi_black")).pigment == 1.0
+    assert ink_from_preset(load_preset("ink", "light_ink")).pigment == 0.5
+    q = QualityParams(ab=0.5, ren=0.0, dry=0.0)
+    ratio = {}
+    for pigment in (1.0, 0.5):
+        taken = []
+        for offer in (0.3, 2.0):  # quick and thin; lingering
+            paper = _plain_paper(4, 4, 1.0)
+            paper.pigment = pigment
+            paper.deposit([_one_pixel_mark(offer, [0.5, 0.5, 0.5])], q, DT, 1)
+            taken.append(float(paper.ink[1, 1, 0]))
+        assert taken[1] <= 0.5 and taken[1] > 0.45  # a soaked pixel takes the ink's colour
+        ratio[pigment] = taken[0] / taken[1]
+    assert ratio[0.5] < ratio[1.0] - 0.15  # the quick pass much paler for the diluted ink
+    assert ratio[0.5] == pytest.approx(
+        (1 - np.exp(-0.3 * 0.5 / FULL_WET)) / (1 - np.exp(-4.0)), 1e-4
+    )
