@@ -248,26 +248,39 @@ class Paper:
     def _halo(self):
         """The water halo (see HALO_MM) of the stroke just written, as the brush leaves the
         paper: a bell of the wetness its pixels were left with, laid as a faint tint of its
-        colour where that is darker than what a pixel holds. Only the tiles it darkens change."""
+        colour where that is darker than what a pixel holds. Only the tiles it darkens change;
+        made HALO_ROWS rows at a time (a stroke across a large sheet needs no sheet-sized
+        temporaries)."""
         t, self.stroke = self.stroke, None
         r = self.halo_px
         y0, y1 = max(t.y0 - 2 * r, 0), min(t.y1 + 2 * r, self.H)
         x0, x1 = max(t.x0 - 2 * r, 0), min(t.x1 + 2 * r, self.W)
-        last = self.last[y0:y1, x0:x1]
-        left = np.where(last >= t.start, self.wet[y0:y1, x0:x1], np.float32(0.0))
-        reach = _box(_box(_box(_box(left, r, 0), r, 1), r, 0), r, 1)
+        colour = np.asarray(t.colour, dtype=np.float32)
+        for by0 in range(y0, y1, HALO_ROWS):
+            self._halo_rows(t.start, colour, (by0, min(by0 + HALO_ROWS, y1)), (y0, y1, x0, x1))
+
+    def _halo_rows(self, start: int, colour, rows, outer):
+        """The halo at the rows ``rows`` (by0, by1) of the window ``outer``: the bell read from
+        the stroke's wetness up to its reach (2 halo_px) above and below them."""
+        (by0, by1), (y0, y1, x0, x1), r = rows, outer, self.halo_px
+        sy0, sy1 = max(by0 - 2 * r, y0), min(by1 + 2 * r, y1)
+        last = self.last[sy0:sy1, x0:x1]
+        left = np.where(last >= start, self.wet[sy0:sy1, x0:x1], np.float32(0.0))
+        if not left.any():
+            return
+        reach = _box(_box(_box(_box(left, r, 0), r, 1), r, 0), r, 1)[by0 - sy0 : by1 - sy0]
         draw = sheet_draw(
-            slice(y0, y1), slice(x0, x1), self.ppm, self.grain_seed, TILE, self.wick_fibre
+            slice(by0, by1), slice(x0, x1), self.ppm, self.grain_seed, TILE, self.wick_fibre
         )
         faint = HALO_PIGMENT * np.minimum(reach * np.float32(1.0 / FULL_WET), 1.0) * draw
-        tint = faint[..., None] * np.asarray(t.colour, dtype=np.float32)
-        ink = self.ink[y0:y1, x0:x1]
+        tint = faint[..., None] * colour
+        ink = self.ink[by0:by1, x0:x1]
         darker = np.nonzero((tint > ink).any(axis=2))
         if darker[0].size == 0:
             return
         ry0, ry1 = int(darker[0].min()), int(darker[0].max()) + 1
         rx0, rx1 = int(darker[1].min()), int(darker[1].max()) + 1
-        self._touch(y0 + ry0, y0 + ry1, x0 + rx0, x0 + rx1)
+        self._touch(by0 + ry0, by0 + ry1, x0 + rx0, x0 + rx1)
         np.maximum(ink, tint, out=ink)
 
     def _saturate_window(self, w, ink):
@@ -443,6 +456,7 @@ class WetStroke(NamedTuple):
 HALO_MM = 1.3
 HALO_PIGMENT = 0.14
 HALO_MAX_PX = 16
+HALO_ROWS = 256  # rows of the sheet the halo is made at a time (its memory: see Paper._halo)
 
 
 def halo_px(capacity: float, ppm: float) -> int:

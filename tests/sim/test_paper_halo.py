@@ -116,3 +116,14 @@ def test_the_halo_changes_only_the_tiles_it_darkens():
     paper.deposit([], Q, DT, 7)
     changed = {tuple(t) for t in paper.tiles_since(v).tolist()}
     assert changed and changed <= {(0, 0), (1, 0), (0, 1), (1, 1)}
+
+
+def test_the_halo_made_in_bands_of_rows_is_the_halo_made_at_once(monkeypatch):
+    from sim.paper import paper as paper_module
+
+    whole, banded = _sheet(), _sheet()
+    _stroke(whole)
+    monkeypatch.setattr(paper_module, "HALO_ROWS", 7)  # bands far thinner than the bell
+    _stroke(banded)
+    np.testing.assert_allclose(banded.ink, whole.ink, atol=2e-6)
+    assert (banded.ink > 0).sum() == (whole.ink > 0).sum()
