@@ -229,9 +229,9 @@ CUT_OVER_DISC = 1.3  # a cut across the median longer than this many times the i
 # (the "true discs" yardstick reads its radii off the same discs and reaches IoU 0.95)
 CORNER_TURN = 1.3  # rad of turn over +-CORNER_WINDOW: a hook's foot or a 折 is two movements
 CORNER_WINDOW = 60.0  # data units either side (a median's corner spreads over 2-3 vertices)
-FOOT_REACH = 0.65  # share of the way to the outline a movement goes on past a corner (the
-# foot; 0.5 before issue 26's 折 lifting slightly at the shoulder: its outer corner, and the
-# bottom of a hook's foot, were left bare)
+FOOT_REACH = 0.58  # share of the way to the outline a movement goes on past a corner (the
+# foot; measured with issue 26's 折: 0.65 fills 永's and 口's shoulders further but presses a
+# round knob out past a pointed shoulder's sides, as 力's; 0.5 leaves more of them bare)
 
 
 def _bands(pts, polys) -> tuple[np.ndarray, np.ndarray]:
