@@ -229,7 +229,9 @@ CUT_OVER_DISC = 1.3  # a cut across the median longer than this many times the i
 # (the "true discs" yardstick reads its radii off the same discs and reaches IoU 0.95)
 CORNER_TURN = 1.3  # rad of turn over +-CORNER_WINDOW: a hook's foot or a 折 is two movements
 CORNER_WINDOW = 60.0  # data units either side (a median's corner spreads over 2-3 vertices)
-FOOT_REACH = 0.5  # share of the way to the outline a movement goes on past a corner (the foot)
+FOOT_REACH = 0.58  # share of the way to the outline a movement goes on past a corner (the
+# foot; measured with issue 26's 折: 0.65 fills 永's and 口's shoulders further but presses a
+# round knob out past a pointed shoulder's sides, as 力's; 0.5 leaves more of them bare)
 
 
 def _bands(pts, polys) -> tuple[np.ndarray, np.ndarray]:
@@ -261,19 +263,64 @@ def _bands(pts, polys) -> tuple[np.ndarray, np.ndarray]:
     return centre, np.minimum(width, held)
 
 
-def corners(pts, step: float) -> list[int]:
+def _heading_turn(a, b) -> np.ndarray:
+    """Unsigned angle (rad) between direction vectors a and b, row by row."""
+    return np.abs(np.arctan2(a[:, 0] * b[:, 1] - a[:, 1] * b[:, 0], np.sum(a * b, axis=1)))
+
+
+def _sharpest(turn, sharp) -> list[int]:
+    """The index of the largest ``turn`` in each run of ``sharp``."""
+    step_of = np.diff(np.concatenate([[False], sharp, [False]]).astype(int))
+    starts, ends = np.flatnonzero(step_of == 1), np.flatnonzero(step_of == -1)
+    return [i + int(np.argmax(turn[i:j])) for i, j in zip(starts, ends, strict=True)]
+
+
+def corners(pts, step: float, chamfered: bool = True) -> list[int]:
     """Indices of the sharp corners of a median resampled every ``step``: where its heading,
     read off chords ``CORNER_WINDOW`` long before and after the point, turns more than
-    ``CORNER_TURN`` (the sharpest point of each such run; none within a window of the ends)."""
+    ``CORNER_TURN`` (the sharpest point of each such run; none within a window of the ends);
+    and (``chamfered``) the corners a median cuts across (``_chamfered``)."""
     win = max(int(round(CORNER_WINDOW / step)), 1)
     if len(pts) < 2 * win + 1:
         return []
-    a, b = pts[win:-win] - pts[: -2 * win], pts[2 * win :] - pts[win:-win]
-    turn = np.abs(np.arctan2(a[:, 0] * b[:, 1] - a[:, 1] * b[:, 0], np.sum(a * b, axis=1)))
-    sharp = np.concatenate([[False], turn > CORNER_TURN, [False]])
-    step_of = np.diff(sharp.astype(int))
-    starts, ends = np.flatnonzero(step_of == 1), np.flatnonzero(step_of == -1)
-    return [win + i + int(np.argmax(turn[i:j])) for i, j in zip(starts, ends, strict=True)]
+    turn = _heading_turn(pts[win:-win] - pts[: -2 * win], pts[2 * win :] - pts[win:-win])
+    found = [win + i for i in _sharpest(turn, turn > CORNER_TURN)]
+    if chamfered:
+        more = _chamfered(pts, win)
+        found += [k for k in more if all(abs(k - f) > 2 * win for f in found)]
+    return sorted(found)
+
+
+LEG_STRAIGHT = 0.35  # rad: the most a leg of a chamfered corner may bend along its own length
+
+
+def _chamfered(pts, win: int) -> list[int]:
+    """Corners a median cuts across (a 横折's shoulder: the median runs along the horizontal,
+    a short diagonal, then down; 永, 口, 日, 墨's 罒): two straight legs, each two windows long
+    and bending less than ``LEG_STRAIGHT`` on its own, whose headings differ by more than
+    ``CORNER_TURN`` across a gap of one window at the corner (a gentle curve turns as much only
+    over a longer way, and its legs are not straight), turning clockwise as a 横折 does (a bend
+    the other way, down and on to the right, is a 竖弯's round turn, 转: one movement). The
+    corner is where the heading over one window either side turns most. Read over one window
+    either side such a shoulder turns less than ``CORNER_TURN``: it was written as one
+    movement, the pressed belly swept round the shoulder, a round knob. (Added in issue 26.)"""
+    n, gap = len(pts), max(win // 2, 1)
+    if n < 2 * (2 * win + gap) + 1:
+        return []
+    k = np.arange(2 * win + gap, n - 2 * win - gap)
+    in1, in2, in3 = pts[k - gap - 2 * win], pts[k - gap - win], pts[k - gap]
+    out1, out2, out3 = pts[k + gap], pts[k + gap + win], pts[k + gap + 2 * win]
+    turn = _heading_turn(in3 - in1, out3 - out1)
+    straight = (_heading_turn(in2 - in1, in3 - in2) < LEG_STRAIGHT) & (
+        _heading_turn(out2 - out1, out3 - out2) < LEG_STRAIGHT
+    )
+    sharp = (turn > CORNER_TURN) & straight
+    a, b = in3 - in1, out3 - out1
+    sharp &= a[:, 0] * b[:, 1] - a[:, 1] * b[:, 0] < 0.0  # clockwise (y up)
+    if not sharp.any():
+        return []
+    local = _heading_turn(pts[k] - pts[k - win], pts[k + win] - pts[k])
+    return [int(k[i]) for i in _sharpest(local, sharp)]
 
 
 FOOT_FAN = 1.0  # rad the foot may turn from the way in, away from the turn, towards the
@@ -301,13 +348,52 @@ def _foot(pts, k: int, polys, step: float) -> np.ndarray:
     return pts[k] + (np.arange(1, n + 1) * step)[:, None] * dirs[j]
 
 
+HOOK_COS = -0.2  # a corner whose way out turns back by more than this (cosine, about 100
+# degrees) from its way in, into a short last piece, is a hook's foot: the belly stays pressed
+HOOK_LENGTH = 3.0  # a hook is at most this many times as long as the stroke before it is wide
+# (a 竖折's leg turning back as much is a long stroke of its own)
+
+
+def _hooks_back(way_in, piece, before, step: float) -> bool:
+    """Whether the last piece of a median, after a corner (``piece``: its points), is a hook
+    (钩): its way out (a chord of ``CORNER_WINDOW``) turns back on the way in (``way_in``: the
+    median's points over the second half of the movement up to the corner; nearer the corner
+    it already bends into the hook) by more than ``HOOK_COS``, and it is at most
+    ``HOOK_LENGTH`` times as long as the piece ``before`` it (centres, widths) is wide (a 竖钩,
+    a 斜钩, a 卧钩; not a 折 into a long leg). As the planner's ``_is_hook`` reads it off the
+    plan."""
+    win = max(int(round(CORNER_WINDOW / step)), 1)
+    d = way_in[-1] - way_in[0]
+    e = piece[min(win, len(piece) - 1)] - piece[0]
+    cos = float(d @ e) / max(float(np.linalg.norm(d) * np.linalg.norm(e)), 1e-9)
+    length = float(np.linalg.norm(np.diff(piece, axis=0), axis=1).sum())
+    return cos < HOOK_COS and length <= HOOK_LENGTH * float(before[1].max())
+
+
+HOOK_FROM_FOOT = 0.5  # share of the way from the median's corner to the foot's end (where the
+# movement before pressed into) a hook sets off from: the middle of the triangle's base
+# (measured on 永 剑 虎 戈 at 4x: from the corner, a thin band along the triangle's inner edge
+# over a round bulb; from the foot's end, a band along its outer edge, the inner part bare)
+
+
+def _from_the_foot(piece, foot) -> np.ndarray:
+    """A hook's points moved to set off ``HOOK_FROM_FOOT`` of the way from the median's corner
+    to ``foot`` (where the movement before ended, pressed into the foot), the shift fading out
+    along the hook to its tip: the hook's ink is the triangle from the whole foot out to the
+    point, as a calligrapher flicks it from the pressed foot. Added in issue 26."""
+    s = np.concatenate([[0.0], np.cumsum(np.linalg.norm(np.diff(piece, axis=0), axis=1))])
+    fade = HOOK_FROM_FOOT * (1.0 - s / max(float(s[-1]), 1e-9))
+    return piece + fade[:, None] * (np.asarray(foot) - piece[0])[None, :]
+
+
 def median_pieces(char: dict, step: float = 4.0) -> list[list[tuple[np.ndarray, np.ndarray]]]:
     """For every stroke, points along the middle of its outline and the stroke's full width
     there (``_bands``, every ``step`` along the median), split into movements at the median's
     sharp corners (``corners``): each movement that ends at a corner goes on into the foot
-    (``_foot``), the next starts on the corner. A calligrapher writes a hook or a 折 so: presses
-    into the corner, turns the tip and sets off anew; dragging the pressed hair round the
-    corner sweeps a round blot."""
+    (``_foot``), the next starts on the corner, but a hook (``_hooks_back``) from the foot
+    (``_from_the_foot``). A calligrapher writes a hook or a 折 so: presses into the corner,
+    turns the tip and sets off anew; dragging the pressed hair round the corner sweeps a round
+    blot."""
     out = []
     for med, polys in zip(char["medians"], stroke_polygons(char), strict=True):
         pts, _ = resample(_to_the_tips(med, polys), step)
@@ -317,9 +403,14 @@ def median_pieces(char: dict, step: float = 4.0) -> list[list[tuple[np.ndarray, 
             p = pts[i0 : i1 + 1]
             if k < len(edges) - 2:
                 p = np.concatenate([p, _foot(pts, i1, polys, step)])
+            if 0 < k == len(edges) - 2 and _hooks_back(
+                pts[(edges[k - 1] + i0) // 2 : i0 + 1], p, pieces[-1], step
+            ):  # a hook sets off from the foot the movement before pressed into
+                p = _from_the_foot(p, pieces[-1][0][-1])
             centre, width = _bands(p, polys)
-            if k:  # the corner is inked by the foot: the movement's own width from where it
-                # leaves the corner's disc on
+            if k:  # the corner is inked by the foot: the movement's own width
+                # from where it leaves the corner's disc on (a hook's too: pressed wider, the
+                # belly spilled over the hook's inner edge)
                 off = min(int(np.ceil(0.5 * width[0] / step)), len(width) - 1)
                 width[:off] = np.minimum(width[:off], width[off])
             pieces.append((centre, width))

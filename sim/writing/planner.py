@@ -12,7 +12,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from ..core.recording import quantise
-from .outline import EM, TOP, median_pieces
+from .outline import EM, HOOK_COS, HOOK_LENGTH, TOP, median_pieces
 
 if TYPE_CHECKING:  # the response is handed in (its module builds on this one)
     from .response import Response
@@ -20,9 +20,11 @@ if TYPE_CHECKING:  # the response is handed in (its module builds on this one)
 
 ENTRY_SAMPLES = 8
 EXIT_SAMPLES = 8
+CORNER_SAMPLES = 4  # samples of the lift into a sharp corner and of the entry after it: the
+# brush stays down there (issue 26's 折 and hooks; 8 before, and a shoulder read as a corner
+# since then costs a movement more: with 4 the writing does about the same work as before)
 # what the brush does at a sample of a plan (Plan.phase)
 IN_THE_AIR, ENTERING, WRITING, LIFTING, TURNING = 0, 1, 2, 3, 4
-TURN_TOUCH = 0.05  # share of the hair length the tip stays pressed with through a sharp turn
 
 
 def _smooth(v, k: int) -> np.ndarray:
@@ -125,14 +127,13 @@ def plan(
         for j, (p, w, t) in enumerate(moves):
             if j:  # a sharp turn: ease to the tip, turn on it, press again on the corner
                 _air(tg, wd, tn, ph, moves[j - 1][0][-1], p[0], t[0], step_mm, TURNING)
-            tg += [np.tile(p[0], (ENTRY_SAMPLES, 1)), p, np.tile(p[-1], (EXIT_SAMPLES, 1))]
-            wd += [np.full(ENTRY_SAMPLES, w[0]), w, np.full(EXIT_SAMPLES, w[-1])]
-            tn += [np.tile(t[0], (ENTRY_SAMPLES, 1)), t, np.tile(t[-1], (EXIT_SAMPLES, 1))]
-            ph += [
-                np.full(ENTRY_SAMPLES, ENTERING),
-                np.full(len(p), WRITING),
-                np.full(EXIT_SAMPLES, LIFTING),
-            ]
+            # at a sharp corner the brush is already down: a shorter lift and entry
+            m0 = CORNER_SAMPLES if j else ENTRY_SAMPLES
+            m1 = CORNER_SAMPLES if j < len(moves) - 1 else EXIT_SAMPLES
+            tg += [np.tile(p[0], (m0, 1)), p, np.tile(p[-1], (m1, 1))]
+            wd += [np.full(m0, w[0]), w, np.full(m1, w[-1])]
+            tn += [np.tile(t[0], (m0, 1)), t, np.tile(t[-1], (m1, 1))]
+            ph += [np.full(m0, ENTERING), np.full(len(p), WRITING), np.full(m1, LIFTING)]
         strokes.append((n, sum(len(a) for a in tg)))
         prev = moves[-1][0][-1]
     return Plan(
@@ -166,12 +167,13 @@ def _lead_along(path, lag, stop: bool = False):
     return out
 
 
-ENTRY_TOUCH = 0.15  # share of the press the tip lands with; the belly presses as it goes
-HOOK_COS = -0.2  # a corner whose way out turns back by more than this (cosine, about 100
-# degrees) from its way in, into a short hook, is a hook's foot: the belly stays pressed there
-HOOK_LENGTH = 3.0  # a hook is at most this many times as long as the stroke is wide (a
-# 竖折's leg turning back as much is a long stroke of its own)
+ENTRY_TOUCH = 0.4  # share of the press the belly lands with at a stroke's start; it presses on
+# as it goes (起笔 pressed, 顿: landed on the needle tip, 0.15 before issue 26's gestures, the
+# head curled into a beak or splayed into a comb as the belly pressed; held-out IoU the same)
 HOOK_KEEP = 0.7  # share of its press the belly keeps through a hook's turn
+ZHE_KEEP = 0.5  # share of its press the belly keeps through a 折's turn: the brush lifts only
+# slightly at the shoulder and presses again (eased to the tip, 0.05 of the hair, before issue
+# 26, the leg began thin: the shoulder's outer corner bare, a round knob inside it)
 TURN_EASE = 0.8  # press taken off at a reversal (a hook), less at a milder turn
 
 
@@ -240,9 +242,10 @@ def _turn_ease(path, s) -> np.ndarray:
     return 1.0 - TURN_EASE * np.clip((turn - 0.9) / 1.4, 0.0, 1.0)
 
 
-RUN_UP = 1.0  # the entry's run-up along the stroke (half steps a sample): the tip lands moving
-# on; 0 lands it on the start (where a picture's ink begins: the run-up's tip lays a hairline
-# before it)
+RUN_UP = 0.0  # the entry's run-up along the stroke (half steps a sample): 1 lands the tip moving
+# on; 0 sets the brush down on the start (where the outline's head is: before issue 26's
+# gestures the writer ran up from 1, and the tip's hairline laid before the start, along a
+# head that bends into the stroke, curled out of the outline as a beak)
 
 
 def _enter_and_leave(
@@ -253,13 +256,13 @@ def _enter_and_leave(
     the body begins, and lifts off moving on along the last direction (a flick, so that hooks
     and left-falling strokes end in a point, not a blot from a lift on the spot). ``corner``:
     the base's height at the sharp corner the movement begins after / ends at
-    (``median_pieces``; None: none). At a 折 the brush eases only to its tip (``TURN_TOUCH``),
-    on the corner itself (a flick there overshoots the corner), and presses again from the tip:
+    (``median_pieces``; None: none). At a 折 the brush lifts only slightly (``ZHE_KEEP``), on
+    the corner itself (a flick there overshoots the corner), and presses again (``ENTRY_TOUCH``):
     lifted off the paper and set down again, the pressed belly landed on the corner as a round
-    blot. At a hook's foot (``_is_hook``) the belly stays pressed through the turn and
+    blot; eased to the tip, the leg began thin and the shoulder's outer corner stayed bare. At
+    a hook's foot (``_is_hook``) the belly stays pressed through the turn and
     the hook sets off pressed, lifting as it goes: eased to the tip there, the hook began thin
     and swelled, a blunt tail apart from the foot."""
-    turn_z = hair * (1.0 - TURN_TOUCH)
     a = body[0] - 1
     while a >= 0 and pl.phase[a] == ENTERING:
         a -= 1
@@ -271,7 +274,7 @@ def _enter_and_leave(
         back = back * 0.0
     samples[entry, :2] = samples[body[0], :2] - back[:, None] * t0
     z_touch = max(samples[body[0], 2], hair - 0.2)  # the tip reaches the paper at the start
-    if corner[0] is not None and corner[0] < turn_z:  # a hook's foot: the belly is pressed
+    if corner[0] is not None and corner[0] < hair:  # after a corner the belly is still pressed
         z_touch = samples[body[0], 2]
     top = hover if corner[0] is None else corner[0]
     samples[entry, 2] = top + (z_touch - top) * f
@@ -320,7 +323,8 @@ def _point_reach(path, width) -> float:
 def _is_hook(pl: Plan, runs) -> list[bool]:
     """For each movement of a stroke, whether it leaves a hook's foot: the way out of the
     corner before it turns back on the way in by more than ``HOOK_COS`` and is short (at most
-    ``HOOK_LENGTH`` stroke widths: a 竖钩, a 斜钩, a 卧钩), not a 折's turn into a long leg."""
+    ``HOOK_LENGTH`` stroke widths: a 竖钩, a 斜钩, a 卧钩), not a 折's turn into a long leg; and
+    it is the stroke's last movement (``outline._hooks_back`` reads the same off the median)."""
 
     def way(a, b):  # the chord from sample a to sample b, as a unit vector
         d = pl.target[b] - pl.target[a]
@@ -335,7 +339,11 @@ def _is_hook(pl: Plan, runs) -> list[bool]:
         out = float(np.linalg.norm(np.diff(pl.target[q], axis=0), axis=1).sum())
         return turned and out <= HOOK_LENGTH * float(pl.width[p].max())
 
-    return [False] + [back(p, q) for p, q in zip(runs, runs[1:], strict=False)]
+    # a hook ends the stroke (a 折 turning back as far, as 也's, goes on into a leg)
+    last = len(runs) - 1
+    return [False] + [
+        back(p, q) and r == last for r, (p, q) in enumerate(zip(runs, runs[1:], strict=False), 1)
+    ]
 
 
 def _movements(items, body=None) -> list[np.ndarray]:
@@ -348,8 +356,8 @@ def _movements(items, body=None) -> list[np.ndarray]:
 def _turn_on_the_tip(samples, pl: Plan, span, heights) -> None:
     """The TURNING samples of samples a..b (``span``): the base goes straight from where the
     lift into the corner ended to where the next entry begins, at the corner's height
-    (``heights``, one per corner in order): the tip on the paper (``TURN_TOUCH``) at a 折,
-    the belly pressed at a hook's foot."""
+    (``heights``, one per corner in order): the belly lifted slightly at a 折 (``ZHE_KEEP``),
+    pressed at a hook's foot (``HOOK_KEEP``)."""
     a, b = span
     turning = np.flatnonzero(pl.phase[a:b] == TURNING) + a
     for run, z in zip([r for r in _movements(turning) if r.size], heights, strict=False):
@@ -404,8 +412,8 @@ def _fill(
         samples[run, :2] += side[j0:j1, None] * normal[run]
         samples[run, 2] = hair - p
         nxt = None
-        if r < len(runs) - 1:  # into a corner: to the tip, or a hook's foot kept pressed
-            nxt = hair - HOOK_KEEP * p[-1] if hook[r + 1] else hair * (1.0 - TURN_TOUCH)
+        if r < len(runs) - 1:  # into a corner: a 折 lifts slightly, a hook's foot stays pressed
+            nxt = hair - (HOOK_KEEP if hook[r + 1] else ZHE_KEEP) * p[-1]
         _enter_and_leave(samples, pl, run, hover, hair, step_mm, (at, nxt), run_up)
         if nxt is not None:
             heights.append(nxt)

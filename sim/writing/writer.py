@@ -110,7 +110,7 @@ def write_character(
     outline's width, corrects the press (through the response's slope) and the sideways
     placement, takes the stroke back (a snapshot) and writes it again; the best pass stays.
     With ``exact_ends`` (imitating a picture, whose ink shows where each stroke begins and
-    ends) the brush lands on each stroke's start instead of running on to it (``RUN_UP``), and
+    ends) the brush lands on each stroke's start (as the writer's ``RUN_UP`` 0 does too), and
     the practice also reads how far the ink of each end reaches against the outline and carries
     the end on or draws it back (``practice._reach_moves``).
 
