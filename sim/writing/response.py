@@ -235,7 +235,8 @@ def _calibrate(template: Recording, speed_mm_s: float, presses: int, ppm: float)
     widths = []
     for (_, y), _ in lines:
         r0, r1 = int((y - gap / 2) * ppm), int((y + gap / 2) * ppm)
-        widths.append(float(dark[r0:r1, x0:x1].sum(axis=0).mean()) / ppm)
+        band = close_streaks(dark[r0:r1, x0:x1].T, ppm)  # a dry brush's streaks in the band
+        widths.append(float(band.sum(axis=1).mean()) / ppm)
     lag = np.array([np.median(v) if v else np.nan for v in lags])
     ok = np.isfinite(lag)
     fit = np.polyfit(depths[ok], lag[ok], 1) if ok.sum() >= 2 else np.zeros(2)
