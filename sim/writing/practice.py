@@ -13,7 +13,7 @@ import numpy as np
 
 from ..engine.simulation import Simulation
 from .planner import LIFTING, WRITING, Plan, _movements, _smooth, entry_zone, point_zone
-from .response import Response, _coverage, close_streaks
+from .response import Response, _coverage
 
 
 class Pass(NamedTuple):
@@ -50,7 +50,6 @@ def measure_band(ppm: float, cov, old=None):
     there: ink that was on the paper before the brush came to the point (``old``, at the same
     pixels) makes up less than a third of the band."""
     old = np.zeros_like(cov) if old is None else old
-    cov = close_streaks(cov, ppm)  # a streak of flying white does not halve the band
     k = cov.shape[1] // 2
     width = np.zeros(len(cov))
     centre = np.zeros(len(cov))

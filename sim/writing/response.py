@@ -235,8 +235,7 @@ def _calibrate(template: Recording, speed_mm_s: float, presses: int, ppm: float)
     widths = []
     for (_, y), _ in lines:
         r0, r1 = int((y - gap / 2) * ppm), int((y + gap / 2) * ppm)
-        band = close_streaks(dark[r0:r1, x0:x1].T, ppm)  # a dry brush's streaks in the band
-        widths.append(float(band.sum(axis=1).mean()) / ppm)
+        widths.append(float(dark[r0:r1, x0:x1].sum(axis=0).mean()) / ppm)
     lag = np.array([np.median(v) if v else np.nan for v in lags])
     ok = np.isfinite(lag)
     fit = np.polyfit(depths[ok], lag[ok], 1) if ok.sum() >= 2 else np.zeros(2)
@@ -252,24 +251,6 @@ def _monotone(v) -> np.ndarray:
             (m1, n1), (m2, n2) = blocks.pop(-2), blocks.pop(-1)
             blocks.append([(m1 * n1 + m2 * n2) / (n1 + n2), n1 + n2])
     return np.concatenate([np.full(n, m) for m, n in blocks])
-
-
-STREAK_MM = 0.6  # gaps across a band narrower than this are flying white inside it, not paper
-
-
-def close_streaks(cov, ppm: float) -> np.ndarray:
-    """``cov`` (n, m: rows of pixels read across a band) with the gaps between inked pixels
-    narrower than STREAK_MM filled: a dry brush's band, its hair parted into streaks of flying
-    white along the stroke, read as the band it is, as wide as the hair laid it."""
-    cov = np.asarray(cov, dtype=bool)
-    gap = int(STREAK_MM * ppm)
-    if gap < 1 or cov.shape[1] < 3:
-        return cov
-    m = cov.shape[1]
-    idx = np.arange(m)
-    before = np.maximum.accumulate(np.where(cov, idx, -1), axis=1)  # last ink at or before
-    after = np.minimum.accumulate(np.where(cov, idx, m)[:, ::-1], axis=1)[:, ::-1]  # first after
-    return cov | ((before >= 0) & (after < m) & (after - before - 1 <= gap))
 
 
 def _coverage(sim: Simulation, rows=slice(None), cols=slice(None)) -> np.ndarray:

@@ -132,24 +132,3 @@ def test_practice_ends_when_a_pass_gains_little(response, monkeypatch):
     passes.clear()
     _write(ch, response, 4, exact_ends=True)  # imitating a picture: every pass written
     assert len(passes) == 4 * 2
-
-
-def test_a_band_read_across_streaks_of_flying_white_is_as_wide_as_the_hair_laid_it():
-    from sim.writing.practice import measure_band
-    from sim.writing.response import STREAK_MM, close_streaks
-
-    ppm = 10.0
-    solid = np.zeros((1, 41), dtype=bool)
-    solid[0, 10:31] = True  # a band 2.1 mm wide, the point in its middle
-    streaky = solid.copy()
-    streaky[0, [14, 15, 22, 26, 27]] = False  # white streaks along the stroke, under 0.6 mm
-    apart = solid.copy()
-    apart[0, 18 : 18 + int(STREAK_MM * ppm) + 2] = False  # paper between two strokes
-    assert np.array_equal(close_streaks(streaky, ppm), solid)
-    assert not np.array_equal(close_streaks(apart, ppm), solid)  # a wider gap is paper
-    w_solid = measure_band(ppm, solid)[0][0]
-    assert measure_band(ppm, streaky)[0][0] == pytest.approx(w_solid)
-    assert measure_band(ppm, apart)[0][0] < 0.6 * w_solid
-    edge = np.zeros((1, 41), dtype=bool)
-    edge[0, :3] = True  # ink only at the reading's end: nothing to close beyond it
-    assert np.array_equal(close_streaks(edge, ppm), edge)
