@@ -167,9 +167,7 @@ def _lead_along(path, lag, stop: bool = False):
     return out
 
 
-ENTRY_TOUCH = 0.4  # share of the press the belly lands with at a stroke's start; it presses on
-# as it goes (起笔 pressed, 顿: landed on the needle tip, 0.15 before issue 26's gestures, the
-# head curled into a beak or splayed into a comb as the belly pressed; held-out IoU the same)
+ENTRY_TOUCH = 0.15  # share of the press the tip lands with; the belly presses as it goes
 HOOK_KEEP = 0.7  # share of its press the belly keeps through a hook's turn
 ZHE_KEEP = 0.5  # share of its press the belly keeps through a 折's turn: the brush lifts only
 # slightly at the shoulder and presses again (eased to the tip, 0.05 of the hair, before issue
@@ -242,10 +240,9 @@ def _turn_ease(path, s) -> np.ndarray:
     return 1.0 - TURN_EASE * np.clip((turn - 0.9) / 1.4, 0.0, 1.0)
 
 
-RUN_UP = 0.0  # the entry's run-up along the stroke (half steps a sample): 1 lands the tip moving
-# on; 0 sets the brush down on the start (where the outline's head is: before issue 26's
-# gestures the writer ran up from 1, and the tip's hairline laid before the start, along a
-# head that bends into the stroke, curled out of the outline as a beak)
+RUN_UP = 1.0  # the entry's run-up along the stroke (half steps a sample): the tip lands moving
+# on; 0 lands it on the start (where a picture's ink begins: the run-up's tip lays a hairline
+# before it)
 
 
 def _enter_and_leave(
