@@ -168,6 +168,7 @@ def _lead_along(path, lag, stop: bool = False):
 
 
 ENTRY_TOUCH = 0.15  # share of the press the tip lands with; the belly presses as it goes
+ZHE_TOUCH = 0.4  # ... and the leg after a 折 sets off with, the belly still down from the corner
 HOOK_KEEP = 0.7  # share of its press the belly keeps through a hook's turn
 ZHE_KEEP = 0.5  # share of its press the belly keeps through a 折's turn: the brush lifts only
 # slightly at the shoulder and presses again (eased to the tip, 0.05 of the hair, before issue
@@ -400,7 +401,7 @@ def _fill(
     at, heights = None, []  # the base's height at the corner the movement begins after
     for r, run in enumerate(runs):
         j1 = j0 + len(run)
-        touch = 1.0 if hook[r] else ENTRY_TOUCH  # a hook sets off pressed
+        touch = 1.0 if hook[r] else ZHE_TOUCH if r else ENTRY_TOUCH  # a hook sets off pressed
         p = press[j0:j1] * _entry_ramp(pl.target[run], pl.width[run], touch)
         path = pl.target[run]
         if ends is not None:

@@ -181,11 +181,11 @@ def test_a_zhe_lifts_slightly_and_presses_again(response):
     # between the two movements of the L (a 折) the brush lifts only slightly and presses
     # again: every sample from the end of the first movement to the start of the second
     # touches the paper, the belly keeping ZHE_KEEP of the press it went into the corner with,
-    # and the leg sets off with ENTRY_TOUCH of its planned press (before issue 26 the brush rose
+    # and the leg sets off with ZHE_TOUCH of its planned press (before issue 26 the brush rose
     # to hover and landed the pressed belly on the corner again: a round blot; then it eased
     # to the tip, 0.05 of the hair, and the leg began thin: the shoulder's outer corner bare)
     from sim.core.params import HOVER_MM
-    from sim.writing.planner import ENTRY_TOUCH, TURNING, ZHE_KEEP, _fill
+    from sim.writing.planner import TURNING, ZHE_KEEP, ZHE_TOUCH, _fill
 
     pl = plan(L_CHAR, 100.0, 0.5)
     a, b = pl.strokes[0]
@@ -205,7 +205,7 @@ def test_a_zhe_lifts_slightly_and_presses_again(response):
     assert np.all(z < hair - 0.4 * into)  # pressed all through the turn
     assert np.allclose(turning, hair - ZHE_KEEP * into, atol=1e-3)
     leg = hair - samples[body[first + 1], 2]
-    assert leg == pytest.approx(ENTRY_TOUCH * press[first + 1], abs=0.05)
+    assert leg == pytest.approx(ZHE_TOUCH * press[first + 1], abs=0.05)
     # the strokes themselves are written pressed, and the brush hovers before and after
     assert samples[body, 2].min() < hair - 2.0
     assert samples[a, 2] > hair and samples[b - 1, 2] > hair
