@@ -4,7 +4,9 @@
 Snapshots are taken every ``every`` samples as the simulation passes them. Each stores the
 brush, the random generator, the inertia predictor and only the paper tiles that changed since
 the previous snapshot (the ink touches a small part of the paper), so many fit the memory
-budget. A tile's content at snapshot k is its newest stored copy at or before k (or the blank
+budget. Once they fill it, every other one is dropped and snapshots are taken half as often
+from then on (``_thin``): a long recording keeps snapshots over its whole length in bounded
+memory, twice as far apart each time the budget fills. A tile's content at snapshot k is its newest stored copy at or before k (or the blank
 paper's). A seek restores the nearest snapshot at or before the target - backwards or forwards -
 rewriting only the tiles that can differ, then steps on in batches, as ``Simulation.run`` does.
 Frame N is therefore exactly the image of simulating straight to N.
@@ -19,7 +21,7 @@ import numpy as np
 
 from .simulation import Simulation
 
-DEFAULT_BUDGET_BYTES = 768 * 2**20
+DEFAULT_BUDGET_BYTES = 256 * 2**20  # snapshots thin to stay under it (Timeline._thin)
 
 
 @dataclass
@@ -44,6 +46,7 @@ class Timeline:
         self.sim = sim
         self.every = max(1, int(every))
         self.budget = int(budget_bytes)
+        self.stride = 1  # snapshots are taken every ``every * stride`` samples (``_thin``)
         self.nbytes = 0
         self.snaps: dict[int, Snapshot] = {}
         self._history: dict[tuple[int, int], tuple[list, list]] = {}  # tile -> (indices, copies)
@@ -133,8 +136,46 @@ class Timeline:
         i = self.sim.index
         if i in self.snaps:
             self._base, self._base_version = i, self.sim.paper.version
-        elif self.nbytes < self.budget:
+        elif i % (self.every * self.stride) == 0 and self.nbytes < self.budget:
             self._take()
+            if self.nbytes >= self.budget:
+                self._thin()  # once: if still full, the tiles alone fill it and snapshots stop
+
+    def _thin(self) -> bool:
+        """Over the budget: keep the snapshots on a grid twice as coarse (and the start, the
+        newest and the one the simulation is at), drop the others, and take snapshots half as
+        often from then on. A dropped snapshot's tiles pass to the next snapshot kept: a tile
+        that changed again before it is forgotten (its newer copy is there), one that did not
+        is now that snapshot's (the same content, unchanged since). Seeks stay exact: every
+        snapshot kept is whole. Once a take (see _at_boundary): when the budget is still full
+        after it, the tiles the ink touched fill it by themselves and snapshots stop there, as
+        they did before thinning. Returns whether anything was dropped."""
+        grid = 2 * self.every * self.stride
+        keys = sorted(self.snaps)
+        keep = {keys[0], keys[-1], self._base}
+        drop = [k for k in keys if k % grid != 0 and k not in keep]
+        if not drop:
+            return False
+        for k in drop:
+            nxt = min(j for j in self.snaps if j > k)
+            self._merge_into(self.snaps.pop(k), self.snaps[nxt])
+        self.stride *= 2
+        return True
+
+    def _merge_into(self, snap: Snapshot, nxt: Snapshot):
+        """Drop ``snap``, its tiles passed to ``nxt``, the snapshot after it (see _thin)."""
+        self.nbytes -= snap.nbytes
+        for tile in snap.tiles:
+            idx, copies = self._history[tile]
+            at = idx.index(snap.index)
+            size = sum(a.nbytes for a in copies[at])
+            if tile in nxt.tiles:  # changed again before nxt: its copy at nxt is the one kept
+                del idx[at], copies[at]
+            else:  # unchanged since: the same content is nxt's (no copy lies between them)
+                idx[at] = nxt.index
+                nxt.tiles.add(tile)
+                nxt.nbytes += size
+                self.nbytes += size
 
     def forget_after(self, index: int):
         """Drop the snapshots after ``index`` (the samples there changed)."""

@@ -170,15 +170,30 @@ def test_a_backward_seek_rewrites_only_tiles_that_changed_since():
 
 
 @pytest.mark.slow
-def test_snapshots_stop_at_the_budget_and_seeks_stay_exact():
+def test_snapshots_thin_at_the_budget_and_seeks_stay_exact():
     rec = long_recording()
     n = len(rec.samples)
-    tl = Timeline(Simulation(rec), every=4, budget_bytes=400_000)
+    budget = 6_000_000  # well under the 14.6 MB of a snapshot every 4 samples
+    tl = Timeline(Simulation(rec), every=4, budget_bytes=budget)
     tl.seek(n)
-    assert tl.nbytes < 400_000 + 200_000  # the last one may pass it
-    sim = tl.seek(n // 2 + 3)
-    want = Simulation(rec).run(n // 2 + 3)
-    np.testing.assert_array_equal(sim.paper.ink, want.paper.ink)
+    assert tl.stride > 1  # the budget filled: every other snapshot dropped, then half as often
+    assert tl.nbytes < budget + 1_000_000  # the last one may pass it
+    assert max(tl.snaps) > n - tl.every * tl.stride  # snapshots over the whole recording
+    held = sum(sum(a.nbytes for a in c) for _i, cs in tl._history.values() for c in cs)
+    assert held <= tl.nbytes  # the tiles' copies counted, the dropped ones freed
+    for target in (n - 3, n // 2 + 3, 5, n - 40):
+        sim = tl.seek(target)
+        want = Simulation(rec).run(target)
+        for a in ("ink", "wet", "last"):
+            np.testing.assert_array_equal(getattr(sim.paper, a), getattr(want.paper, a))
+        assert sim.rng.bit_generator.state == want.rng.bit_generator.state
+    # a seek near the end steps on from the snapshot before it, not from the start
+    tl.seek(5)
+    steps = []
+    real_run = tl.sim.run
+    tl.sim.run = lambda until=None, progress=None: steps.append(until) or real_run(until)
+    tl.seek(n - 1)
+    assert len(steps) <= tl.stride + 1, steps
 
 
 @pytest.mark.slow
