@@ -7,8 +7,9 @@ the previous snapshot (the ink touches a small part of the paper), so many fit t
 budget. Once they fill it, every other one is dropped and snapshots are taken half as often
 from then on (``_thin``): a long recording keeps snapshots over its whole length in bounded
 memory, twice as far apart each time the budget fills. A tile's content at snapshot k is its
-newest stored copy at or before k (or the blank paper's). A seek restores the nearest snapshot at or before the target - backwards or forwards -
-rewriting only the tiles that can differ, then steps on in batches, as ``Simulation.run`` does.
+newest stored copy at or before k (or the blank paper's). A seek restores the nearest snapshot
+at or before the target - backwards or forwards - rewriting only the tiles that can differ,
+then steps on in batches, as ``Simulation.run`` does.
 Frame N is therefore exactly the image of simulating straight to N.
 """
 
