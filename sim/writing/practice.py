@@ -221,6 +221,7 @@ class _Ends(NamedTuple):
     along: np.ndarray
     want: np.ndarray
     limit: np.ndarray
+    outline: np.ndarray  # (ends, rays, steps): the character's outlines there (``whole``)
 
 
 def _extent(ink: np.ndarray, along: np.ndarray) -> np.ndarray:
@@ -270,9 +271,10 @@ def _end_probes(sim, pl: Plan, body, own: _Window, whole: np.ndarray) -> _Ends:
     inside |= _coverage(sim, rows, cols)  # ink already there: an end running into a stroke
     want = _extent(inside, along)
     look = along.max(axis=(1, 2))
-    touches = _extent(whole[rows, cols], along) >= look - 1e-9
+    outline = whole[rows, cols]
+    touches = _extent(outline, along) >= look - 1e-9
     want = np.where(touches & np.isfinite(want), look, want)
-    return _Ends(np.array(which), rows, cols, along, want, np.array(limit))
+    return _Ends(np.array(which), rows, cols, along, want, np.array(limit), outline)
 
 
 def _reach_error(sim, ends: _Ends, before) -> np.ndarray:
@@ -288,6 +290,28 @@ def _reach_error(sim, ends: _Ends, before) -> np.ndarray:
     use = own & ~runs_on
     err[use] = ends.want[use] - got[use]
     return err
+
+
+def _join_error(sim, ends: _Ends, before) -> np.ndarray:
+    """How far (mm, per end) the stroke's ink falls short of joining a stroke already written
+    that its outline runs into (model addition, issue 26: strokes that touch in the outline
+    touch in the ink); 0 where it joins, where no such stroke is, or at a join with a stroke
+    written later (that stroke's to make). Along each ray of an end's fan whose foot is not
+    in that stroke's ink: the outline unbroken from the foot (``_Ends.outline``) reaching ink
+    that was there ``before`` the stroke is a join, ``first`` that far out; the stroke's own
+    new ink nearest it on the ray (the foot where there is none) falls short of it by the
+    distance between them, the gap, least over the rays: a pixel's worth where they only
+    touch (a join one pixel wide that drying and wicking can open again), so the end is
+    carried on into the stroke it joins. Only the
+    joins are practised so outside ``exact_ends``: every other end is written as planned."""
+    fresh = ~before[..., :1]
+    run = np.cumprod(ends.outline, axis=-1).astype(bool) & fresh
+    first = np.where(run & before & (ends.along > 0.0), ends.along, np.inf).min(axis=-1)
+    new = _coverage(sim, ends.rows, ends.cols) & ~before & (ends.along < first[..., None])
+    near = np.where(new, ends.along, ends.along[..., :1]).max(axis=-1)  # (ends, rays)
+    gap = np.where(np.isfinite(first), first - near, np.inf)  # touching pixels: one short
+    gap = gap.min(axis=-1)
+    return np.where(np.isfinite(gap), np.maximum(gap, 0.0), 0.0)
 
 
 def _reach_moves(ends: _Ends, err, moves) -> np.ndarray:
@@ -336,7 +360,7 @@ def _rewind(sim, holds: dict, first: int) -> int:
     return start
 
 
-def _practise_stroke(sim, a, b, passes, fill, own, ctx, whole=None) -> None:
+def _practise_stroke(sim, a, b, passes, fill, own, ctx, whole=None, exact=True) -> None:
     """Write samples a..b (one stroke) with ``fill(a, b, press, side)``; with passes > 1,
     practise it: write, read the band, correct, take it back and write it again; the pass that
     best fills the stroke's own outline ``own`` stays: the simulation goes back to where that
@@ -346,12 +370,14 @@ def _practise_stroke(sim, a, b, passes, fill, own, ctx, whole=None) -> None:
     same bit for bit. Practice ends after ``passes`` passes, or sooner when a pass from
     ``SMALL_GAIN_FROM`` on brings the stroke less than ``SMALL_GAIN`` nearer its outline than
     the best before it: the student stops once practice no longer pays (an approximation: the
-    passes left might still have found a better one; not with ``whole``). With ``whole`` (the
-    whole character's outlines on the paper: ``exact_ends``) each pass also reads how far the
-    ink of the stroke's free ends reaches against the outline (``_reach_error``), the next pass
-    carries them on or draws them back (``_reach_moves``), and the pass that stays is the one
-    whose IoU less its ends' error over the stroke's length is best: a stroke 5 % too long is
-    as wrong as one 5 % short of its area."""
+    passes left might still have found a better one; not with ``exact``). With ``whole`` (the
+    whole character's outlines on the paper) each pass also reads how far the ink of the
+    stroke's free ends reaches against the outline (``_reach_error``), the next pass carries
+    them on or draws them back (``_reach_moves``), and the pass that stays is the one whose IoU
+    less its ends' error over the stroke's length is best: a stroke 5 % too long is as wrong as
+    one 5 % short of its area. Without ``exact`` (``exact_ends``: imitating a picture) only the
+    joins are practised so: an end whose outline runs on into a stroke already written and
+    whose ink falls short of it is carried on (``_join_error``), the rest left as planned."""
     pl, response, step_mm, reach = ctx
     body = np.flatnonzero(pl.phase[a:b] == WRITING) + a
     want = pl.width[body]
@@ -384,7 +410,10 @@ def _practise_stroke(sim, a, b, passes, fill, own, ctx, whole=None) -> None:
         inter = np.count_nonzero(new & own.inside)
         err = -inter / max(np.count_nonzero(new | own.inside), 1)
         if whole is not None:  # and the stroke as long as its outline: the ends' reach error
-            reach_err = _reach_error(sim, ends, ends_before)  # against the stroke's length
+            if exact:  # against the stroke's length
+                reach_err = _reach_error(sim, ends, ends_before)
+            else:
+                reach_err = _join_error(sim, ends, ends_before)
             err += float(np.abs(reach_err).sum()) / length
         gain = np.inf if best is None else best.error - err  # how much nearer than the best
         if best is None or err < best.error:
@@ -393,7 +422,7 @@ def _practise_stroke(sim, a, b, passes, fill, own, ctx, whole=None) -> None:
             best = best._replace(number=k)  # the same pass: the simulation is where it left off
         if k == passes - 1:
             break
-        if whole is None and k >= SMALL_GAIN_FROM and gain < SMALL_GAIN:  # no longer pays
+        if not exact and k >= SMALL_GAIN_FROM and gain < SMALL_GAIN:  # no longer pays
             break
         if whole is not None:
             moves = _reach_moves(ends, reach_err, moves)

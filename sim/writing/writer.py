@@ -142,8 +142,8 @@ def write_character(
     sim = Simulation(rec)
     reach = max(float(pl.width.max()), 1.0)
     masks = _stroke_masks(char, sim.paper.H, sim.paper.W) if passes > 1 else None
-    whole = None  # the whole character on the paper, for practising the ends' reach
-    if exact_ends and masks is not None:
+    whole = None  # the whole character on the paper, for practising the ends' reach and joins
+    if masks is not None:
         whole = np.zeros((sim.paper.H, sim.paper.W), dtype=bool)
         for m in masks:
             whole[m.rows, m.cols] |= m.inside
@@ -162,7 +162,7 @@ def write_character(
             sim.dips = rec.dips
         own = masks[n_stroke] if passes > 1 else None
         ctx = (pl, response, step_mm, reach)
-        _practise_stroke(sim, a, b, passes, fill, own, ctx, whole)
+        _practise_stroke(sim, a, b, passes, fill, own, ctx, whole, exact_ends)
         if progress is not None:
             progress(b / N)
     sim.run()

@@ -1,0 +1,37 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
+"""Strokes that touch in the outline touch in the ink (issue 26, point 2): practice carries a
+stroke's free end on until its ink joins a stroke already written that its outline runs into
+(``practice._join_error``). No Blender."""
+
+import numpy as np
+import pytest
+from scipy import ndimage
+
+from sim.core.recording import Recording
+from sim.writing.hanzi import find_char
+from sim.writing.response import calibrate
+from sim.writing.writer import coverage_mask, font_mask, write_character
+
+N = 256
+
+
+@pytest.fixture(scope="module")
+def template():
+    return Recording(np.zeros((1, 6)), brush={"preset": "wolf_kaishu"}, paper_preset="sized_xuan")
+
+
+def pieces(mask: np.ndarray) -> int:
+    """Connected pieces of a mask (8-neighbours), specks under 0.05 % of the sheet left out."""
+    lab, k = ndimage.label(mask, structure=np.ones((3, 3)))
+    sizes = ndimage.sum(mask, lab, range(1, k + 1))
+    return int(np.count_nonzero(np.asarray(sizes) > 0.0005 * mask.size))
+
+
+@pytest.mark.parametrize("char", ["人", "日"])
+def test_strokes_that_touch_in_the_outline_touch_in_the_ink(template, char):
+    # 人's 捺 sets off from the 撇's side; 日's 横折 from the top of its left vertical: one piece
+    # in the font, and in the ink (before the joins were practised, two at 512 px)
+    ch = find_char(char)
+    _rec, _resp, sim = write_character(ch, N, template, response=calibrate(template))
+    assert pieces(font_mask(ch, N)) == 1
+    assert pieces(coverage_mask(sim)) == 1
