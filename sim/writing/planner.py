@@ -370,14 +370,17 @@ END_SPAN = 2.0  # stroke widths along a movement over which a moved end's shift 
 
 def _ends_moved(path, tangent, width, moves) -> np.ndarray:
     """A movement's path with its start and end carried on (> 0) or drawn back (< 0) along the
-    way out of each end by ``moves`` (mm, start and end), the shift fading out over
-    ``END_SPAN`` widths inside the end, so the body of the stroke stays where it is."""
+    way out of each end by ``moves`` (mm, start and end; or (2, 2): each end shifted so far on
+    the paper, x and y), the shift fading out over ``END_SPAN`` widths inside the end, so the
+    body of the stroke stays where it is."""
     if len(path) < 2 or not np.any(moves):
         return path
     s = _along(path)
     span = max(END_SPAN * float(np.max(width)), 1e-6)
     w0 = np.clip(1.0 - s / span, 0.0, 1.0)[:, None]
     w1 = np.clip(1.0 - (s[-1] - s) / span, 0.0, 1.0)[:, None]
+    if np.ndim(moves) == 2:
+        return path + w0 * moves[0] + w1 * moves[1]
     return path - w0 * moves[0] * tangent[0] + w1 * moves[1] * tangent[-1]
 
 

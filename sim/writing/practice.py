@@ -222,6 +222,7 @@ class _Ends(NamedTuple):
     want: np.ndarray
     limit: np.ndarray
     outline: np.ndarray  # (ends, rays, steps): the character's outlines there (``whole``)
+    dirs: np.ndarray  # (ends, rays, 2): each ray's direction (the middle one the way out)
 
 
 def _extent(ink: np.ndarray, along: np.ndarray) -> np.ndarray:
@@ -242,7 +243,7 @@ def _end_probes(sim, pl: Plan, body, own: _Window, whole: np.ndarray) -> _Ends:
     another stroke, the end touches it: its outline is taken to run on too (the end is carried
     on to it if the ink falls short, never drawn back from it)."""
     ppm = sim.paper.ppm
-    which, rows, cols, along, limit = [], [], [], [], []
+    which, rows, cols, along, limit, dirs = [], [], [], [], [], []
     runs = _movements(body)
     for m, run in enumerate(runs):
         for e, (i, sign) in enumerate(((run[0], -1.0), (run[-1], 1.0))):
@@ -257,6 +258,7 @@ def _end_probes(sim, pl: Plan, body, own: _Window, whole: np.ndarray) -> _Ends:
             cols.append(np.clip((pts[..., 0] * ppm).astype(int), 0, sim.paper.W - 1))
             rows.append(np.clip((pts[..., 1] * ppm).astype(int), 0, sim.paper.H - 1))
             along.append(d[None, :] * c[:, None])
+            dirs.append(rays)
             which.append((m, e))
             limit.append(END_MAX * w)
     k = max(len(r[0]) for r in rows)
@@ -274,7 +276,8 @@ def _end_probes(sim, pl: Plan, body, own: _Window, whole: np.ndarray) -> _Ends:
     outline = whole[rows, cols]
     touches = _extent(outline, along) >= look - 1e-9
     want = np.where(touches & np.isfinite(want), look, want)
-    return _Ends(np.array(which), rows, cols, along, want, np.array(limit), outline)
+    ends = (np.array(which), rows, cols, along, want, np.array(limit), outline, np.array(dirs))
+    return _Ends(*ends)
 
 
 def _reach_error(sim, ends: _Ends, before) -> np.ndarray:
@@ -292,26 +295,44 @@ def _reach_error(sim, ends: _Ends, before) -> np.ndarray:
     return err
 
 
-def _join_error(sim, ends: _Ends, before) -> np.ndarray:
+def _join_error(sim, ends: _Ends, before) -> tuple[np.ndarray, np.ndarray]:
     """How far (mm, per end) the stroke's ink falls short of joining a stroke already written
-    that its outline runs into (model addition, issue 26: strokes that touch in the outline
-    touch in the ink); 0 where it joins, where no such stroke is, or at a join with a stroke
-    written later (that stroke's to make). Along each ray of an end's fan whose foot is not
-    in that stroke's ink: the outline unbroken from the foot (``_Ends.outline``) reaching ink
-    that was there ``before`` the stroke is a join, ``first`` that far out; the stroke's own
-    new ink nearest it on the ray (the foot where there is none) falls short of it by the
-    distance between them, the gap, least over the rays: a pixel's worth where they only
-    touch (a join one pixel wide that drying and wicking can open again), so the end is
-    carried on into the stroke it joins. Only the
-    joins are practised so outside ``exact_ends``: every other end is written as planned."""
+    that its outline runs into, and which way (a unit vector per end, the ray of the least
+    gap) (model addition, issue 26: strokes that touch in the outline touch in the ink); 0
+    where it joins, where no such stroke is, or at a join with a stroke written later (that
+    stroke's to make). Along each ray of an end's fan whose foot is not in that stroke's ink:
+    the outline unbroken from the foot (``_Ends.outline``) reaching ink that was there
+    ``before`` the stroke is a join, ``first`` that far out; the stroke's own new ink nearest it
+    on the ray (the foot where there is none) falls short of it by the distance between them,
+    the gap, least over the rays: a pixel's worth where they only touch (a join one pixel wide
+    that drying and wicking can open again), so the end is carried into the stroke it joins.
+    Only the joins are practised so outside ``exact_ends``: every other end is written as
+    planned."""
     fresh = ~before[..., :1]
     run = np.cumprod(ends.outline, axis=-1).astype(bool) & fresh
     first = np.where(run & before & (ends.along > 0.0), ends.along, np.inf).min(axis=-1)
     new = _coverage(sim, ends.rows, ends.cols) & ~before & (ends.along < first[..., None])
     near = np.where(new, ends.along, ends.along[..., :1]).max(axis=-1)  # (ends, rays)
-    gap = np.where(np.isfinite(first), first - near, np.inf)  # touching pixels: one short
+    # the distance along the ray itself (``along`` is its projection on the way out)
+    cos = np.maximum(np.abs(np.cos(END_FAN)), 1e-6)
+    gap = np.where(np.isfinite(first), (first - near) / cos, np.inf)  # touching: one pixel
+    ray = gap.argmin(axis=-1)
     gap = gap.min(axis=-1)
-    return np.where(np.isfinite(gap), np.maximum(gap, 0.0), 0.0)
+    way = ends.dirs[np.arange(len(ray)), ray]
+    return np.where(np.isfinite(gap), np.maximum(gap, 0.0), 0.0), way
+
+
+def _join_moves(ends: _Ends, gap, way, moves) -> np.ndarray:
+    """The next pass's end shifts (movements, 2 ends, 2: mm on the paper) for the joins: each
+    end shifted on by ``END_GAIN`` of its gap ``gap`` the way ``way`` (``_join_error``: toward
+    the stroke it joins, not only along its own way out: a 横 setting off beside a 撇 moves
+    onto it), at most ``END_MAX`` of its width in all."""
+    out = moves.copy()
+    m, e = ends.which[:, 0], ends.which[:, 1]
+    shift = moves[m, e] + END_GAIN * gap[:, None] * way
+    size = np.maximum(np.linalg.norm(shift, axis=1), 1e-12)
+    out[m, e] = shift * np.minimum(1.0, ends.limit / size)[:, None]
+    return out
 
 
 def _reach_moves(ends: _Ends, err, moves) -> np.ndarray:
@@ -393,7 +414,9 @@ def _practise_stroke(sim, a, b, passes, fill, own, ctx, whole=None, exact=True) 
     rd = _reading(a, b, body, want, step_mm, pl)
     band = (np.zeros(probes[0].shape, dtype=bool), np.zeros(probes[0].shape, dtype=bool))
     zones = (entry_zone(pl, body), point_zone(pl, body))
-    moves = np.zeros((len(_movements(body)), 2))
+    # the ends' moves: along the way out of each end (mm; exact ends), or shifts on the paper
+    # (mm, x and y; the joins)
+    moves = np.zeros((len(_movements(body)), 2) if exact else (len(_movements(body)), 2, 2))
     if whole is not None:
         ends = _end_probes(sim, pl, body, own, whole)
         ends_before = _coverage(sim, ends.rows, ends.cols)
@@ -413,7 +436,7 @@ def _practise_stroke(sim, a, b, passes, fill, own, ctx, whole=None, exact=True) 
             if exact:  # against the stroke's length
                 reach_err = _reach_error(sim, ends, ends_before)
             else:
-                reach_err = _join_error(sim, ends, ends_before)
+                reach_err, way = _join_error(sim, ends, ends_before)
             err += float(np.abs(reach_err).sum()) / length
         gain = np.inf if best is None else best.error - err  # how much nearer than the best
         if best is None or err < best.error:
@@ -424,8 +447,10 @@ def _practise_stroke(sim, a, b, passes, fill, own, ctx, whole=None, exact=True) 
             break
         if not exact and k >= SMALL_GAIN_FROM and gain < SMALL_GAIN:  # no longer pays
             break
-        if whole is not None:
+        if whole is not None and exact:
             moves = _reach_moves(ends, reach_err, moves)
+        elif whole is not None:
+            moves = _join_moves(ends, reach_err, way, moves)
         press, side = _correct(response, (press, side), want, (got, centre, valid), ceiling, zones)
         was = sim.rec.samples[a:b].copy()
         fill(a, b, press, side, moves)

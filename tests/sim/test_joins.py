@@ -27,11 +27,12 @@ def pieces(mask: np.ndarray) -> int:
     return int(np.count_nonzero(np.asarray(sizes) > 0.0005 * mask.size))
 
 
-@pytest.mark.parametrize("char", ["人", "日"])
+@pytest.mark.parametrize("char", ["人", "日", "相"])
 def test_strokes_that_touch_in_the_outline_touch_in_the_ink(template, char):
-    # 人's 捺 sets off from the 撇's side; 日's 横折 from the top of its left vertical: one piece
-    # in the font, and in the ink (before the joins were practised, two at 512 px)
+    # 人's 捺 sets off from the 撇's side; 日's 横折 from the top of its left vertical; 相's 木
+    # has its right dot set beside the vertical (the join is sideways, not along the dot's way
+    # out): as many pieces in the ink as in the font (before the joins were practised, one
+    # more at 512 px)
     ch = find_char(char)
     _rec, _resp, sim = write_character(ch, N, template, response=calibrate(template))
-    assert pieces(font_mask(ch, N)) == 1
-    assert pieces(coverage_mask(sim)) == 1
+    assert pieces(coverage_mask(sim)) == pieces(font_mask(ch, N))
