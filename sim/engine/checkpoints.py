@@ -31,7 +31,8 @@ from ..paper.paper import WetStroke
 from .timeline import Snapshot, Timeline
 
 CACHE_FORMAT = "hairy-brush-checkpoints"
-CACHE_VERSION = 3  # 2: the key in every file, the files' sizes in the manifest; 3: the stroke
+CACHE_VERSION = 4  # 2: the key in every file, the files' sizes in the manifest; 3: the stroke;
+# 4: the stroke's landing and last steps (the droplets it throws, sim.paper.paper._spatter)
 MANIFEST = "manifest.json"
 CHECKPOINT = re.compile(r"checkpoint_(\d{8})\.npz")
 LEFTOVER_AGE_S = 3600.0  # a half-written cache folder older than this is an interrupted save's
@@ -210,9 +211,14 @@ def _stroke_of(value, name: str) -> WetStroke | None:
     if value is None:
         return None
     try:
-        *head, colour = value
-        return WetStroke(*(int(v) for v in head), tuple(float(c) for c in colour))
-    except (TypeError, ValueError) as err:
+        head, colour, land, trail = value[:5], value[5], value[6], value[7]
+        return WetStroke(
+            *(int(v) for v in head),
+            tuple(float(c) for c in colour),
+            tuple(float(v) for v in land),
+            tuple(tuple(float(v) for v in at) for at in trail),
+        )
+    except (TypeError, ValueError, IndexError) as err:
         raise CacheError(f"{name} holds a paper stroke that is not one") from err
 
 

@@ -6,7 +6,15 @@ deposit to a Paper: ``types.MethodType(reference_deposit, paper)``."""
 
 import numpy as np
 
-from sim.paper.paper import FULL_WET, GRAIN_DEPTH, TILE, _wick, paper_grain
+from sim.paper.paper import (
+    FULL_WET,
+    GRAIN_DEPTH,
+    LAYER_S,
+    TILE,
+    _set_share,
+    _wick,
+    paper_grain,
+)
 from sim.paper.texture import sheet_draw
 
 _NEIGHBOURS = [(-1, -1), (-1, 0), (-1, 1), (0, -1), (0, 1), (1, -1), (1, 0), (1, 1)]
@@ -54,7 +62,16 @@ def reference_deposit(self, marks, q, dt: float, step: int, saturate=None):
         held = (-np.expm1(-offer / (FULL_WET / self.pigment))).astype(np.float32)
         skip = mk.skip if mk.skip is not None else np.zeros(r.size, bool)
         held = np.where(skip, 0.0, held).astype(np.float32)
-        ink[r, c] = np.maximum(ink[r, c], mk.col.astype(np.float32) * held[:, None])
+        lay = mk.col.astype(np.float32) * held[:, None]
+        # a second layer over ink that has set, on a pixel's first visit of the step (a model
+        # change, sim.paper.paper.LAYER_S): the pigments add where it has set
+        old = ink[r, c]
+        after = LAYER_S / dt if dt > 0 else np.inf
+        set_ = np.where(first, _set_share(lam, missed[r, c], after), np.float32(0.0))
+        top = np.maximum(old, lay)
+        stacked = old + lay * (1.0 - old)
+        lay = top + set_.astype(np.float32)[:, None] * (stacked - top)
+        ink[r, c] = np.maximum(old, lay)
     w = np.where(dried, w, np.maximum(w - drystep, 0.0))
     for _ in range(self.sat_passes):
         over = np.nonzero(w > self.capacity)

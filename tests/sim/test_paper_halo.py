@@ -7,6 +7,7 @@ import numpy as np
 
 from sim.brush.mark import Mark
 from sim.core.params import QualityParams
+from sim.paper import paper as paper_module
 from sim.paper.paper import HALO_MAX_PX, HALO_PIGMENT, Paper, WetStroke, halo_px
 
 DT = 1.0 / 60.0
@@ -54,8 +55,10 @@ def test_the_halo_is_laid_as_the_brush_leaves_a_faint_tint_fading_out():
     assert after.stroke is None
     r = after.halo_px
     assert 0 < r <= HALO_MAX_PX
-    core = after.ink[30:50, 45:55, 0]
-    np.testing.assert_array_equal(core, before.ink[30:50, 45:55, 0])  # the stroke not darker
+    core, was = after.ink[30:50, 45:55, 0], before.ink[30:50, 45:55, 0]
+    # the stroke not darker: its wet film levelled (LEVEL_MM), its pigment the same
+    pigment, had = -np.log1p(-core.astype(float)), -np.log1p(-was.astype(float))
+    assert abs(pigment.mean() - had.mean()) < 0.01 * had.mean()
     near = after.ink[30:50, 60 + r // 2, 0]  # half a box out of its edge
     far = after.ink[30:50, 60 + 2 * r - 1, 0]
     assert not before.ink[30:50, 60 + r // 2, 0].any()  # nothing there before the lift
@@ -119,11 +122,70 @@ def test_the_halo_changes_only_the_tiles_it_darkens():
 
 
 def test_the_halo_made_in_bands_of_rows_is_the_halo_made_at_once(monkeypatch):
-    from sim.paper import paper as paper_module
-
     whole, banded = _sheet(), _sheet()
     _stroke(whole)
     monkeypatch.setattr(paper_module, "HALO_ROWS", 7)  # bands far thinner than the bell
     _stroke(banded)
     np.testing.assert_allclose(banded.ink, whole.ink, atol=2e-6)
     assert (banded.ink > 0).sum() == (whole.ink > 0).sum()
+
+
+def test_a_wet_stroke_levels_into_solid_ink_a_dry_one_keeps_its_texture():
+    """The wet film levels as the brush leaves (LEVEL_MM): the grain's mottle inside a loaded
+    stroke evens out with its pigment kept; a stroke that left little liquid keeps it."""
+    for wet, levels in ((0.8, True), (0.12, False)):
+        before, after = _sheet(), _sheet()
+        _stroke(before, lift=False)
+        _stroke(after)
+        for paper in (before, after):  # the same band again, with this much liquid
+            for k in range(6):
+                paper.deposit([_band(86, 98, 10 + 6 * k, 22 + 6 * k, wet=wet)], Q, DT, 20 + k)
+        after.deposit([], Q, DT, 26)
+        core, was = after.ink[88:96, 15:40, 0], before.ink[88:96, 15:40, 0]
+        assert was.std() > 0.0  # the grain mottled it
+        if levels:
+            assert core.std() < 0.5 * was.std()
+            pigment, had = -np.log1p(-core.astype(float)), -np.log1p(-was.astype(float))
+            assert abs(pigment.mean() - had.mean()) < 0.01 * had.mean()
+        else:
+            np.testing.assert_array_equal(core, was)
+
+
+def _fast(paper: Paper, first: int = 1, lift: bool = True) -> None:
+    """A loaded band written fast to the right (30 px a step), then the brush off."""
+    for k in range(6):
+        paper.deposit([_band(40, 52, 10 + 30 * k, 22 + 30 * k)], Q, DT, first + k)
+    if lift:
+        paper.deposit([], Q, DT, first + 6)
+
+
+def test_a_fast_loaded_exit_throws_droplets_on_along_its_way(monkeypatch):
+    """SPATTER_EXIT: droplets laid as the brush leaves, ahead of the exit, off the stroke."""
+    monkeypatch.setattr(paper_module, "SPATTER_LAND", 0.0)
+    monkeypatch.setattr(paper_module, "SPATTER_EXIT", 50.0)  # so many that the cap throws
+    still, thrown = Paper(300, 100, 8.0, capacity=1.0, fibre=0.5), None
+    _fast(still, lift=False)
+    thrown = Paper(300, 100, 8.0, capacity=1.0, fibre=0.5)
+    _fast(thrown)
+    new = (thrown.ink[..., 0] > 0.3) & (still.ink[..., 0] == 0.0)  # darker than a halo
+    assert not new[:, :172].any()  # none behind the last mark's far edge (column 172) ...
+    fy, fx = np.nonzero(new)
+    assert fx.size and fx.max() > 172 + 4  # ... but ahead of it, ...
+    assert 30 <= fy.min() and fy.max() <= 62  # ... along the way it went, not sideways
+    assert thrown.ink[..., 0].max() <= 1.0
+    again = Paper(300, 100, 8.0, capacity=1.0, fibre=0.5)  # the same stroke: the same drops
+    _fast(again)
+    np.testing.assert_array_equal(again.ink, thrown.ink)
+    later = Paper(300, 100, 8.0, capacity=1.0, fibre=0.5)  # later in the recording: the same
+    _fast(later, first=41)
+    np.testing.assert_array_equal(later.ink, thrown.ink)
+
+
+def test_a_slow_exit_throws_nothing_and_counts_follow_poisson():
+    slow = _sheet()
+    _stroke(slow)  # 6 px a step at 60 steps a second, 8 px a mm: 45 mm/s, dry-ish exit
+    assert paper_module._poisson(0.0, 0.99) == 0
+    assert paper_module._poisson(1.0, 0.0) == 0 and paper_module._poisson(1.0, 0.5) == 1
+    draws = np.linspace(0.0005, 0.9995, 1000)
+    mean = np.mean([paper_module._poisson(0.3, u) for u in draws])
+    assert abs(mean - 0.3) < 0.02
