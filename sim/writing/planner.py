@@ -12,7 +12,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from ..core.recording import quantise
-from .outline import EM, HOOK_COS, HOOK_LENGTH, TOP, median_pieces
+from .outline import EM, TOP, is_hook, median_pieces, narrows
 
 if TYPE_CHECKING:  # the response is handed in (its module builds on this one)
     from .response import Response
@@ -319,10 +319,11 @@ def _point_reach(path, width) -> float:
 
 
 def _is_hook(pl: Plan, runs) -> list[bool]:
-    """For each movement of a stroke, whether it leaves a hook's foot: the way out of the
-    corner before it turns back on the way in by more than ``HOOK_COS`` and is short (at most
-    ``HOOK_LENGTH`` stroke widths: a 竖钩, a 斜钩, a 卧钩), not a 折's turn into a long leg; and
-    it is the stroke's last movement (``outline._hooks_back`` reads the same off the median)."""
+    """For each movement of a stroke, whether it leaves a hook's foot (``outline.is_hook``,
+    as ``outline._hooks_back`` reads it off the median): the way out of the corner before it
+    turns back on the way in, or turns about square to it and narrows to a point, and is short
+    against the stroke's width (a 竖钩, a 斜钩, a 卧钩, a 竖弯钩), not a 折's turn into a long
+    leg; and it is the stroke's last movement."""
 
     def way(a, b):  # the chord from sample a to sample b, as a unit vector
         d = pl.target[b] - pl.target[a]
@@ -333,9 +334,9 @@ def _is_hook(pl: Plan, runs) -> list[bool]:
         # off), not on into the foot, which hangs towards the outline's outer corner; the way
         # out: the first half of the next movement
         k = int(np.argmin(np.linalg.norm(pl.target[p] - pl.target[q[0]], axis=1)))
-        turned = float(way(p[k // 2], p[max(k, 1)]) @ way(q[0], q[len(q) // 2])) < HOOK_COS
+        cos = float(way(p[k // 2], p[max(k, 1)]) @ way(q[0], q[len(q) // 2]))
         out = float(np.linalg.norm(np.diff(pl.target[q], axis=0), axis=1).sum())
-        return turned and out <= HOOK_LENGTH * float(pl.width[p].max())
+        return is_hook(cos, out, float(pl.width[p].max()), narrows(pl.width[q]))
 
     # a hook ends the stroke (a 折 turning back as far, as 也's, goes on into a leg)
     last = len(runs) - 1
