@@ -361,14 +361,15 @@ HOOK_WINDOW = 100.0  # data units either side over which a stroke's end curls in
 HOOK_TURN = 0.9  # rad of turn over +-HOOK_WINDOW where such a hook leaves the curve
 
 
-def is_hook(cos: float, length: float, before_width: float, narrows: bool) -> bool:
+def is_hook(cos: float, length: float, before_width: float, narrows: bool, curl: bool) -> bool:
     """Whether a stroke's last movement, after a corner, is a hook (钩): short (at most
     ``HOOK_LENGTH`` times ``before_width``, the stroke's width before the corner) and turned
-    back on the way in (``cos`` of the turn below ``HOOK_COS``: a 竖钩), or turned about square
-    to it (below ``HOOK_UP_COS``) and narrowing to a point (``narrows``: a 竖弯钩, a 卧钩). The
-    outline (``_hooks_back``) and the planner (``planner._is_hook``) read it alike."""
+    back on the way in (``cos`` of the turn below ``HOOK_COS``: a 竖钩, a 斜钩), or, after an
+    end that curls off a curve (``curl``, ``_curled_end``), turned about square to it (below
+    ``HOOK_UP_COS``) and narrowing to a point (``narrows``: a 竖弯钩, a 卧钩). A sharp corner
+    turned only square into a short narrowing leg stays a 折 (墨's 罒, 口's shoulder)."""
     short = length <= HOOK_LENGTH * before_width
-    return short and (cos < HOOK_COS or (cos < HOOK_UP_COS and narrows))
+    return short and (cos < HOOK_COS or (curl and cos < HOOK_UP_COS and narrows))
 
 
 def narrows(width) -> bool:
@@ -377,19 +378,20 @@ def narrows(width) -> bool:
     return w.size > 1 and float(w[-1]) < HOOK_POINT * float(w.max())
 
 
-def _hooks_back(way_in, piece, before, step: float, width) -> bool:
+def _hooks_back(way_in, piece, before, step: float, width, curl: bool = False) -> bool:
     """Whether the last piece of a median, after a corner (``piece``: its points, ``width``:
-    its widths), is a hook (``is_hook``): its way out (a chord of ``CORNER_WINDOW``) turns away
-    from the way in (``way_in``: the median's points over the second half of the movement up to
-    the corner; nearer the corner it already bends into the hook), and it is short against the
-    width of the piece ``before`` it (centres, widths) (a 竖钩, a 斜钩, a 卧钩; not a 折 into a
-    long leg). As the planner's ``_is_hook`` reads it off the plan."""
+    its widths; ``curl``: the corner is where the end curls off a curve), is a hook
+    (``is_hook``): its way out (a chord of ``CORNER_WINDOW``) turns away from the way in
+    (``way_in``: the median's points over the second half of the movement up to the corner;
+    nearer the corner it already bends into the hook), and it is short against the width of
+    the piece ``before`` it (centres, widths) (a 竖钩, a 斜钩, a 卧钩; not a 折 into a long
+    leg). The planner takes it from ``median_movements``."""
     win = max(int(round(CORNER_WINDOW / step)), 1)
     d = way_in[-1] - way_in[0]
     e = piece[min(win, len(piece) - 1)] - piece[0]
     cos = float(d @ e) / max(float(np.linalg.norm(d) * np.linalg.norm(e)), 1e-9)
     length = float(np.linalg.norm(np.diff(piece, axis=0), axis=1).sum())
-    return is_hook(cos, length, float(before[1].max()), narrows(width))
+    return is_hook(cos, length, float(before[1].max()), narrows(width), curl)
 
 
 def _curled_end(pts, step: float, after: int) -> int | None:
@@ -431,9 +433,13 @@ def median_pieces(char: dict, step: float = 4.0) -> list[list[tuple[np.ndarray, 
     sharp corners (``corners``): each movement that ends at a corner goes on into the foot
     (``_foot``), the next starts on the corner, but a hook (``_hooks_back``) from the foot
     (``_from_the_foot``); an end that curls into a hook off a curve (``_curled_end``) is cut
-    there too. A calligrapher writes a hook or a 折 so: presses into the corner,
-    turns the tip and sets off anew; dragging the pressed hair round the corner sweeps a round
-    blot."""
+    there too. A calligrapher writes a hook or a 折 so: presses into the corner, turns the tip
+    and sets off anew; dragging the pressed hair round the corner sweeps a round blot."""
+    return [pieces for pieces, _ in median_movements(char, step)]
+
+
+def median_movements(char: dict, step: float = 4.0) -> list[tuple[list, bool]]:
+    """``median_pieces`` of every stroke, with whether its last movement is a hook."""
     out = []
     for med, polys in zip(char["medians"], stroke_polygons(char), strict=True):
         pts, _ = resample(_to_the_tips(med, polys), step)
@@ -441,22 +447,23 @@ def median_pieces(char: dict, step: float = 4.0) -> list[list[tuple[np.ndarray, 
         pieces = _pieces(pts, polys, step, edges)
         curl = None if len(pieces) > 1 and pieces[-1][2] else _curled_end(pts, step, edges[-2])
         if curl is not None:  # a hook off a curve, if the piece after it is one
-            curled = _pieces(pts, polys, step, [*edges[:-1], curl, edges[-1]])
+            curled = _pieces(pts, polys, step, [*edges[:-1], curl, edges[-1]], curl=True)
             pieces = curled if curled[-1][2] else pieces
-        out.append([(centre, width) for centre, width, _ in pieces])
+        out.append(([(centre, width) for centre, width, _ in pieces], pieces[-1][2]))
     return out
 
 
-def _pieces(pts, polys, step: float, edges) -> list:
-    """``median_pieces`` of one median (``pts``) cut at ``edges``: (centres, widths, whether
-    it is a hook) per movement."""
+def _pieces(pts, polys, step: float, edges, curl: bool = False) -> list:
+    """``median_pieces`` of one median (``pts``) cut at ``edges`` (``curl``: the last cut is
+    where its end curls off a curve): (centres, widths, whether it is a hook) per movement."""
     pieces = []
     for k, (i0, i1) in enumerate(zip(edges[:-1], edges[1:], strict=True)):
         p = pts[i0 : i1 + 1]
         if k < len(edges) - 2:
             p = np.concatenate([p, _foot(pts, i1, polys, step)])
+        way_in = pts[(edges[k - 1] + i0) // 2 : i0 + 1]
         hook = 0 < k == len(edges) - 2 and _hooks_back(
-            pts[(edges[k - 1] + i0) // 2 : i0 + 1], p, pieces[-1], step, _bands(p, polys)[1]
+            way_in, p, pieces[-1], step, _bands(p, polys)[1], curl
         )
         if hook:  # a hook sets off from the foot the movement before pressed into
             p = _from_the_foot(p, pieces[-1][0][-1])
