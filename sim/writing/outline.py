@@ -350,24 +350,69 @@ def _foot(pts, k: int, polys, step: float) -> np.ndarray:
 
 HOOK_COS = -0.2  # a corner whose way out turns back by more than this (cosine, about 100
 # degrees) from its way in, into a short last piece, is a hook's foot: the belly stays pressed
+HOOK_UP_COS = 0.45  # ... or by more than this (about 63 degrees) into a short last piece that
+# narrows to a point (HOOK_POINT): a 竖弯钩's, a 卧钩's, a 斜钩's flick, square to the way in
+HOOK_POINT = 0.6  # a hook's end is narrower than this share of its widest (a point, not a
+# pressed end: a short leg after a 折 ends as wide as it began)
 HOOK_LENGTH = 3.0  # a hook is at most this many times as long as the stroke before it is wide
 # (a 竖折's leg turning back as much is a long stroke of its own)
+HOOK_WINDOW = 100.0  # data units either side over which a stroke's end curls into a hook off a
+# curve (乙, 也, 九, 飞: its turn spreads over more of the median than a corner's CORNER_WINDOW)
+CURL_FOOT = 0.5  # share of the foot (FOOT_REACH) the movement before such a hook presses into:
+# the outline's outer side is round there, and pressed as far as at a corner the belly stood
+# out past it in a round knob (乙, 巴: 189 and 286 px more than 2 px outside the outline at
+# 512 px against 56 and 55)
+HOOK_TURN = 0.9  # rad of turn over +-HOOK_WINDOW where such a hook leaves the curve
 
 
-def _hooks_back(way_in, piece, before, step: float) -> bool:
-    """Whether the last piece of a median, after a corner (``piece``: its points), is a hook
-    (钩): its way out (a chord of ``CORNER_WINDOW``) turns back on the way in (``way_in``: the
-    median's points over the second half of the movement up to the corner; nearer the corner
-    it already bends into the hook) by more than ``HOOK_COS``, and it is at most
-    ``HOOK_LENGTH`` times as long as the piece ``before`` it (centres, widths) is wide (a 竖钩,
-    a 斜钩, a 卧钩; not a 折 into a long leg). As the planner's ``_is_hook`` reads it off the
-    plan."""
+def is_hook(cos: float, length: float, before_width: float, narrows: bool, curl: bool) -> bool:
+    """Whether a stroke's last movement, after a corner, is a hook (钩): short (at most
+    ``HOOK_LENGTH`` times ``before_width``, the stroke's width before the corner) and turned
+    back on the way in (``cos`` of the turn below ``HOOK_COS``: a 竖钩, a 斜钩), or, after an
+    end that curls off a curve (``curl``, ``_curled_end``), turned about square to it (below
+    ``HOOK_UP_COS``) and narrowing to a point (``narrows``: a 竖弯钩, a 卧钩). A sharp corner
+    turned only square into a short narrowing leg stays a 折 (墨's 罒, 口's shoulder)."""
+    short = length <= HOOK_LENGTH * before_width
+    return short and (cos < HOOK_COS or (curl and cos < HOOK_UP_COS and narrows))
+
+
+def narrows(width) -> bool:
+    """Whether a movement's widths (along it) end narrower than ``HOOK_POINT`` of their widest."""
+    w = np.asarray(width, dtype=float)
+    return w.size > 1 and float(w[-1]) < HOOK_POINT * float(w.max())
+
+
+def _hooks_back(way_in, piece, before, step: float, width, curl: bool = False) -> bool:
+    """Whether the last piece of a median, after a corner (``piece``: its points, ``width``:
+    its widths; ``curl``: the corner is where the end curls off a curve), is a hook
+    (``is_hook``): its way out (a chord of ``CORNER_WINDOW``) turns away from the way in
+    (``way_in``: the median's points over the second half of the movement up to the corner;
+    nearer the corner it already bends into the hook), and it is short against the width of
+    the piece ``before`` it (centres, widths) (a 竖钩, a 斜钩, a 卧钩; not a 折 into a long
+    leg). The planner takes it from ``median_movements``."""
     win = max(int(round(CORNER_WINDOW / step)), 1)
     d = way_in[-1] - way_in[0]
     e = piece[min(win, len(piece) - 1)] - piece[0]
     cos = float(d @ e) / max(float(np.linalg.norm(d) * np.linalg.norm(e)), 1e-9)
     length = float(np.linalg.norm(np.diff(piece, axis=0), axis=1).sum())
-    return cos < HOOK_COS and length <= HOOK_LENGTH * float(before[1].max())
+    return is_hook(cos, length, float(before[1].max()), narrows(width), curl)
+
+
+def _curled_end(pts, step: float, after: int) -> int | None:
+    """Where a median's end curls into a hook off a curve (乙's, 也's, 九's 竖弯钩: the turn
+    spreads over more than a corner's window, and read over ``CORNER_WINDOW`` it stays under
+    ``CORNER_TURN``): the point after ``after`` (the last corner) where the heading over
+    ``HOOK_WINDOW`` either side turns most, if that is more than ``HOOK_TURN``; None otherwise.
+    Whether it is a hook is ``_hooks_back``'s to say. (Added in issue 26: written as one
+    sweeping movement, the pressed belly dragged round the curl left a smear and a round knob
+    at its end, not a flick.)"""
+    win = max(int(round(HOOK_WINDOW / step)), 1)
+    k = np.arange(max(after + win, win), len(pts) - win)
+    if k.size == 0:
+        return None
+    turn = _heading_turn(pts[k] - pts[k - win], pts[k + win] - pts[k])
+    i = int(np.argmax(turn))
+    return int(k[i]) if turn[i] > HOOK_TURN else None
 
 
 HOOK_FROM_FOOT = 0.5  # share of the way from the median's corner to the foot's end (where the
@@ -391,31 +436,52 @@ def median_pieces(char: dict, step: float = 4.0) -> list[list[tuple[np.ndarray, 
     there (``_bands``, every ``step`` along the median), split into movements at the median's
     sharp corners (``corners``): each movement that ends at a corner goes on into the foot
     (``_foot``), the next starts on the corner, but a hook (``_hooks_back``) from the foot
-    (``_from_the_foot``). A calligrapher writes a hook or a 折 so: presses into the corner,
-    turns the tip and sets off anew; dragging the pressed hair round the corner sweeps a round
-    blot."""
+    (``_from_the_foot``); an end that curls into a hook off a curve (``_curled_end``) is cut
+    there too. A calligrapher writes a hook or a 折 so: presses into the corner, turns the tip
+    and sets off anew; dragging the pressed hair round the corner sweeps a round blot."""
+    return [pieces for pieces, _ in median_movements(char, step)]
+
+
+def median_movements(char: dict, step: float = 4.0) -> list[tuple[list, bool]]:
+    """``median_pieces`` of every stroke, with whether its last movement is a hook."""
     out = []
     for med, polys in zip(char["medians"], stroke_polygons(char), strict=True):
         pts, _ = resample(_to_the_tips(med, polys), step)
         edges = [0, *corners(pts, step), len(pts) - 1]
-        pieces = []
-        for k, (i0, i1) in enumerate(zip(edges[:-1], edges[1:], strict=True)):
-            p = pts[i0 : i1 + 1]
-            if k < len(edges) - 2:
-                p = np.concatenate([p, _foot(pts, i1, polys, step)])
-            if 0 < k == len(edges) - 2 and _hooks_back(
-                pts[(edges[k - 1] + i0) // 2 : i0 + 1], p, pieces[-1], step
-            ):  # a hook sets off from the foot the movement before pressed into
-                p = _from_the_foot(p, pieces[-1][0][-1])
-            centre, width = _bands(p, polys)
-            if k:  # the corner is inked by the foot: the movement's own width
-                # from where it leaves the corner's disc on (a hook's too: pressed wider, the
-                # belly spilled over the hook's inner edge)
-                off = min(int(np.ceil(0.5 * width[0] / step)), len(width) - 1)
-                width[:off] = np.minimum(width[:off], width[off])
-            pieces.append((centre, width))
-        out.append(pieces)
+        pieces = _pieces(pts, polys, step, edges)
+        curl = None if len(pieces) > 1 and pieces[-1][2] else _curled_end(pts, step, edges[-2])
+        if curl is not None:  # a hook off a curve, if the piece after it is one
+            curled = _pieces(pts, polys, step, [*edges[:-1], curl, edges[-1]], curl=True)
+            pieces = curled if curled[-1][2] else pieces
+        out.append(([(centre, width) for centre, width, _ in pieces], pieces[-1][2]))
     return out
+
+
+def _pieces(pts, polys, step: float, edges, curl: bool = False) -> list:
+    """``median_pieces`` of one median (``pts``) cut at ``edges`` (``curl``: the last cut is
+    where its end curls off a curve): (centres, widths, whether it is a hook) per movement."""
+    pieces = []
+    for k, (i0, i1) in enumerate(zip(edges[:-1], edges[1:], strict=True)):
+        p = pts[i0 : i1 + 1]
+        if k < len(edges) - 2:
+            foot = _foot(pts, i1, polys, step)
+            if curl and k == len(edges) - 3:  # into a curled end's hook: less far
+                foot = foot[: int(len(foot) * CURL_FOOT)]
+            p = np.concatenate([p, foot])
+        way_in = pts[(edges[k - 1] + i0) // 2 : i0 + 1]
+        hook = 0 < k == len(edges) - 2 and _hooks_back(
+            way_in, p, pieces[-1], step, _bands(p, polys)[1], curl
+        )
+        if hook:  # a hook sets off from the foot the movement before pressed into
+            p = _from_the_foot(p, pieces[-1][0][-1])
+        centre, width = _bands(p, polys)
+        if k:  # the corner is inked by the foot: the movement's own width
+            # from where it leaves the corner's disc on (a hook's too: pressed wider, the
+            # belly spilled over the hook's inner edge)
+            off = min(int(np.ceil(0.5 * width[0] / step)), len(width) - 1)
+            width[:off] = np.minimum(width[:off], width[off])
+        pieces.append((centre, width, hook))
+    return pieces
 
 
 def discs(centres_img, radii_img, n: int) -> np.ndarray:

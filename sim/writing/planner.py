@@ -12,7 +12,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from ..core.recording import quantise
-from .outline import EM, HOOK_COS, HOOK_LENGTH, TOP, median_pieces
+from .outline import EM, TOP, median_movements
 
 if TYPE_CHECKING:  # the response is handed in (its module builds on this one)
     from .response import Response
@@ -49,6 +49,8 @@ class Plan:
     phase: np.ndarray  # (N,) int
     dips: list
     strokes: list  # (first, end) sample of every stroke: entry, writing, lift-off
+    hooks: tuple = ()  # the first body sample of every movement that is a hook (the outline's
+    # ``median_movements`` says which)
 
 
 def _timed(dense, width, step_mm: float, slow_corners: float):
@@ -99,11 +101,11 @@ def plan(
     dip (without, the writer dips when the brush runs low, ``writer.dips_when_low``)."""
     scale = size_mm / EM
     dip_every = np.inf if dip_every_mm is None else dip_every_mm
-    tg, wd, tn, ph, dips, strokes = [], [], [], [], [], []
+    tg, wd, tn, ph, dips, strokes, hooks = [], [], [], [], [], [], []
     since_dip, prev = np.inf, None
     fine = max(step_mm / scale / 4.0, 0.25)
     k = max(int(round(3.0 / fine / scale)), 1)  # +-1.5 mm: the cut's jitter smoothed
-    for pieces in median_pieces(char, step=fine):
+    for pieces, hook in median_movements(char, step=fine):
         moves = []
         for pts_d, width_d in pieces:
             dense = np.stack(
@@ -130,6 +132,8 @@ def plan(
             # at a sharp corner the brush is already down: a shorter lift and entry
             m0 = CORNER_SAMPLES if j else ENTRY_SAMPLES
             m1 = CORNER_SAMPLES if j < len(moves) - 1 else EXIT_SAMPLES
+            if hook and j and j == len(moves) - 1:
+                hooks.append(sum(len(a) for a in tg) + m0)
             tg += [np.tile(p[0], (m0, 1)), p, np.tile(p[-1], (m1, 1))]
             wd += [np.full(m0, w[0]), w, np.full(m1, w[-1])]
             tn += [np.tile(t[0], (m0, 1)), t, np.tile(t[-1], (m1, 1))]
@@ -143,6 +147,7 @@ def plan(
         np.concatenate(ph),
         dips,
         strokes,
+        tuple(hooks),
     )
 
 
@@ -319,29 +324,11 @@ def _point_reach(path, width) -> float:
 
 
 def _is_hook(pl: Plan, runs) -> list[bool]:
-    """For each movement of a stroke, whether it leaves a hook's foot: the way out of the
-    corner before it turns back on the way in by more than ``HOOK_COS`` and is short (at most
-    ``HOOK_LENGTH`` stroke widths: a 竖钩, a 斜钩, a 卧钩), not a 折's turn into a long leg; and
-    it is the stroke's last movement (``outline._hooks_back`` reads the same off the median)."""
-
-    def way(a, b):  # the chord from sample a to sample b, as a unit vector
-        d = pl.target[b] - pl.target[a]
-        return d / max(float(np.linalg.norm(d)), 1e-9)
-
-    def back(p, q) -> bool:
-        # the way in: the second half of the movement up to the corner (where the next sets
-        # off), not on into the foot, which hangs towards the outline's outer corner; the way
-        # out: the first half of the next movement
-        k = int(np.argmin(np.linalg.norm(pl.target[p] - pl.target[q[0]], axis=1)))
-        turned = float(way(p[k // 2], p[max(k, 1)]) @ way(q[0], q[len(q) // 2])) < HOOK_COS
-        out = float(np.linalg.norm(np.diff(pl.target[q], axis=0), axis=1).sum())
-        return turned and out <= HOOK_LENGTH * float(pl.width[p].max())
-
-    # a hook ends the stroke (a 折 turning back as far, as 也's, goes on into a leg)
-    last = len(runs) - 1
-    return [False] + [
-        back(p, q) and r == last for r, (p, q) in enumerate(zip(runs, runs[1:], strict=False), 1)
-    ]
+    """For each movement of a stroke (``runs``: its body samples), whether it leaves a hook's
+    foot (``Plan.hooks``, from ``outline.median_movements``: a short last movement that turns
+    back on the way in, a 竖钩, a 斜钩, or sets off about square from an end that curls off a
+    curve and narrows to a point, a 竖弯钩, a 卧钩; not a 折's turn into a leg)."""
+    return [bool(len(run)) and int(run[0]) in pl.hooks for run in runs]
 
 
 def _movements(items, body=None) -> list[np.ndarray]:

@@ -142,3 +142,74 @@ def test_a_written_zhe_keeps_its_shoulder_without_a_knob(response):
     assert missed < 0.05 * np.count_nonzero(every[shoulder])
     bulge = outside[shoulder][ink[shoulder]].max()
     assert bulge < outside[straight][ink[straight]].max() + 2.0
+
+
+def test_an_end_curling_into_a_hook_off_a_curve_is_a_hook():
+    # 乙's, 也's and 儿's 竖弯钩 (and 飞's, 九's): the median curls up into the hook over more
+    # than a corner's window, so read as a corner it was one sweeping movement, the pressed
+    # belly dragged round the curl (a smear beside the hook, the tip split in prongs); it is a
+    # movement of its own, a hook that narrows to its point, and the planner writes it as one
+    from sim.writing.outline import HOOK_POINT
+    from sim.writing.planner import WRITING, _is_hook, _movements, plan
+
+    for c, k in (("乙", 0), ("也", 2), ("儿", 1)):
+        ch = find_char(c)
+        pieces = median_pieces(ch)[k]
+        assert len(pieces) >= 2, c
+        (_, before_w), (hook, hook_w) = pieces[-2], pieces[-1]
+        assert hook_w[-1] < HOOK_POINT * hook_w.max(), c
+        length = float(np.linalg.norm(np.diff(hook, axis=0), axis=1).sum())
+        assert length < 3.0 * before_w.max(), c
+        pl = plan(ch, 40.0, 0.5)
+        a, b = pl.strokes[k]
+        runs = _movements(np.flatnonzero(pl.phase[a:b] == WRITING) + a)
+        assert len(runs) == len(pieces) and _is_hook(pl, runs)[-1], c
+    # a round bend that ends pressed (a 竖弯 into a long flat stroke) is not cut
+    assert len(median_pieces({"strokes": [_WAN_OUTLINE], "medians": [WAN]})[0]) == 1
+
+
+# a 竖弯's outline about WAN (60 wide): down, a round bend, on to the right, a square end
+_WAN_OUTLINE = (
+    "M 170 700 L 230 700 L 230 330 Q 230 300 260 300 L 630 300 L 630 240 L 230 240 "
+    "Q 170 240 170 300 Z"
+)
+
+
+@pytest.mark.slow
+def test_a_written_curled_hook_leaves_in_a_point_without_a_smear(response):
+    # 也's and 儿's 竖弯钩 at 256 px: beside the hook (from 0.3 of its straight on past its tip)
+    # hardly any ink lies more than 1.5 px outside the font's outline (written as one sweep
+    # round the curl: 78 and 42 px, the pressed belly smeared over the hook's inner side), and
+    # near the tip the ink is no wider than the outline
+    from scipy.ndimage import distance_transform_edt
+
+    n, smear, knob = 256, 0, 0
+    for c, k in (("也", 2), ("儿", 1)):
+        ch = find_char(c)
+        _, _, sim = write_character(ch, n, _template(), response=response, passes=1)
+        ink = coverage_mask(sim)
+        font = np.zeros_like(ink)
+        for j in range(len(ch["strokes"])):
+            font |= _own(ch, j, n)
+        med = np.array(ch["medians"][k], dtype=float)
+        a, b = _img(med[-2], n), _img(med[-1], n)  # the hook's straight, to its tip
+        d = (b - a) / np.linalg.norm(b - a)
+        nrm = np.array([-d[1], d[0]])
+        yy, xx = np.mgrid[0:n, 0:n]
+        rel = np.stack([xx + 0.5 - a[0], yy + 0.5 - a[1]], axis=-1)
+        t, s, length = rel @ d, rel @ nrm, float(np.linalg.norm(b - a))
+        box = (t > 0.3 * length) & (t < 1.2 * length) & (np.abs(s) < 0.6 * length)
+        outside = ink & (distance_transform_edt(~font) > 1.5)
+        smear += np.count_nonzero(box & outside)
+        knob += np.count_nonzero((np.hypot(*rel.transpose(2, 0, 1)) < 0.6 * length) & outside)
+        near = a + 0.85 * (b - a)
+        xy = np.round(near[None] + np.arange(-15, 15.5, 0.5)[:, None] * nrm[None]).astype(int)
+        own = _own(ch, k, n)
+        assert (
+            np.count_nonzero(ink[xy[:, 1], xy[:, 0]])
+            <= np.count_nonzero(own[xy[:, 1], xy[:, 0]]) + 1
+        ), c
+    assert smear < 70  # 120 written as one sweep
+    # nor round the foot (the pressed belly swept round the curl: 300 px; pressed as far into
+    # the foot as at a sharp corner, a round knob stood out past the outline's round side)
+    assert knob < 150
