@@ -522,3 +522,24 @@ def test_a_stroke_ending_on_another_runs_on_into_its_ink():
     ends = _ends(read_strokes(_bars(((100, 40), (100, 220), 8), ((160, 60), (108, 120), 5)))[2])
     dot = [e for e in ends if e[0][0] > 140]
     assert len(dot) == 1 and 92.0 < dot[0][1][0] < 99.0, ends
+
+
+def test_a_chamfered_shoulder_is_one_corner_where_the_legs_meet():
+    # the skeleton of a 折's thick shoulder cuts across it in two milder turns (51 and 39
+    # degrees here; 飞's and 学's 横撇 in a Kaiti font): one corner, out where the legs' lines
+    # meet, inside the shoulder's ink - on the chamfer, the next leg set off below the
+    # shoulder's ink and the two were written apart
+    from sim.picture.outline import into_corners
+
+    shoulder = ((165, 98), (175, 98), 14)
+    ink = _bars(((40, 100), (170, 100), 10), ((170, 100), (170, 240), 10), shoulder)
+    legs = [
+        np.linspace((40.0, 100.0), (150.0, 100.0), 56),
+        np.linspace((150.0, 100.0), (170.0, 125.0), 13)[1:],
+        np.linspace((170.0, 125.0), (170.0, 240.0), 58)[1:],
+    ]
+    pts = np.concatenate(legs)
+    out = into_corners(Stroke(pts, np.full(len(pts), 10.0)), M.edt(ink.mask))
+    assert np.linalg.norm(out.pts - (170.0, 100.0), axis=1).min() < 3.0
+    assert np.array_equal(out.pts[0], pts[0]) and np.array_equal(out.pts[-1], pts[-1])
+
