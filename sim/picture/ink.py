@@ -247,7 +247,7 @@ def _streaks_closed(mask: np.ndarray) -> np.ndarray:
     along a stroke and gaps across it, narrower than the stroke; read as paper they split the
     stroke into ribbons, whose skeletons become strokes of their own (the brush's own 木 on raw
     xuan, its vertical read as two). The ink is closed (grown and shrunk again) by STREAK of the
-    strokes' typical half-width (twice the ink's median distance to the paper), and the paper
+    strokes' typical half-width (``_half_width``), and the paper
     so filled kept where it lies within one piece of ink, or across one stroke that a dry gap
     broke in two (``_across``): paper between two separate strokes (a dot that stops short of
     a stroke) stays paper. (Beyond the paper's Sec. 9: its dry-brush
@@ -255,7 +255,7 @@ def _streaks_closed(mask: np.ndarray) -> np.ndarray:
     """
     if not mask.any():
         return mask
-    r = 2.0 * float(np.median(M.edt(mask)[mask]))
+    r = _half_width(mask)
     rho = STREAK * r
     if rho < 1.0:
         return mask
@@ -272,9 +272,8 @@ def _streaks_closed(mask: np.ndarray) -> np.ndarray:
 def _closing(mask: np.ndarray, rho: float, lab: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """The paper the closing by ``rho`` fills, as labelled parts, and for each part 1 when it
     touches one piece of ink (``lab``), -1 when it touches two or more, 0 when none."""
-    lim = rho + 2.0
-    near = M.nearest_feature(mask, limit=lim)[0] <= rho * rho
-    filled = (M.nearest_feature(~near, limit=lim)[0] > rho * rho) & ~mask
+    near = _grown(mask, rho, False)
+    filled = ~_grown(~near, rho, True) & ~mask
     parts, k = M.label(filled)
     lo = np.full(k + 1, np.iinfo(np.int64).max)
     hi = np.zeros(k + 1, dtype=np.int64)
@@ -287,6 +286,26 @@ def _closing(mask: np.ndarray, rho: float, lab: np.ndarray) -> tuple[np.ndarray,
     keep = np.where(lo == hi, 1, np.where(hi > 0, -1, 0))
     keep[0] = 0
     return parts, keep
+
+
+def _half_width(mask: np.ndarray) -> float:
+    """The strokes' typical half-width: the ink's area over its outline's length (pixels of
+    ink beside paper), as for a long band of that half-width."""
+    edge = np.zeros_like(mask)
+    for dy, dx in ((0, 1), (0, -1), (1, 0), (-1, 0)):
+        edge |= ~M._shift(mask, dy, dx, False)
+    return float(np.count_nonzero(mask)) / max(int(np.count_nonzero(edge & mask)), 1)
+
+
+def _grown(mask: np.ndarray, rho: float, fill: bool) -> np.ndarray:
+    """The mask grown by a disc of radius ``rho`` (``fill``: beyond the picture's edge)."""
+    k = int(np.floor(rho))
+    out = mask.copy()
+    for dy in range(-k, k + 1):
+        for dx in range(-k, k + 1):
+            if (dy or dx) and dy * dy + dx * dx <= rho * rho:
+                out |= M._shift(mask, dy, dx, fill)
+    return out
 
 
 def _closed_within(mask: np.ndarray, rho: float) -> tuple[np.ndarray, bool]:
