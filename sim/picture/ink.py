@@ -27,6 +27,11 @@ SPECK = 2e-4  # a piece of ink smaller than this share of the em box is a speck
 SEAL_CHROMA = 0.3  # max - min of a pixel's RGB above which it is a colour, not ink or paper
 FILL_MIN, FILL = 0.5, 0.8  # writing smaller than FILL_MIN of the picture is framed to fill FILL
 PIN_HOLE = 4e-4  # a hole in the ink smaller than this share of the em box is filled
+STREAK = 0.3  # flying white: paper narrower than twice this share of the strokes' typical
+# half-width, inside one piece of ink (a streak along a stroke), or across one stroke broken
+# in two pieces (``_across``), is ink
+ACROSS_REACH = 3.0  # ... the pieces' ink within this many half-widths of the gap tells which
+ACROSS_RATIO = 1.5  # ... and are about as wide across the line through the gap
 LUMA = tuple(np.float32(w) for w in (0.2126, 0.7152, 0.0722))  # Rec. 709 luminance weights
 ROWS = 256  # a picture is turned into luminance this many rows at a time (its float copies)
 
@@ -216,7 +221,8 @@ def _check_ground(grey: np.ndarray, name: str) -> None:
 
 
 def _clean(mask: np.ndarray) -> np.ndarray:
-    """Specks removed, pin-holes (flying white inside a stroke, scan dust) filled."""
+    """Specks removed, flying white inside a stroke closed (``_streaks_closed``), pin-holes
+    (flying white inside a stroke, scan dust) filled."""
     n2 = mask.size
     lab, k = M.label(mask)
     if k:
@@ -224,6 +230,7 @@ def _clean(mask: np.ndarray) -> np.ndarray:
         keep = area >= max(SPECK * n2, 0.02 * area[1:].max())
         keep[0] = False
         mask = keep[lab]
+    mask = _streaks_closed(mask)
     holes, k = M.label(~mask)
     if k:
         area = np.bincount(holes.ravel(), minlength=k + 1)
@@ -233,6 +240,137 @@ def _clean(mask: np.ndarray) -> np.ndarray:
         fill[border] = False
         mask = mask | fill[holes]
     return mask
+
+
+def _streaks_closed(mask: np.ndarray) -> np.ndarray:
+    """The ink with its flying white closed: a brush running dry or fast leaves white streaks
+    along a stroke and gaps across it, narrower than the stroke; read as paper they split the
+    stroke into ribbons, whose skeletons become strokes of their own (the brush's own 木 on raw
+    xuan, its vertical read as two). The ink is closed (grown and shrunk again) by STREAK of the
+    strokes' typical half-width (``_half_width``), and the paper
+    so filled kept where it lies within one piece of ink, or across one stroke that a dry gap
+    broke in two (``_across``): paper between two separate strokes (a dot that stops short of
+    a stroke) stays paper. (Beyond the paper's Sec. 9: its dry-brush
+    texture, Sec. 6, is what a picture of brush writing shows; reading it back is not described.)
+    """
+    if not mask.any():
+        return mask
+    r = _half_width(mask)
+    rho = STREAK * r
+    if rho < 1.0:
+        return mask
+    mask, across = _closed_within(mask, rho)
+    if across:  # the streaks within pieces closed first: a gap across is then one of its own
+        lab = M.label(mask)[0]
+        parts, keep = _closing(mask, rho, lab)
+        for b in np.flatnonzero(keep < 0):
+            keep[b] = _across(parts == b, lab, *_pair(parts == b, lab), r)
+        mask = mask | (keep > 0)[parts]
+    return mask
+
+
+def _closing(mask: np.ndarray, rho: float, lab: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """The paper the closing by ``rho`` fills, as labelled parts, and for each part 1 when it
+    touches one piece of ink (``lab``), -1 when it touches two or more, 0 when none."""
+    near = _grown(mask, rho, False)
+    filled = ~_grown(~near, rho, True) & ~mask
+    parts, k = M.label(filled)
+    lo = np.full(k + 1, np.iinfo(np.int64).max)
+    hi = np.zeros(k + 1, dtype=np.int64)
+    ids = parts[filled]
+    for dy, dx in M.NEIGHBOURS_8:
+        nb = M._shift(lab, dy, dx, 0)[filled]
+        touch = nb > 0
+        np.minimum.at(lo, ids[touch], nb[touch])
+        np.maximum.at(hi, ids[touch], nb[touch])
+    keep = np.where(lo == hi, 1, np.where(hi > 0, -1, 0))
+    keep[0] = 0
+    return parts, keep
+
+
+def _half_width(mask: np.ndarray) -> float:
+    """The strokes' typical half-width: the ink's area over its outline's length (pixels of
+    ink beside paper), as for a long band of that half-width."""
+    edge = np.zeros_like(mask)
+    for dy, dx in ((0, 1), (0, -1), (1, 0), (-1, 0)):
+        edge |= ~M._shift(mask, dy, dx, False)
+    return float(np.count_nonzero(mask)) / max(int(np.count_nonzero(edge & mask)), 1)
+
+
+def _grown(mask: np.ndarray, rho: float, fill: bool) -> np.ndarray:
+    """The mask grown by a disc of radius ``rho`` (``fill``: beyond the picture's edge)."""
+    k = int(np.floor(rho))
+    out = mask.copy()
+    for dy in range(-k, k + 1):
+        for dx in range(-k, k + 1):
+            if (dy or dx) and dy * dy + dx * dx <= rho * rho:
+                out |= M._shift(mask, dy, dx, fill)
+    return out
+
+
+def _closed_within(mask: np.ndarray, rho: float) -> tuple[np.ndarray, bool]:
+    """The ink with the paper its closing fills within one piece made ink, and whether the
+    closing also filled paper between pieces."""
+    parts, keep = _closing(mask, rho, M.label(mask)[0])
+    return mask | (keep > 0)[parts], bool((keep < 0).any())
+
+
+def _pair(bridge: np.ndarray, lab: np.ndarray) -> tuple[int, int]:
+    """The two pieces of ink a bridge touches most (0 for a missing one)."""
+    grown = bridge.copy()
+    for dy, dx in M.NEIGHBOURS_8:
+        grown |= M._shift(bridge, dy, dx, False)
+    ids, counts = np.unique(lab[grown & (lab > 0)], return_counts=True)
+    top = ids[np.argsort(counts)[::-1][:2]]
+    return (int(top[0]), int(top[1])) if len(top) == 2 else (0, 0)
+
+
+def _chord(lab: np.ndarray, piece: int, y: float, x: float, way: np.ndarray, limit: float) -> float:
+    """The length of the line through (y, x) along ``way`` (unit x, y) inside ``piece`` of
+    ``lab`` (at most ``limit`` either side)."""
+    h, w = lab.shape
+    out = 0.0
+    for sign in (1.0, -1.0):
+        s = 0.0
+        while s < limit:
+            yy = int(round(y + sign * (s + 1) * way[1]))
+            xx = int(round(x + sign * (s + 1) * way[0]))
+            if not (0 <= yy < h and 0 <= xx < w) or lab[yy, xx] != piece:
+                break
+            s += 1.0
+        out += s
+    return out + 1.0
+
+
+def _across(bridge: np.ndarray, lab: np.ndarray, a: int, b: int, r: float) -> bool:
+    """Whether paper ``bridge`` filled between pieces ``a`` and ``b`` of the ink (labels of
+    ``lab``) is a dry gap across one stroke: the pieces' ink near it (within ACROSS_REACH of
+    the half-width ``r``) lies on either side of it, and across the line between them both are
+    about as wide (within ACROSS_RATIO of each other, and a stroke's width, not a stroke's
+    length: a dot that stops short of a horizontal faces the horizontal's length)."""
+    if not a or not b:
+        return False
+    ys, xs = np.nonzero(bridge)
+    cy, cx = ys.mean(), xs.mean()
+    reach = ACROSS_REACH * r
+    h, w = lab.shape
+    y0, y1 = max(int(cy - reach), 0), min(int(cy + reach) + 1, h)
+    x0, x1 = max(int(cx - reach), 0), min(int(cx + reach) + 1, w)
+    win = lab[y0:y1, x0:x1]
+    yy, xx = np.mgrid[y0:y1, x0:x1]
+    near = (yy - cy) ** 2 + (xx - cx) ** 2 <= reach * reach
+    mids = []
+    for piece in (a, b):
+        sel = near & (win == piece)
+        if np.count_nonzero(sel) < 4:
+            return False
+        mids.append((float(yy[sel].mean()), float(xx[sel].mean())))
+    join = np.array([mids[1][1] - mids[0][1], mids[1][0] - mids[0][0]])
+    join /= max(float(np.linalg.norm(join)), 1e-9)
+    across = np.array([-join[1], join[0]])
+    limit = 2.0 * reach
+    wide = [_chord(lab, p, y, x, across, limit) for p, (y, x) in zip((a, b), mids, strict=True)]
+    return max(wide) <= ACROSS_RATIO * min(wide) and max(wide) < 2.0 * limit
 
 
 def _separation(d: np.ndarray, t: float) -> float:

@@ -25,6 +25,10 @@ OUTLINE_POINT_BUDGET = DATA_OUTLINE_POINTS * 3 // 4
 MEDIAN_POINT_BUDGET = DATA_MEDIAN_POINTS * 3 // 4
 BLOT_CURL = np.radians(35.0)  # a median's end that turns more than this inside its blot
 CORNER_TURN = np.radians(55.0)  # a median that turns more than this within a stroke-width
+CHAMFER = 4.0  # half-widths: a shorter leg of the simplified skeleton is a chamfer across a turn
+MEET_HOLD = 0.5  # ... whose corner goes out towards where the legs' lines meet while the ink is
+# this share of the median half-width thick
+MEET_REACH = 3.0  # ... and no farther than this many half-widths from the chamfer's middle
 CORNER_HOLD = 0.85  # a corner's vertex goes out as far as the ink is this share of the legs'
 # half-width thick (the skeleton of a thick turn cuts across it, the writer's median goes in)
 FOOT_DOWN = 0.6  # a turn whose way in goes down this steeply (image y) is a hook's foot
@@ -121,33 +125,76 @@ def simplify(poly: np.ndarray, eps: float, closed: bool = True) -> np.ndarray:
 
 
 # ------------------------------------------------------------------ corners of a median
-def _turns(pts: np.ndarray, radius: np.ndarray) -> list[tuple]:
+def _turns(pts: np.ndarray, radius: np.ndarray, dist: np.ndarray | None = None) -> list[tuple]:
     """Where the stroke's centre line turns sharply: the line simplified to within its median
-    half-width (the skeleton's chamfer across a thick turn becomes one vertex), each interior
-    vertex between legs of a half-width or more turning more than CORNER_TURN; for each its
-    index, its place (where the legs' lines meet, when that is within two half-widths of it)
-    and the ways in and out."""
+    half-width, each interior vertex between legs of a half-width or more turning more than
+    CORNER_TURN; for each its index, its place, the ways in and out and the points of the
+    skeleton where the legs leave the turn. The skeleton of a thick turn cuts across it: in one
+    vertex, or in a chamfer, a short leg (under CHAMFER half-widths) between two vertices, taken
+    as one turn when the legs on either side of it turn more than at its first vertex (飞's
+    and 学's shoulders: taken apart, the corner stayed on the chamfer, inside the shoulder,
+    and the next leg set off from below the shoulder's ink, the two apart). The place is where
+    the legs' lines meet, or as far towards it from the chamfer's middle as the ink (``dist``,
+    the distance to the paper) is MEET_HOLD of the median half-width thick."""
     r = float(np.median(radius))
     simple = simplify(pts, max(r, 1.0), closed=False)
     out = []
-    for a, v, b in zip(simple[:-2], simple[1:-1], simple[2:], strict=True):
-        u, w = v - a, b - v
-        lu, lw = float(np.linalg.norm(u)), float(np.linalg.norm(w))
-        if min(lu, lw) < r:  # a kink of the skeleton, not a turn of the stroke
+    i = 1
+    while i < len(simple) - 1:
+        a, v = simple[i - 1], simple[i]
+        legs = [(v, simple[i + 1], i + 1)]  # the vertex: the leg out from it
+        way_in = (v - a) / max(float(np.linalg.norm(v - a)), 1e-9)
+        if (
+            i + 2 < len(simple)
+            and np.linalg.norm(simple[i + 1] - v) < CHAMFER * r
+            and way_in[1] <= FOOT_DOWN  # a hook's foot is found from its vertex (into_corners)
+        ):
+            legs.append((simple[i + 1], simple[i + 2], i + 2))  # across a chamfer
+        best = None
+        for v1, b, nxt in legs:
+            u, w = v - a, b - v1
+            lu, lw = float(np.linalg.norm(u)), float(np.linalg.norm(w))
+            if min(lu, lw) < r:  # a kink of the skeleton, not a turn of the stroke
+                continue
+            u, w = u / lu, w / lw
+            turn = float(np.arccos(np.clip(u @ w, -1.0, 1.0)))
+            if turn > CORNER_TURN and (best is None or turn > best[0]):
+                best = (turn, v1, u, w, nxt)
+        if best is None:
+            i += 1
             continue
-        u, w = u / lu, w / lw
-        if np.arccos(np.clip(u @ w, -1.0, 1.0)) <= CORNER_TURN:
-            continue
-        cross = u[0] * w[1] - u[1] * w[0]
-        place = v
-        if abs(cross) > 0.2:  # the legs' lines meet: a 折 cut across by the skeleton
-            t = ((b - a)[0] * w[1] - (b - a)[1] * w[0]) / cross
-            meet = a + t * u
-            if np.linalg.norm(meet - v) <= 2.0 * r:
-                place = meet
-        k = int(np.argmin(np.linalg.norm(pts - v, axis=1)))
-        out.append((k, place, u, w))
+        _, v1, u, w, nxt = best
+        k = int(np.argmin(np.linalg.norm(pts - 0.5 * (v + v1), axis=1)))
+        place = _meeting(v, v1, u, w, r, dist, pts[k])
+        out.append((k, place, u, w, v, v1))
+        i = nxt
     return out
+
+
+def _meeting(v, v1, u, w, r: float, dist: np.ndarray | None, mid: np.ndarray) -> np.ndarray:
+    """Where the line in along ``u`` through ``v`` meets the line out along ``w`` through
+    ``v1`` (a 折 cut across by the skeleton), when that is within two half-widths ``r`` of
+    ``mid`` (the skeleton's point in the chamfer's middle); with ``dist``, the point nearest
+    it on the way from ``mid`` where the ink is MEET_HOLD of ``r`` thick. ``mid`` when the lines
+    do not meet; no farther than MEET_REACH of ``r`` from ``mid``."""
+    cross = u[0] * w[1] - u[1] * w[0]
+    if abs(cross) <= 0.2:
+        return mid
+    t = ((v1 - v)[0] * w[1] - (v1 - v)[1] * w[0]) / cross
+    meet = v + t * u
+    gap = float(np.linalg.norm(meet - mid))
+    if gap > MEET_REACH * r:  # nearly parallel legs: not farther out than a thick shoulder
+        meet = mid + (meet - mid) * MEET_REACH * r / gap
+        gap = MEET_REACH * r
+    if dist is None:
+        return meet if gap <= 2.0 * r else mid
+    h, wd = dist.shape
+    for f in np.linspace(1.0, 0.0, max(int(gap), 1) + 1)[:-1]:  # the farthest out in the ink
+        q = mid + f * (meet - mid)
+        x, y = np.round(q).astype(int)
+        if 0 <= x < wd and 0 <= y < h and dist[y, x] >= MEET_HOLD * r:
+            return q
+    return mid
 
 
 def _corner_point(p, u, w, hold: float, dist: np.ndarray) -> np.ndarray:
@@ -212,16 +259,16 @@ def into_corners(s: Stroke, dist: np.ndarray) -> Stroke:
     paper's Sec. 9, which does not say how strokes are read off a picture: stroke data's
     medians go into their corners, and the writer presses into a corner before turning.)"""
     pts, rad = s.pts, s.radius
-    turns = _turns(pts, rad)
+    turns = _turns(pts, rad, dist)
     if not turns:
         return s
     keep_pts, keep_rad, last = [], [], 0
-    for k, place, u, w in turns:
+    for k, place, u, w, v, v1 in turns:
         r_leg = float(np.median(rad[max(k - 10, 0) : k + 11]))
         c = place  # a 折: where the legs meet, the corner's centre
         if u[1] > FOOT_DOWN:  # the foot of a stroke that came down (竖钩, 横折钩, 弯钩)
             c = _corner_point(place, u, w, CORNER_HOLD * r_leg, dist)
-        i0, i1 = _on_leg(pts, k, place, -u, r_leg, -1), _on_leg(pts, k, place, w, r_leg, 1)
+        i0, i1 = _on_leg(pts, k, v, -u, r_leg, -1), _on_leg(pts, k, v1, w, r_leg, 1)
         skip = int(np.ceil(CORNER_SKIP * r_leg / STEP_PX))  # at most this far down a leg
         i0 = _aligned(pts, i0, c, -u, -1, max(last, i0 - skip))
         i1 = _aligned(pts, i1, c, w, 1, min(len(pts) - 1, i1 + skip))

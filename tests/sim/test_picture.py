@@ -522,3 +522,55 @@ def test_a_stroke_ending_on_another_runs_on_into_its_ink():
     ends = _ends(read_strokes(_bars(((100, 40), (100, 220), 8), ((160, 60), (108, 120), 5)))[2])
     dot = [e for e in ends if e[0][0] > 140]
     assert len(dot) == 1 and 92.0 < dot[0][1][0] < 99.0, ends
+
+
+def test_a_chamfered_shoulder_is_one_corner_where_the_legs_meet():
+    # the skeleton of a 折's thick shoulder cuts across it in two milder turns (51 and 39
+    # degrees here; 飞's and 学's 横撇 in a Kaiti font): one corner, out where the legs' lines
+    # meet, inside the shoulder's ink - on the chamfer, the next leg set off below the
+    # shoulder's ink and the two were written apart
+    from sim.picture.outline import into_corners
+
+    shoulder = ((165, 98), (175, 98), 14)
+    ink = _bars(((40, 100), (170, 100), 10), ((170, 100), (170, 240), 10), shoulder)
+    legs = [
+        np.linspace((40.0, 100.0), (150.0, 100.0), 56),
+        np.linspace((150.0, 100.0), (170.0, 125.0), 13)[1:],
+        np.linspace((170.0, 125.0), (170.0, 240.0), 58)[1:],
+    ]
+    pts = np.concatenate(legs)
+    out = into_corners(Stroke(pts, np.full(len(pts), 10.0)), M.edt(ink.mask))
+    assert np.linalg.norm(out.pts - (170.0, 100.0), axis=1).min() < 3.0
+    assert np.array_equal(out.pts[0], pts[0]) and np.array_equal(out.pts[-1], pts[-1])
+
+
+def _dry(gap: int = 0, streak: bool = False, dot: bool = False, n: int = 512) -> np.ndarray:
+    """A 十 in dark ink, its vertical broken across by a dry ``gap`` (px) and/or split along
+    by a white ``streak`` (flying white), and a ``dot`` stopping short of its horizontal."""
+    g = np.ones((n, n))
+    yy, xx = np.mgrid[0:n, 0:n]
+    vertical = (abs(xx - 256) <= 14) & (yy > 90) & (yy < 420)
+    g[vertical | ((abs(yy - 200) <= 11) & (xx > 150) & (xx < 360))] = 0.05
+    if gap:
+        g[(yy >= 300) & (yy < 300 + gap) & vertical] = 0.92
+    if streak:
+        g[(abs(xx - 252) <= 1) & (yy > 250) & (yy < 415)] = 0.92
+    if dot:
+        g[(yy - 160) ** 2 + (xx - 330) ** 2 <= 13**2] = 0.05
+    return _gaussian(g, 1.0)
+
+
+@pytest.mark.parametrize("gap, streak", [(3, False), (6, False), (0, True), (4, True)])
+def test_flying_white_along_or_across_a_stroke_is_read_as_one_stroke(gap, streak):
+    # a brush running dry leaves white streaks along a stroke and gaps across it: still one
+    # stroke (the brush's own 木 on raw xuan with pressed entries read its vertical as two)
+    im = read_picture(_dry(gap, streak), 512)
+    assert len(im.strokes) == 2
+    assert M.label(im.ink.mask)[1] == 1
+
+
+def test_a_dot_stopping_short_of_a_stroke_stays_apart():
+    # paper between two strokes that do not touch (a dot over a horizontal) stays paper
+    im = read_picture(_dry(dot=True), 512)
+    assert len(im.strokes) == 3
+    assert M.label(im.ink.mask)[1] == 2
