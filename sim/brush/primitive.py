@@ -189,19 +189,13 @@ class HairyBrush:
         alpha, beta = self.profile_semiaxes(u)
         U = alpha[..., None] * uhat
         V = beta[..., None] * vhat
-        rows = lay.row_from_station
-        rows_T = unit(np.einsum("ij,mjk->mik", rows, T))
-        return Sections(
-            centres,
-            U,
-            V,
-            T,
-            params,
-            np.einsum("ij,mjk->mik", rows, centres),
-            np.einsum("ij,mjk->mik", rows, U),
-            np.einsum("ij,mjk->mik", rows, V),
-            rows_T,
+        # the surface rows from the stations: one product for the four fields side by side
+        # (every element is the same sum over the stations, in the same order, as four)
+        at_rows = np.einsum(
+            "ij,mjk->mik", lay.row_from_station, np.concatenate([centres, U, V, T], axis=2)
         )
+        rows_c, rows_U, rows_V, rows_T = (at_rows[..., k : k + 3].copy() for k in (0, 3, 6, 9))
+        return Sections(centres, U, V, T, params, rows_c, rows_U, rows_V, unit(rows_T))
 
     def surface_nets(self, sec: Sections | None = None):
         """Every primitive's sweep surface SS(s, t) (Sec. 2, 6) as a homogeneous NURBS control

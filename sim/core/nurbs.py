@@ -117,7 +117,8 @@ def solve_collocation(A, B):
     n = A.shape[-1]
     if A.ndim == 3 and A.shape[0] == 1:  # one system: the same steps on Python floats
         B = np.asarray(B, dtype=float)
-        return np.array([_solve_one(A[0].tolist(), B[0].tolist())]).reshape(B.shape)
+        band = not (_negative_zero(A) or _negative_zero(B))
+        return np.array([_solve_one(A[0].tolist(), B[0].tolist(), band)]).reshape(B.shape)
     M = np.concatenate([A, np.asarray(B, dtype=float)], axis=-1)  # (..., n, n + k)
     for k in range(n - 1):
         f = M[..., k + 1 :, k] / M[..., k, k, None]
@@ -130,19 +131,31 @@ def solve_collocation(A, B):
     return X
 
 
-def _solve_one(A: list, B: list) -> list:
+def _negative_zero(a: np.ndarray) -> bool:
+    """Whether any element of ``a`` is -0.0."""
+    return bool(np.any(np.signbit(a) & (a == 0.0)))
+
+
+def _solve_one(A: list, B: list, band: bool = False) -> list:
     """``solve_collocation`` of one system on Python floats (lists of rows): the same
     operations in the same order, element by element, as the arrays' elimination, without a
-    numpy call per step (issue 28)."""
+    numpy call per step (issue 28). With ``band`` (the system holds no -0.0), a row whose
+    multiplier is zero (outside a collocation matrix's band: a row's basis functions are the
+    degree + 1 around its parameter) is left as it is, and so is a row of the solution that
+    takes zero times another: subtracting a zero leaves every value as it was, and changes
+    only -0.0 (to 0.0), which no step makes from a system without one (issue 28)."""
     n = len(A)
     M = [a + b for a, b in zip(A, B, strict=True)]
+    cols = range(len(M[0]))
     for k in range(n - 1):
         pivot = M[k]
         d = pivot[k]
         for i in range(k + 1, n):
             row = M[i]
+            if band and row[k] == 0.0:  # outside the band: nothing to subtract
+                continue
             f = row[k] / d
-            for c in range(k, len(row)):
+            for c in cols[k:]:
                 row[c] -= f * pivot[c]
     X = [row[n:] for row in M]
     for k in range(n - 1, -1, -1):
@@ -150,7 +163,8 @@ def _solve_one(A: list, B: list) -> list:
         xk = X[k] = [v / d for v in X[k]]
         for i in range(k):
             mik = M[i][k]
-            X[i] = [v - mik * w for v, w in zip(X[i], xk, strict=True)]
+            if not (band and mik == 0.0):
+                X[i] = [v - mik * w for v, w in zip(X[i], xk, strict=True)]
     return X
 
 

@@ -75,6 +75,11 @@ class Simulation:
         self._pending: list[PendingDeposit] = []  # moved but not yet deposited (see run)
         self._filled: list = []  # the marks of the first waiting samples, filled in already
         self.timings = None  # a dict to keep the seconds spent in every stage (the benchmark)
+        # whether ``run`` lets the paper take the brush's marks: False runs the brush alone
+        # (a caller that wants only the recording and the brush, as a composed work's writer
+        # of one pass, whose cells are simulated again on the sheet: the brush never reads the
+        # paper, so it moves bit for bit as with the paper, which stays blank) (issue 28)
+        self.marks_to_paper = True
         first = self._sample(0)
         self.brush.place(
             np.r_[first[:2], max(first[2], self.geometry.hair_length_mm + HOVER_MM), first[3:]]
@@ -206,6 +211,14 @@ class Simulation:
             del self._pending[:stop]
             del self._filled[:stop]
 
+    def _take_pending(self):
+        """The paper takes the waiting samples' marks (``_deposit_pending``), or, with
+        ``marks_to_paper`` False, they are let go."""
+        if self.marks_to_paper:
+            self._deposit_pending()
+        else:
+            self._drop_pending()
+
     def _fill(self, pending) -> list:
         """The marks of waiting samples, filled in together (Eq. 21-23). Small marks are
         measured and laid by the hair bundles (``bristles``) here too, many samples at once;
@@ -260,9 +273,9 @@ class Simulation:
             self._advance()
             done = self.index - start
             if len(self._pending) >= BATCH_STEPS or self.index >= end:
-                self._deposit_pending()
+                self._take_pending()
             if progress is not None and done % 64 == 0:
-                self._deposit_pending()
+                self._take_pending()
                 progress(done / total)
         if progress is not None:
             progress(1.0)

@@ -98,6 +98,7 @@ def write_character(
     progress=None,
     px_per_mm: float | None = None,
     exact_ends: bool = False,
+    paper: bool = True,
 ) -> tuple[Recording, Response, Simulation]:
     """Write ``char`` with the brush on an n_px x n_px sheet that is exactly the em box, with the
     template's brush, paper, ink, quality, rate and seed (``px_per_mm`` instead of n_px / size
@@ -112,7 +113,10 @@ def write_character(
     With ``exact_ends`` (imitating a picture, whose ink shows where each stroke begins and
     ends) the brush lands on each stroke's start (as the writer's ``RUN_UP`` 0 does too), and
     the practice also reads how far the ink of each end reaches against the outline and carries
-    the end on or draws it back (``practice._reach_moves``).
+    the end on or draws it back (``practice._reach_moves``). With ``paper`` False and one pass
+    (practice reads the paper) the brush writes alone: the recording and the brush are the
+    same, bit for bit (the brush never reads the paper), the simulation's paper stays blank,
+    for about half the work (a composed work simulates its cells again on the sheet).
 
     Bad arguments raise ParameterError (CharacterError for bad character data) before any
     work."""
@@ -140,6 +144,7 @@ def write_character(
     samples[:, 2] = hover
     samples[:] = quantise(samples)
     sim = Simulation(rec)
+    sim.marks_to_paper = paper or passes > 1
     reach = max(float(pl.width.max()), 1.0)
     masks = _stroke_masks(char, sim.paper.H, sim.paper.W) if passes > 1 else None
     whole = None  # the whole character on the paper, for practising the ends' reach and joins

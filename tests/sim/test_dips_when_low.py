@@ -75,3 +75,22 @@ def test_a_character_is_written_on_few_dips_and_greys_before_the_next():
     # the dips decided as the writing went are the recording's: it replays to the same ink
     assert np.array_equal(Simulation(rec).run().paper.ink, sim.paper.ink)
     assert spent < 0.97 * _density(sim, masks[0]) and spent < 0.97 * _density(sim, masks[second])
+
+
+@pytest.mark.slow
+def test_the_brush_written_alone_decides_the_same_recording():
+    """With ``paper`` False (one pass) the writer runs the brush alone (a composed work's cells
+    are simulated again on the sheet): the same samples, dips and brush, bit for bit, and a
+    blank paper, as the brush never reads the paper."""
+    template = Recording(np.zeros((1, 6)))
+    response = calibrate(template)
+    ch = find_char("永")
+    rec, _, sim = write_character(ch, 120, template, response=response, passes=1)
+    alone, _, bare = write_character(ch, 120, template, response=response, passes=1, paper=False)
+    assert len(rec.dips) > 1 and alone.dips == rec.dips
+    assert alone.samples.tobytes() == rec.samples.tobytes()
+    want, got = sim.brush.snapshot(), bare.brush.snapshot()
+    assert want.keys() == got.keys()
+    for key, value in want.items():
+        assert np.array_equal(np.asarray(got[key]), np.asarray(value)), key
+    assert sim.paper.ink.any() and not bare.paper.ink.any()

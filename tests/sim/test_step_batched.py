@@ -128,6 +128,28 @@ def test_one_collocation_system_on_floats_is_the_arrays_elimination():
         assert one.shape == pts.shape and one.tobytes() == two[:1].tobytes()
 
 
+def test_a_banded_collocation_system_skips_its_zeros_bit_for_bit():
+    """``_solve_one`` with ``band`` (no -0.0 in the system: a row outside the band left as
+    it is) gives the full elimination's bytes, zeros' signs included."""
+    from sim.core import nurbs
+
+    rng = np.random.default_rng(5)
+    zeros = 0
+    for trial in range(400):
+        n = int(rng.integers(4, 14))
+        pts = np.cumsum(rng.normal(size=(n, 3)) * rng.uniform(0.01, 5.0), axis=0)
+        if trial % 3 == 0:
+            pts[rng.random(n) < 0.5, 2] = 0.0  # hair lying on the paper
+        params = nurbs.chord_params(pts)
+        A = nurbs.bspline_basis(nurbs.averaged_knots(params, 3), 3, params)
+        assert not nurbs._negative_zero(A) and not nurbs._negative_zero(pts)
+        full = np.array(nurbs._solve_one(A.tolist(), pts.tolist(), band=False))
+        band = np.array(nurbs._solve_one(A.tolist(), pts.tolist(), band=True))
+        assert band.tobytes() == full.tobytes()
+        zeros += int(np.count_nonzero(A == 0.0))
+    assert zeros > 1000  # the systems were banded: rows were skipped
+
+
 def test_the_edges_crossing_the_paper_are_the_ends_of_cur_u():
     """``mark.edge_crossings`` (what the dynamics take of a cut) gives exactly the ends of the
     marching squares' segments (``slice_grids``, joined later for the marks), grid by grid."""

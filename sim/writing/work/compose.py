@@ -111,6 +111,7 @@ def write_cell(task: CellTask) -> Written:
         dip_every_mm=None,  # dips inside the character when the brush runs low
         passes=task.passes,
         px_per_mm=task.ppm,
+        paper=False,  # only the samples and the brush are kept: the cells are rendered again
     )
     full = full_load(task.template)
     used = max(full - brush_load(sim.brush), 0.0) / max(full, 1e-12)
