@@ -32,7 +32,7 @@ from .timeline import Snapshot, Timeline
 
 CACHE_FORMAT = "hairy-brush-checkpoints"
 CACHE_VERSION = 4  # 2: the key in every file, the files' sizes in the manifest; 3: the stroke;
-# 4: the stroke's landing and last steps (the droplets it throws, sim.paper.paper._spatter)
+# 4: the stroke's landing and last steps (the droplets it throws, sim.paper.lift.spatter)
 MANIFEST = "manifest.json"
 CHECKPOINT = re.compile(r"checkpoint_(\d{8})\.npz")
 LEFTOVER_AGE_S = 3600.0  # a half-written cache folder older than this is an interrupted save's

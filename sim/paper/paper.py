@@ -8,9 +8,9 @@ fibres (``_wick``: crisp but not ruled edges on sized xuan, a wider soft edge on
 the water halo: as the brush leaves the paper, the liquid the stroke left creeps on with the
 finest pigment, a faint tint a millimetre or so round the ink (``_halo``, see HALO_MM); with it
 the stroke's wet film levels (bundles' bands even out into solid ink where the hair left it
-wet, see LEVEL_MM) and a brush that leaves fast or lands loaded throws a few droplets
-(``_spatter``, see SPATTER_EXIT). Ink laid over ink that has set adds a second layer (Eq. 26
-changed, see LAYER_S): a stroke crossing a dry one shows the crossing darker.
+wet, ``lift.level_rows``, see LEVEL_MM) and a brush that leaves fast or lands loaded throws a
+few droplets (``lift.spatter``, see SPATTER_EXIT). Ink laid over ink that has set adds a second
+layer (Eq. 26 changed, see LAYER_S): a stroke crossing a dry one shows the crossing darker.
 
 Buffers are float32, stored bottom row first (as Blender stores images). Ink is kept as density
 (0 = the paper's own colour, as Eq. 7 takes colour code 0 for the paper); the visible colour is
@@ -38,6 +38,7 @@ import numpy as np
 
 from ..image.png import to_uint8
 from .grain import paper_grain
+from .lift import LEVEL_WET, box_mean, level_px, level_rows, spatter
 from .texture import paper_tone, sheet_draw, sheet_tone
 
 _RGB = np.dtype((np.void, 12))  # a pixel's three float32 ink densities as one item
@@ -86,7 +87,7 @@ class Paper:
         self.halo_px = halo_px(self.capacity, self.ppm)  # the water halo's reach (_halo; 0: none)
         self.stroke: WetStroke | None = None  # the stroke being written (for its halo)
         self.pigment = 1.0  # the ink's pigment per unit of liquid (see FULL_WET; 1: full)
-        self.dt = 0.0  # seconds a step (the last deposit's: the droplets' speed, _spatter)
+        self.dt = 0.0  # seconds a step (the last deposit's: the droplets' speed, lift.spatter)
         self.version = 0  # bumped by every change; tile_ver holds each tile's last change
         self.tile_ver = np.zeros((-(-self.H // TILE), -(-self.W // TILE)), dtype=np.int64)
         self._holds = []
@@ -244,7 +245,7 @@ class Paper:
         """Keep the stroke being written in ``stroke``: where its windows lie, the step it
         began, the darkest colour its marks laid (the water halo's source, ``_halo``), and
         where the hair touched the paper first and in its last steps, with the liquid it
-        offered there (the droplets it throws, ``_spatter``)."""
+        offered there (the droplets it throws, ``lift.spatter``)."""
         y0, y1, x0, x1 = window
         darkest = tuple(float(c) for c in col.max(axis=0))
         rows, cols, n = full // self.W, full % self.W, full.size
@@ -289,113 +290,14 @@ class Paper:
         for rows in bands:
             while waiting and waiting[0][0] <= rows[0] - reach:
                 self._put(*waiting.pop(0)[1])
-            levelled = self._level_rows(t.start, t.colour, rows, outer)
+            levelled = level_rows(self, t.start, t.colour, rows, outer)
             if levelled is not None:
                 waiting.append((rows[1], levelled))
         for _, levelled in waiting:
             self._put(*levelled)
         for rows in bands:
             self._halo_rows(t.start, colour, rows, outer)
-        self._spatter(t, colour)
-
-    def _spatter(self, t: WetStroke, colour):
-        """The droplets the brush threw (see SPATTER_EXIT), laid as the brush leaves the paper:
-        how many, where and how large from the sheet's hash of where the stroke landed (the
-        same stroke gives the same droplets in any frame order, live or replayed)."""
-        if not t.land or self.dt <= 0.0:
-            return
-        (ly, lx, lwet, lr), (hy, hx, hwet, hr) = t.land, t.trail[-1]
-        by, bx = t.trail[0][:2]
-        steps = max(len(t.trail) - 1, 1)
-        vy, vx = (hy - by) / steps, (hx - bx) / steps  # px a step as the hair left the paper
-        speed = float(np.hypot(vy, vx)) / (self.ppm * self.dt)  # mm/s
-        key = int(min(max(ly, 0), self.H - 1)) * self.W + int(min(max(lx, 0), self.W - 1))
-        u = paper_grain(
-            np.arange(SPATTER_DRAWS, dtype=np.uint64)
-            + np.uint64(key * SPATTER_DRAWS + SPATTER_SALT),
-            self.grain_seed,
-        )
-        drops = []
-        fling = SPATTER_EXIT * min(hwet / SPATTER_WET, 1.0) * (speed / SPATTER_SPEED) ** 2
-        land = SPATTER_LAND * min(lwet / SPATTER_WET, 1.0)
-        n_exit, n_land = _poisson(fling, u[0]), _poisson(land, u[1])
-        ahead = np.array([vy, vx]) / max(float(np.hypot(vy, vx)), 1e-9)
-        for k in range(min(n_exit + n_land, SPATTER_MAX)):
-            a, b, c, d = u[2 + 4 * k : 6 + 4 * k]
-            size = SPATTER_MM[0] + (SPATTER_MM[1] - SPATTER_MM[0]) * a * a  # mostly small
-            if k < n_exit:  # flung on along the exit, drawn out along it
-                dist = hr / self.ppm + SPATTER_REACH_MM * (0.2 + 0.8 * b)  # beyond its last mark
-                way = ahead + (c - 0.5) * 0.8 * np.array([-ahead[1], ahead[0]])
-                way /= np.hypot(*way)
-                centre = (hy + way[0] * dist * self.ppm, hx + way[1] * dist * self.ppm)
-                drops.append((centre, way, size, 1.5 + 2.0 * d))
-            else:  # shaken off round the landing, round
-                dist = lr / self.ppm + SPATTER_REACH_MM * (0.1 + 0.5 * b)
-                ang = 2.0 * np.pi * c
-                way = np.array([np.sin(ang), np.cos(ang)])
-                centre = (ly + way[0] * dist * self.ppm, lx + way[1] * dist * self.ppm)
-                drops.append((centre, way, size, 1.0 + 0.3 * d))
-        for centre, way, size, stretch in drops:
-            dens = SPATTER_DENSITY * min(size / SPATTER_FULL_MM, 1.0)
-            self._drop(centre, way, (size * self.ppm, stretch), dens * colour)
-
-    def _drop(self, centre, way, shape, colour):
-        """One droplet at ``centre`` (row, column, px): an ellipse of radius ``shape[0]`` px,
-        ``shape[1]`` times that along ``way``, its rim anti-aliased, of the ink ``colour``,
-        laid where darker than what the pixels hold."""
-        radius, stretch = shape
-        reach = radius * stretch + 1.5
-        y0, y1 = int(np.floor(centre[0] - reach)), int(np.ceil(centre[0] + reach)) + 1
-        x0, x1 = int(np.floor(centre[1] - reach)), int(np.ceil(centre[1] + reach)) + 1
-        y0, y1, x0, x1 = max(y0, 0), min(y1, self.H), max(x0, 0), min(x1, self.W)
-        if y0 >= y1 or x0 >= x1:
-            return
-        dy = (np.arange(y0, y1) + 0.5 - centre[0])[:, None]
-        dx = (np.arange(x0, x1) + 0.5 - centre[1])[None, :]
-        along = (dy * way[0] + dx * way[1]) / (radius * stretch)
-        across = (-dy * way[1] + dx * way[0]) / radius
-        r = np.sqrt(along * along + across * across)
-        cover = np.clip((1.0 - r) * radius + 0.5, 0.0, 1.0)  # a pixel's share of the drop
-        tint = cover.astype(np.float32)[..., None] * colour
-        ink = self.ink[y0:y1, x0:x1]
-        if not (tint > ink).any():
-            return
-        self._touch(y0, y1, x0, x1)
-        np.maximum(ink, tint, out=ink)
-
-    def _level_rows(self, start: int, colour, rows, outer):
-        """The levelled ink (see LEVEL_MM) of the rows ``rows`` (by0, by1) of the window
-        ``outer``: (row, column) of the pixels that change, in the sheet, and their new ink; None
-        where nothing levels. The film's reach (2 level_px) above and below them is read."""
-        (by0, by1), (y0, y1, x0, x1) = rows, outer
-        r = level_px(self.ppm)
-        sy0, sy1 = max(by0 - 2 * r, y0), min(by1 + 2 * r, y1)
-        last = self.last[sy0:sy1, x0:x1]
-        left = np.where(last >= start, self.wet[sy0:sy1, x0:x1], np.float32(0.0))
-        film = np.clip((left - np.float32(LEVEL_WET)) * np.float32(1.0 / LEVEL_SPAN), 0.0, 1.0)
-        if not film[by0 - sy0 : by1 - sy0].any():
-            return None
-        ink = np.minimum(self.ink[sy0:sy1, x0:x1], np.float32(LEVEL_DENSEST))
-        inked = ink.max(axis=2) * np.float32(1.0 / (LEVEL_INKED * max(max(colour), 1e-6)))
-        film *= np.minimum(inked, 1.0)  # a bundle's gap (Eq. 27's Cr = 0) laid no film
-        film = np.where(film >= LEVEL_LEAST, film, np.float32(0.0))
-        moves = np.nonzero(film[by0 - sy0 : by1 - sy0] > 0.0)
-        if moves[0].size == 0:
-            return None
-        depth_max = -np.log1p(-np.float32(LEVEL_DENSEST))
-        depth = -np.log1p(-ink)  # the pigment a pixel holds (Beer-Lambert: density 1 - e^-p)
-        share = _box(_box(_box(_box(film, r, 0), r, 1), r, 0), r, 1)
-        here = (moves[0] + (by0 - sy0), moves[1])
-        level = np.empty((moves[0].size, 3), dtype=np.float32)
-        for c in range(3):
-            mixed = film * depth[..., c]
-            mixed = _box(_box(_box(_box(mixed, r, 0), r, 1), r, 0), r, 1)
-            p = depth[..., c][here]
-            mean = np.divide(mixed[here], share[here], out=p.copy(), where=share[here] > 0.0)
-            mean = np.clip(mean, 0.0, depth_max)  # (the box sums' float32 rounding)
-            level[:, c] = p + film[here] * (mean - p)
-        new = -np.expm1(-level)
-        return (moves[0] + by0, moves[1] + x0), new
+        spatter(self, t, colour)
 
     def _put(self, at, values):
         """Put ``values`` (n, 3) into the ink at the pixels ``at`` (rows, columns)."""
@@ -411,7 +313,8 @@ class Paper:
         left = np.where(last >= start, self.wet[sy0:sy1, x0:x1], np.float32(0.0))
         if not left.any():
             return
-        reach = _box(_box(_box(_box(left, r, 0), r, 1), r, 0), r, 1)[by0 - sy0 : by1 - sy0]
+        bell = box_mean(box_mean(box_mean(box_mean(left, r, 0), r, 1), r, 0), r, 1)
+        reach = bell[by0 - sy0 : by1 - sy0]
         draw = sheet_draw(
             slice(by0, by1), slice(x0, x1), self.ppm, self.grain_seed, TILE, self.wick_fibre
         )
@@ -578,7 +481,7 @@ class WetStroke(NamedTuple):
     union of its windows (paper pixels, y0:y1, x0:x1), the darkest ink colour it laid, where
     its first marks lay (row, column: their middle in paper pixels; the mean liquid the hair
     offered; the radius of a disc of the marks' area, px) and the same of its last TRAIL_STEPS
-    steps (the droplets it throws, _spatter)."""
+    steps (the droplets it throws, lift.spatter)."""
 
     start: int
     y0: int
@@ -591,42 +494,6 @@ class WetStroke(NamedTuple):
 
 
 TRAIL_STEPS = 4
-
-
-def _poisson(mean: float, u: float) -> int:
-    """The Poisson count of ``mean`` whose cumulative probability first passes ``u``."""
-    k, p = 0, np.exp(-mean)
-    total = p
-    while u > total and k < SPATTER_MAX:
-        k += 1
-        p *= mean / k
-        total += p
-    return k
-
-
-# Model addition (not in the paper): the droplets a brush throws. A loaded brush that leaves
-# the paper fast (出锋, a flicked hook or 撇) flings a few droplets of ink on along its exit,
-# drawn out along the way it went; one that lands loaded shakes a few off round the place it
-# landed. Real writing shows a few such loose specks a character, near its strokes; a
-# rendering with none looks printed. Per stroke, as the brush leaves the paper: the exits'
-# count is Poisson with mean SPATTER_EXIT times (exit speed / SPATTER_SPEED)^2 (the liquid's
-# kinetic energy against its surface tension) times the liquid the hair offered there against
-# SPATTER_WET; the landings' with mean SPATTER_LAND times the liquid offered as it landed.
-# Each droplet is SPATTER_MM across (mostly the small end), up to SPATTER_REACH_MM away. Every
-# draw is the sheet's hash of where the stroke landed and of its seed (``paper_grain``), not
-# the brush's generator: the brush's draws are unchanged, and the same stroke throws the same
-# droplets in any frame order.
-SPATTER_EXIT = 0.6
-SPATTER_LAND = 0.2
-SPATTER_SPEED = 60.0  # mm/s
-SPATTER_WET = 0.6
-SPATTER_MM = (0.15, 0.8)  # a droplet's radius, mm: the smallest, the largest
-SPATTER_REACH_MM = 3.0
-SPATTER_DENSITY = 0.8  # a droplet's density (of the ink's), SPATTER_FULL_MM or larger
-SPATTER_FULL_MM = 0.2  # a smaller droplet is a thinner film: lighter
-SPATTER_MAX = 6
-SPATTER_DRAWS = 2 + 4 * SPATTER_MAX
-SPATTER_SALT = 21 << 40  # keeps these draws apart from the grain's and the texture's
 
 
 # Model addition (not in the paper): the water halo. Beyond the fringe the wick pulls, the
@@ -646,27 +513,6 @@ HALO_MAX_PX = 16
 HALO_ROWS = 256  # rows of the sheet the halo is made at a time (its memory: see Paper._halo)
 
 
-# Model addition (not in the paper): the wet film levels. Where the hair left a pixel wet
-# (Eq. 24's wetness above LEVEL_WET, a full film LEVEL_SPAN above that), the ink is still a
-# liquid film on the sheet as the brush leaves it, and its pigment spreads within the film
-# before the sheet takes it: the grey bands the hair bundles laid inside a loaded stroke even
-# out into solid ink, while a dry or fast stroke (little liquid left) keeps its streaks and
-# gaps (飞白), and the paper round a stroke (dry) and a hair bundle's gap (Eq. 27's Cr = 0: the
-# hair laid no liquid there, though Eq. 24 wets it) take nothing. Laid once a stroke, with the
-# halo (``Paper._halo``): each pixel's pigment (Beer-Lambert, p = -ln(1 - density), the
-# density Eq. 26's change gives) moves toward the mean of the film around it (two box filters
-# of LEVEL_MM a side, weighted by how much film each pixel holds) by the share of a film the
-# pixel holds. Pigment is conserved, not density: where it evens out, the stroke's density is
-# 1 - e^-(mean p), a little darker than the mean density it had (wet ink is darker than the
-# same pigment in bands).
-LEVEL_MM = 0.5
-LEVEL_WET = 0.2
-LEVEL_SPAN = 0.3
-LEVEL_INKED = 0.3  # a pixel holds a full film where its ink is this share of the stroke's colour
-LEVEL_DENSEST = 0.999  # densities are read at most this dark (the pigment stays finite)
-LEVEL_LEAST = 0.01  # less film than this is none (a film's share far above the sums' rounding)
-
-
 # Model change to Eq. 26 (not in the paper): a second layer. Where the hair lays ink over ink
 # that has set (Eq. 24's wetness there gone below LEVEL_WET: the sheet has taken the liquid and
 # its pigment lies fixed in the fibres) and that no mark has come near for LAYER_S seconds (an
@@ -679,11 +525,6 @@ LEVEL_LEAST = 0.01  # less film than this is none (a film's share far above the 
 LAYER_S = 0.25
 
 
-def level_px(ppm: float) -> int:
-    """Half-width (px) of each box filter of the wet film's levelling (LEVEL_MM)."""
-    return max(int(round(LEVEL_MM * ppm)), 1)
-
-
 def _set_share(wet, missed, steps: float) -> np.ndarray:
     """How far the ink of pixels of wetness ``wet`` (dried through the last step) that no mark
     window has touched for ``missed`` steps has set (0: wet or recent, 1: set), float32."""
@@ -694,21 +535,6 @@ def _set_share(wet, missed, steps: float) -> np.ndarray:
 def halo_px(capacity: float, ppm: float) -> int:
     """Half-width (px) of each box filter of the water halo (0: none)."""
     return int(min(round(HALO_MM / max(capacity, 1e-9) * ppm), HALO_MAX_PX))
-
-
-def _box(a, r: int, axis: int) -> np.ndarray:
-    """Mean of ``a`` (2-D) over 2 r + 1 pixels along ``axis`` (zero beyond the ends)."""
-    if axis == 1:
-        return _box(a.T, r, 0).T
-    n = a.shape[0]
-    c = np.cumsum(a, axis=0, dtype=np.float32)
-    out = np.empty_like(c)
-    k = min(r, n - 1)
-    out[: n - k] = c[k:]  # the sum up to r ahead, ...
-    out[n - k :] = c[n - 1]  # ... or to the end
-    if n > r + 1:  # less what lies before the window, where there is some
-        out[r + 1 :] -= c[: n - r - 1]
-    return out * np.float32(1.0 / (2 * r + 1))
 
 
 def _wick(w, ink, draw, passes: int, rate: float = WICK_RATE) -> None:

@@ -7,6 +7,7 @@ import numpy as np
 
 from sim.brush.mark import Mark
 from sim.core.params import QualityParams
+from sim.paper import lift as lift_module
 from sim.paper import paper as paper_module
 from sim.paper.paper import HALO_MAX_PX, HALO_PIGMENT, Paper, WetStroke, halo_px
 
@@ -161,8 +162,8 @@ def _fast(paper: Paper, first: int = 1, lift: bool = True) -> None:
 
 def test_a_fast_loaded_exit_throws_droplets_on_along_its_way(monkeypatch):
     """SPATTER_EXIT: droplets laid as the brush leaves, ahead of the exit, off the stroke."""
-    monkeypatch.setattr(paper_module, "SPATTER_LAND", 0.0)
-    monkeypatch.setattr(paper_module, "SPATTER_EXIT", 50.0)  # so many that the cap throws
+    monkeypatch.setattr(lift_module, "SPATTER_LAND", 0.0)
+    monkeypatch.setattr(lift_module, "SPATTER_EXIT", 50.0)  # so many that the cap throws
     still, thrown = Paper(300, 100, 8.0, capacity=1.0, fibre=0.5), None
     _fast(still, lift=False)
     thrown = Paper(300, 100, 8.0, capacity=1.0, fibre=0.5)
@@ -184,8 +185,8 @@ def test_a_fast_loaded_exit_throws_droplets_on_along_its_way(monkeypatch):
 def test_a_slow_exit_throws_nothing_and_counts_follow_poisson():
     slow = _sheet()
     _stroke(slow)  # 6 px a step at 60 steps a second, 8 px a mm: 45 mm/s, dry-ish exit
-    assert paper_module._poisson(0.0, 0.99) == 0
-    assert paper_module._poisson(1.0, 0.0) == 0 and paper_module._poisson(1.0, 0.5) == 1
+    assert lift_module._poisson(0.0, 0.99) == 0
+    assert lift_module._poisson(1.0, 0.0) == 0 and lift_module._poisson(1.0, 0.5) == 1
     draws = np.linspace(0.0005, 0.9995, 1000)
-    mean = np.mean([paper_module._poisson(0.3, u) for u in draws])
+    mean = np.mean([lift_module._poisson(0.3, u) for u in draws])
     assert abs(mean - 0.3) < 0.02

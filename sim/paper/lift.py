@@ -1,0 +1,188 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
+"""What a stroke leaves as the brush lifts off the paper, beyond the paper's model (Sec. 6):
+the wet film levelling (``level_rows``, see LEVEL_MM) and the droplets the brush throws
+(``spatter``, see SPATTER_EXIT). ``Paper._halo`` lays them, with the water halo, once a stroke;
+``paper`` below is that ``sim.paper.paper.Paper``."""
+
+from __future__ import annotations
+
+import numpy as np
+
+from .grain import paper_grain
+
+# Model addition (not in the paper): the wet film levels. Where the hair left a pixel wet
+# (Eq. 24's wetness above LEVEL_WET, a full film LEVEL_SPAN above that), the ink is still a
+# liquid film on the sheet as the brush leaves it, and its pigment spreads within the film
+# before the sheet takes it: the grey bands the hair bundles laid inside a loaded stroke even
+# out into solid ink, while a dry or fast stroke (little liquid left) keeps its streaks and
+# gaps (飞白), and the paper round a stroke (dry) and a hair bundle's gap (Eq. 27's Cr = 0: the
+# hair laid no liquid there, though Eq. 24 wets it) take nothing. Laid once a stroke, with the
+# halo (``Paper._halo``): each pixel's pigment (Beer-Lambert, p = -ln(1 - density), the
+# density Eq. 26's change gives) moves toward the mean of the film around it (two box filters
+# of LEVEL_MM a side, weighted by how much film each pixel holds) by the share of a film the
+# pixel holds. Pigment is conserved, not density: where it evens out, the stroke's density is
+# 1 - e^-(mean p), a little darker than the mean density it had (wet ink is darker than the
+# same pigment in bands).
+LEVEL_MM = 0.5
+LEVEL_WET = 0.2
+LEVEL_SPAN = 0.3
+LEVEL_INKED = 0.3  # a pixel holds a full film where its ink is this share of the stroke's colour
+LEVEL_DENSEST = 0.999  # densities are read at most this dark (the pigment stays finite)
+LEVEL_LEAST = 0.01  # less film than this is none (a film's share far above the sums' rounding)
+
+
+def level_px(ppm: float) -> int:
+    """Half-width (px) of each box filter of the wet film's levelling (LEVEL_MM)."""
+    return max(int(round(LEVEL_MM * ppm)), 1)
+
+
+def box_mean(a, r: int, axis: int) -> np.ndarray:
+    """Mean of ``a`` (2-D) over 2 r + 1 pixels along ``axis`` (zero beyond the ends)."""
+    if axis == 1:
+        return box_mean(a.T, r, 0).T
+    n = a.shape[0]
+    c = np.cumsum(a, axis=0, dtype=np.float32)
+    out = np.empty_like(c)
+    k = min(r, n - 1)
+    out[: n - k] = c[k:]  # the sum up to r ahead, ...
+    out[n - k :] = c[n - 1]  # ... or to the end
+    if n > r + 1:  # less what lies before the window, where there is some
+        out[r + 1 :] -= c[: n - r - 1]
+    return out * np.float32(1.0 / (2 * r + 1))
+
+
+def level_rows(paper, start: int, colour, rows, outer):
+    """The levelled ink (see LEVEL_MM) of the rows ``rows`` (by0, by1) of the window
+    ``outer``: (row, column) of the pixels that change, in the sheet, and their new ink; None
+    where nothing levels. The film's reach (2 level_px) above and below them is read."""
+    (by0, by1), (y0, y1, x0, x1) = rows, outer
+    r = level_px(paper.ppm)
+    sy0, sy1 = max(by0 - 2 * r, y0), min(by1 + 2 * r, y1)
+    last = paper.last[sy0:sy1, x0:x1]
+    left = np.where(last >= start, paper.wet[sy0:sy1, x0:x1], np.float32(0.0))
+    film = np.clip((left - np.float32(LEVEL_WET)) * np.float32(1.0 / LEVEL_SPAN), 0.0, 1.0)
+    if not film[by0 - sy0 : by1 - sy0].any():
+        return None
+    ink = np.minimum(paper.ink[sy0:sy1, x0:x1], np.float32(LEVEL_DENSEST))
+    inked = ink.max(axis=2) * np.float32(1.0 / (LEVEL_INKED * max(max(colour), 1e-6)))
+    film *= np.minimum(inked, 1.0)  # a bundle's gap (Eq. 27's Cr = 0) laid no film
+    film = np.where(film >= LEVEL_LEAST, film, np.float32(0.0))
+    moves = np.nonzero(film[by0 - sy0 : by1 - sy0] > 0.0)
+    if moves[0].size == 0:
+        return None
+    depth_max = -np.log1p(-np.float32(LEVEL_DENSEST))
+    depth = -np.log1p(-ink)  # the pigment a pixel holds (Beer-Lambert: density 1 - e^-p)
+    share = box_mean(box_mean(box_mean(box_mean(film, r, 0), r, 1), r, 0), r, 1)
+    here = (moves[0] + (by0 - sy0), moves[1])
+    level = np.empty((moves[0].size, 3), dtype=np.float32)
+    for c in range(3):
+        mixed = film * depth[..., c]
+        mixed = box_mean(box_mean(box_mean(box_mean(mixed, r, 0), r, 1), r, 0), r, 1)
+        p = depth[..., c][here]
+        mean = np.divide(mixed[here], share[here], out=p.copy(), where=share[here] > 0.0)
+        mean = np.clip(mean, 0.0, depth_max)  # (the box sums' float32 rounding)
+        level[:, c] = p + film[here] * (mean - p)
+    new = -np.expm1(-level)
+    return (moves[0] + by0, moves[1] + x0), new
+
+
+# Model addition (not in the paper): the droplets a brush throws. A loaded brush that leaves
+# the paper fast (出锋, a flicked hook or 撇) flings a few droplets of ink on along its exit,
+# drawn out along the way it went; one that lands loaded shakes a few off round the place it
+# landed. Real writing shows a few such loose specks a character, near its strokes; a
+# rendering with none looks printed. Per stroke, as the brush leaves the paper: the exits'
+# count is Poisson with mean SPATTER_EXIT times (exit speed / SPATTER_SPEED)^2 (the liquid's
+# kinetic energy against its surface tension) times the liquid the hair offered there against
+# SPATTER_WET; the landings' with mean SPATTER_LAND times the liquid offered as it landed.
+# Each droplet is SPATTER_MM across (mostly the small end), up to SPATTER_REACH_MM away. Every
+# draw is the sheet's hash of where the stroke landed and of its seed (``paper_grain``), not
+# the brush's generator: the brush's draws are unchanged, and the same stroke throws the same
+# droplets in any frame order.
+SPATTER_EXIT = 0.6
+SPATTER_LAND = 0.2
+SPATTER_SPEED = 60.0  # mm/s
+SPATTER_WET = 0.6
+SPATTER_MM = (0.15, 0.8)  # a droplet's radius, mm: the smallest, the largest
+SPATTER_REACH_MM = 3.0
+SPATTER_DENSITY = 0.8  # a droplet's density (of the ink's), SPATTER_FULL_MM or larger
+SPATTER_FULL_MM = 0.2  # a smaller droplet is a thinner film: lighter
+SPATTER_MAX = 6
+SPATTER_DRAWS = 2 + 4 * SPATTER_MAX
+SPATTER_SALT = 21 << 40  # keeps these draws apart from the grain's and the texture's
+
+
+def _poisson(mean: float, u: float) -> int:
+    """The Poisson count of ``mean`` whose cumulative probability first passes ``u``."""
+    k, p = 0, np.exp(-mean)
+    total = p
+    while u > total and k < SPATTER_MAX:
+        k += 1
+        p *= mean / k
+        total += p
+    return k
+
+
+def spatter(paper, t, colour) -> None:
+    """The droplets the brush threw (see SPATTER_EXIT), laid as the brush leaves the paper:
+    how many, where and how large from the sheet's hash of where the stroke landed (the
+    same stroke gives the same droplets in any frame order, live or replayed)."""
+    if not t.land or paper.dt <= 0.0:
+        return
+    (ly, lx, lwet, lr), (hy, hx, hwet, hr) = t.land, t.trail[-1]
+    by, bx = t.trail[0][:2]
+    steps = max(len(t.trail) - 1, 1)
+    vy, vx = (hy - by) / steps, (hx - bx) / steps  # px a step as the hair left the paper
+    speed = float(np.hypot(vy, vx)) / (paper.ppm * paper.dt)  # mm/s
+    key = int(min(max(ly, 0), paper.H - 1)) * paper.W + int(min(max(lx, 0), paper.W - 1))
+    u = paper_grain(
+        np.arange(SPATTER_DRAWS, dtype=np.uint64) + np.uint64(key * SPATTER_DRAWS + SPATTER_SALT),
+        paper.grain_seed,
+    )
+    drops = []
+    fling = SPATTER_EXIT * min(hwet / SPATTER_WET, 1.0) * (speed / SPATTER_SPEED) ** 2
+    land = SPATTER_LAND * min(lwet / SPATTER_WET, 1.0)
+    n_exit, n_land = _poisson(fling, u[0]), _poisson(land, u[1])
+    ahead = np.array([vy, vx]) / max(float(np.hypot(vy, vx)), 1e-9)
+    for k in range(min(n_exit + n_land, SPATTER_MAX)):
+        a, b, c, d = u[2 + 4 * k : 6 + 4 * k]
+        size = SPATTER_MM[0] + (SPATTER_MM[1] - SPATTER_MM[0]) * a * a  # mostly small
+        if k < n_exit:  # flung on along the exit, drawn out along it
+            dist = hr / paper.ppm + SPATTER_REACH_MM * (0.2 + 0.8 * b)  # beyond its last mark
+            way = ahead + (c - 0.5) * 0.8 * np.array([-ahead[1], ahead[0]])
+            way /= np.hypot(*way)
+            centre = (hy + way[0] * dist * paper.ppm, hx + way[1] * dist * paper.ppm)
+            drops.append((centre, way, size, 1.5 + 2.0 * d))
+        else:  # shaken off round the landing, round
+            dist = lr / paper.ppm + SPATTER_REACH_MM * (0.1 + 0.5 * b)
+            ang = 2.0 * np.pi * c
+            way = np.array([np.sin(ang), np.cos(ang)])
+            centre = (ly + way[0] * dist * paper.ppm, lx + way[1] * dist * paper.ppm)
+            drops.append((centre, way, size, 1.0 + 0.3 * d))
+    for centre, way, size, stretch in drops:
+        dens = SPATTER_DENSITY * min(size / SPATTER_FULL_MM, 1.0)
+        _drop(paper, centre, way, (size * paper.ppm, stretch), dens * colour)
+
+
+def _drop(paper, centre, way, shape, colour) -> None:
+    """One droplet at ``centre`` (row, column, px): an ellipse of radius ``shape[0]`` px,
+    ``shape[1]`` times that along ``way``, its rim anti-aliased, of the ink ``colour``,
+    laid where darker than what the pixels hold."""
+    radius, stretch = shape
+    reach = radius * stretch + 1.5
+    y0, y1 = int(np.floor(centre[0] - reach)), int(np.ceil(centre[0] + reach)) + 1
+    x0, x1 = int(np.floor(centre[1] - reach)), int(np.ceil(centre[1] + reach)) + 1
+    y0, y1, x0, x1 = max(y0, 0), min(y1, paper.H), max(x0, 0), min(x1, paper.W)
+    if y0 >= y1 or x0 >= x1:
+        return
+    dy = (np.arange(y0, y1) + 0.5 - centre[0])[:, None]
+    dx = (np.arange(x0, x1) + 0.5 - centre[1])[None, :]
+    along = (dy * way[0] + dx * way[1]) / (radius * stretch)
+    across = (-dy * way[1] + dx * way[0]) / radius
+    r = np.sqrt(along * along + across * across)
+    cover = np.clip((1.0 - r) * radius + 0.5, 0.0, 1.0)  # a pixel's share of the drop
+    tint = cover.astype(np.float32)[..., None] * colour
+    ink = paper.ink[y0:y1, x0:x1]
+    if not (tint > ink).any():
+        return
+    paper._touch(y0, y1, x0, x1)
+    np.maximum(ink, tint, out=ink)
