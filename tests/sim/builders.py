@@ -3,13 +3,16 @@
 
 from __future__ import annotations
 
+import numpy as np
+
+from sim.brush.mark import Mark
 from sim.cli.bench import long_stroke, workload
 from sim.core.recording import Recording, from_dict
 from sim.engine.simulation import Simulation
 from sim.writing.hanzi import character_recording
 from tests.paths import ROOT  # noqa: E402
 
-__all__ = ["character", "long_stroke", "simulation", "stepped"]
+__all__ = ["band", "character", "long_stroke", "simulation", "stepped", "stiff_template"]
 
 
 def simulation(samples, size_px: int, ppm: float, primitives: int = 1) -> Simulation:
@@ -31,3 +34,31 @@ def stepped(sim: Simulation, every: int):
         sim.step()
         if sim.index % every == 0:
             yield sim
+
+
+def band(row0: int, row1: int, col0: int, col1: int, wet: float, dark: float) -> Mark:
+    """A mark filling rows row0:row1, columns col0:col1 of the paper, each pixel offered
+    ``wet`` liquid of ink density ``dark`` (the paper's tests lay strokes with it)."""
+    rr, cc = np.mgrid[0 : row1 - row0, 0 : col1 - col0]
+    n = rr.size
+    return Mark(
+        primitive=0,
+        iy0=row0,
+        ix0=col0,
+        rows=rr.ravel(),
+        cols=cc.ravel(),
+        wet=np.full(n, wet),
+        col=np.full((n, 3), dark),
+        lateral=np.zeros(n),
+        depth=np.zeros(n),
+        shape=(row1 - row0, col1 - col0),
+        segments=np.zeros((0, 2, 2)),
+        area_bbox=1.0,
+        height=1.0,
+    )
+
+
+def stiff_template(**kw) -> Recording:
+    """A recording of the stiff wolf brush on smooth paper, no samples (the writer's and the
+    gestures' tests: the brush's own shape, no bleeding)."""
+    return Recording(np.zeros((1, 6)), brush={"preset": "wolf_stiff"}, paper_preset="smooth", **kw)

@@ -5,7 +5,6 @@ movements a hook or a 折 is written in, and the point a hook ends in. No Blende
 import numpy as np
 import pytest
 
-from sim.core.recording import Recording
 from sim.writing.hanzi import find_char
 from sim.writing.outline import (
     CUT_OVER_DISC,
@@ -19,7 +18,7 @@ from sim.writing.outline import (
 )
 from sim.writing.planner import WRITING, plan
 from sim.writing.response import calibrate
-from sim.writing.writer import coverage_mask, write_character
+from tests.sim.builders import stiff_template
 
 # an L: a vertical bar 60 wide from y = 800 down to y = 200, and a foot 60 high running right
 # to x = 700; its median comes down the bar and turns right along the foot
@@ -27,13 +26,7 @@ L_OUTLINE = "M 270 800 L 330 800 L 330 260 L 700 260 L 700 200 L 270 200 Z"
 L_CHAR = {"strokes": [L_OUTLINE], "medians": [[[300, 780], [300, 230], [680, 230]]]}
 
 
-def _template(**kw):
-    return Recording(np.zeros((1, 6)), brush={"preset": "wolf_stiff"}, paper_preset="smooth", **kw)
-
-
-@pytest.fixture(scope="module")
-def response():
-    return calibrate(_template())
+_template = stiff_template  # the stiff wolf brush on smooth paper (conftest: response)
 
 
 def test_width_at_a_corner_is_bounded_by_the_inscribed_disc():
@@ -115,11 +108,10 @@ def _band(mask, p, d, reach):
 
 
 @pytest.mark.slow
-def test_a_written_hook_ends_in_a_point_and_its_foot_stays_in_the_outline(response):
+def test_a_written_hook_ends_in_a_point_and_its_foot_stays_in_the_outline(stiff_ink):
     ch = find_char("永")
     n = 256
-    _, _, sim = write_character(ch, n, _template(), response=response, passes=1)
-    ink = coverage_mask(sim)
+    ink = stiff_ink("永", n)
     med = np.array(ch["medians"][1], dtype=float)
     img = np.stack([med[:, 0] * n / EM, (TOP - med[:, 1]) * n / EM], axis=1)
     # the vertical's body (between its 5th and 6th median points) against the hook's last

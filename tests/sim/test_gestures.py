@@ -6,7 +6,6 @@ one movement, a hook sets off from its pressed foot and leaves in a point. No Bl
 import numpy as np
 import pytest
 
-from sim.core.recording import Recording
 from sim.writing.hanzi import find_char
 from sim.writing.outline import (
     EM,
@@ -18,8 +17,8 @@ from sim.writing.outline import (
     stroke_polygons,
     to_image,
 )
-from sim.writing.response import calibrate
-from sim.writing.writer import coverage_mask, write_character
+from sim.writing.writer import font_mask
+from tests.sim.builders import stiff_template
 
 # a 横折 whose median cuts across its shoulder, as most of the font's do (口, 日, 永, 墨's 罒):
 # along the horizontal, a short diagonal, then down
@@ -28,13 +27,7 @@ ZHE = [[100, 600], [500, 600], [530, 570], [530, 150]]
 WAN = [[200, 700], [200, 300], [230, 270], [630, 270]]
 
 
-def _template(**kw):
-    return Recording(np.zeros((1, 6)), brush={"preset": "wolf_stiff"}, paper_preset="smooth", **kw)
-
-
-@pytest.fixture(scope="module")
-def response():
-    return calibrate(_template())
+_template = stiff_template  # the stiff wolf brush on smooth paper (conftest: response)
 
 
 def test_a_chamfered_shoulder_is_a_corner_but_a_round_bend_is_not():
@@ -87,14 +80,13 @@ def _img(p, n):
 
 
 @pytest.mark.slow
-def test_a_written_hook_fills_its_triangle_out_to_a_point(response):
+def test_a_written_hook_fills_its_triangle_out_to_a_point(stiff_ink):
     # 永's hook: the ink covers the outline's triangle from the foot to the point (from the
     # corner above the foot it covered only a band along the triangle's upper edge, over a
     # round bulb), and near its end it is much narrower than the vertical
     ch = find_char("永")
     n = 256
-    _, _, sim = write_character(ch, n, _template(), response=response, passes=1)
-    ink = coverage_mask(sim)
+    ink = stiff_ink("永", n)
     own = _own(ch, 1, n)
     leg_left = _img([490.0, 0.0], n)[0] - 0.5 * 60 * n / EM  # the vertical's left edge
     rows = slice(int(_img([0, 110], n)[1]), int(_img([0, -40], n)[1]))
@@ -117,7 +109,7 @@ def test_a_written_hook_fills_its_triangle_out_to_a_point(response):
 
 
 @pytest.mark.slow
-def test_a_written_zhe_keeps_its_shoulder_without_a_knob(response):
+def test_a_written_zhe_keeps_its_shoulder_without_a_knob(stiff_ink):
     # 墨's 罒: the 横折's shoulder is filled out to the outline's outer corner (as one
     # sweeping movement the pressed belly rounded it off inside: a round knob that missed 8 %
     # of it), and the ink bulges out of the outline there hardly more than along the straight
@@ -126,11 +118,8 @@ def test_a_written_zhe_keeps_its_shoulder_without_a_knob(response):
 
     ch = find_char("墨")
     n = 256
-    _, _, sim = write_character(ch, n, _template(), response=response, passes=1)
-    ink = coverage_mask(sim)
-    every = np.zeros_like(ink)
-    for k in range(len(ch["strokes"])):
-        every |= _own(ch, k, n)
+    ink = stiff_ink("墨", n)
+    every = font_mask(ch, n)
     outside = distance_transform_edt(~every)
 
     def window(x, y):
@@ -176,7 +165,7 @@ _WAN_OUTLINE = (
 
 
 @pytest.mark.slow
-def test_a_written_curled_hook_leaves_in_a_point_without_a_smear(response):
+def test_a_written_curled_hook_leaves_in_a_point_without_a_smear(stiff_ink):
     # 也's and 儿's 竖弯钩 at 256 px: beside the hook (from 0.3 of its straight on past its tip)
     # hardly any ink lies more than 1.5 px outside the font's outline (written as one sweep
     # round the curl: 78 and 42 px, the pressed belly smeared over the hook's inner side), and
@@ -186,11 +175,8 @@ def test_a_written_curled_hook_leaves_in_a_point_without_a_smear(response):
     n, smear, knob = 256, 0, 0
     for c, k in (("也", 2), ("儿", 1)):
         ch = find_char(c)
-        _, _, sim = write_character(ch, n, _template(), response=response, passes=1)
-        ink = coverage_mask(sim)
-        font = np.zeros_like(ink)
-        for j in range(len(ch["strokes"])):
-            font |= _own(ch, j, n)
+        ink = stiff_ink(c, n)
+        font = font_mask(ch, n)
         med = np.array(ch["medians"][k], dtype=float)
         a, b = _img(med[-2], n), _img(med[-1], n)  # the hook's straight, to its tip
         d = (b - a) / np.linalg.norm(b - a)

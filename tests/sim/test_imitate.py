@@ -29,15 +29,9 @@ from sim.writing.response import calibrate
 from sim.writing.strokes import stroke
 from sim.writing.writer import coverage_mask, write_character
 from tests.paths import ROOT  # noqa: E402
+from tests.sim.builders import stiff_template
 
-
-def _template(**kw):
-    return Recording(np.zeros((1, 6)), brush={"preset": "wolf_stiff"}, paper_preset="smooth", **kw)
-
-
-@pytest.fixture(scope="module")
-def response():
-    return calibrate(_template())
+_template = stiff_template  # the stiff wolf brush on smooth paper (conftest: response)
 
 
 # ------------------------------------------------------------------------------ outlines

@@ -5,8 +5,8 @@ stroke's free end on until its ink joins a stroke already written that its outli
 
 import numpy as np
 import pytest
-from scipy import ndimage
 
+from scripts.picture_real import pieces  # pieces of ink, specks left out
 from sim.core.recording import Recording
 from sim.writing.hanzi import find_char
 from sim.writing.response import calibrate
@@ -20,19 +20,17 @@ def template():
     return Recording(np.zeros((1, 6)), brush={"preset": "wolf_kaishu"}, paper_preset="sized_xuan")
 
 
-def pieces(mask: np.ndarray) -> int:
-    """Connected pieces of a mask (8-neighbours), specks under 0.05 % of the sheet left out."""
-    lab, k = ndimage.label(mask, structure=np.ones((3, 3)))
-    sizes = ndimage.sum(mask, lab, range(1, k + 1))
-    return int(np.count_nonzero(np.asarray(sizes) > 0.0005 * mask.size))
+@pytest.fixture(scope="module")
+def kaishu_response(template):
+    return calibrate(template)
 
 
 @pytest.mark.parametrize("char", ["人", "日", "相"])
-def test_strokes_that_touch_in_the_outline_touch_in_the_ink(template, char):
+def test_strokes_that_touch_in_the_outline_touch_in_the_ink(template, kaishu_response, char):
     # 人's 捺 sets off from the 撇's side; 日's 横折 from the top of its left vertical; 相's 木
     # has its right dot set beside the vertical (the join is sideways, not along the dot's way
     # out): as many pieces in the ink as in the font (before the joins were practised, one
     # more at 512 px)
     ch = find_char(char)
-    _rec, _resp, sim = write_character(ch, N, template, response=calibrate(template))
+    _rec, _resp, sim = write_character(ch, N, template, response=kaishu_response)
     assert pieces(coverage_mask(sim)) == pieces(font_mask(ch, N))

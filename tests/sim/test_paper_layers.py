@@ -8,6 +8,7 @@ import numpy as np
 from sim.brush.mark import Mark
 from sim.core.params import QualityParams
 from sim.paper.paper import LAYER_S, Paper
+from tests.sim.builders import band
 
 DT = 1.0 / 60.0
 Q = QualityParams(ab=0.5, ren=0.0, dry=0.0)
@@ -15,23 +16,7 @@ DRY = 0.05  # wetness lost a step: a band's pixels dry in ten steps or so
 
 
 def _band(row0: int, row1: int, col0: int, col1: int, wet=0.9, dark=0.45) -> Mark:
-    rr, cc = np.mgrid[0 : row1 - row0, 0 : col1 - col0]
-    n = rr.size
-    return Mark(
-        primitive=0,
-        iy0=row0,
-        ix0=col0,
-        rows=rr.ravel(),
-        cols=cc.ravel(),
-        wet=np.full(n, wet),
-        col=np.full((n, 3), dark),
-        lateral=np.zeros(n),
-        depth=np.zeros(n),
-        shape=(row1 - row0, col1 - col0),
-        segments=np.zeros((0, 2, 2)),
-        area_bbox=1.0,
-        height=1.0,
-    )
+    return band(row0, row1, col0, col1, wet, dark)
 
 
 def _sheet(dry: float = DRY) -> Paper:

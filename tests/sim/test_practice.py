@@ -7,20 +7,12 @@ little. No Blender."""
 import numpy as np
 import pytest
 
-from sim.core.recording import Recording
 from sim.writing import practice
 from sim.writing.hanzi import find_char
-from sim.writing.response import calibrate
 from sim.writing.writer import write_character
+from tests.sim.builders import stiff_template
 
-
-def _template():
-    return Recording(np.zeros((1, 6)), brush={"preset": "wolf_stiff"}, paper_preset="smooth")
-
-
-@pytest.fixture(scope="module")
-def response():
-    return calibrate(_template())
+_template = stiff_template  # the stiff wolf brush on smooth paper (conftest: response)
 
 
 def _write(ch, response, passes, exact_ends=False):
