@@ -199,3 +199,36 @@ def test_a_written_curled_hook_leaves_in_a_point_without_a_smear(stiff_ink):
     # nor round the foot (the pressed belly swept round the curl: 300 px; pressed as far into
     # the foot as at a sharp corner, a round knob stood out past the outline's round side)
     assert knob < 150
+
+
+@pytest.mark.parametrize("char", ["永", "口", "日"])
+def test_a_zhe_shoulder_is_planned_about_the_leg_wide(char):
+    # the 横折's shoulder (issue 26, part 2): the font's is a round knob up to twice as wide as
+    # the leg, and the belly pressed to fill it left a ball; the movements either side of the
+    # corner are planned no wider near it than the leg plus a little
+    from sim.writing.outline import SHOULDER_OVER
+
+    (head, head_w), (leg, leg_w) = median_pieces(find_char(char))[1][:2]
+    body = float(np.median(leg_w[len(leg_w) // 4 : 3 * len(leg_w) // 4]))
+    for pts, w in ((head, head_w), (leg, leg_w)):
+        near = np.linalg.norm(pts - leg[0], axis=1) < 1.5 * body
+        assert near.any() and w[near].max() <= SHOULDER_OVER * body + 1e-9
+    assert SHOULDER_OVER < 1.3  # a little: the font's knob is 1.5-2 times the leg
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("char", ["永", "口", "日"])
+def test_a_written_zhe_shoulder_has_no_ball_outside_the_outline(stiff_ink, char):
+    # the ink outside the font's outline within a leg's width or so of the 横折's corner,
+    # against the outline's pixels there (before SHOULDER_OVER: 永 0.19, 口 0.20, 日 0.23; now
+    # 0.13, 0.06, 0.15): the shoulder is an angular corner, not a ball round it
+    n = 256
+    ch = find_char(char)
+    ink = stiff_ink(char, n)
+    every = font_mask(ch, n)
+    (_, _), (leg, _) = median_pieces(ch)[1][:2]
+    c = _img(leg[0], n)
+    yy, xx = np.mgrid[0:n, 0:n]
+    near = (xx + 0.5 - c[0]) ** 2 + (yy + 0.5 - c[1]) ** 2 < (0.08 * n) ** 2
+    outside = np.count_nonzero(near & ink & ~every)
+    assert outside < 0.17 * np.count_nonzero(near & every)
