@@ -323,6 +323,19 @@ def _point_reach(path, width) -> float:
     return float(np.clip(w / max(rate, 1e-6), 0.5 * w, 2.0 * w))
 
 
+HOOK_GATHER = 0.85  # share of the planned press a hook has left at its tip: the belly lets go
+# faster than the outline narrows, so the splayed hair of the pressed foot gathers to a point
+
+
+def _gathered(n: int) -> np.ndarray:
+    """The press along a hook's ``n`` body samples as a share of the planned press: 1 where it
+    sets off from the foot, easing (a smoothstep) to ``HOOK_GATHER`` at its tip. (Added in issue
+    26: written at the planned press, the hair splayed in the foot spread the hook's last
+    stretch about as wide as half the vertical, a blunt tail, not a point.)"""
+    t = np.linspace(0.0, 1.0, max(n, 1))
+    return 1.0 - (1.0 - HOOK_GATHER) * t * t * (3.0 - 2.0 * t)
+
+
 def _is_hook(pl: Plan, runs) -> list[bool]:
     """For each movement of a stroke (``runs``: its body samples), whether it leaves a hook's
     foot (``Plan.hooks``, from ``outline.median_movements``: a short last movement that turns
@@ -393,6 +406,8 @@ def _fill(
         j1 = j0 + len(run)
         touch = 1.0 if hook[r] else ZHE_TOUCH if r else ENTRY_TOUCH  # a hook sets off pressed
         p = press[j0:j1] * _entry_ramp(pl.target[run], pl.width[run], touch)
+        if hook[r]:  # the hook gathers the hair to its point as it flicks out
+            p = p * _gathered(len(run))
         path = pl.target[run]
         if ends is not None:
             path = _ends_moved(path, pl.tangent[run], pl.width[run], ends[r])

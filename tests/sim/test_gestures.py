@@ -232,3 +232,24 @@ def test_a_written_zhe_shoulder_has_no_ball_outside_the_outline(stiff_ink, char)
     near = (xx + 0.5 - c[0]) ** 2 + (yy + 0.5 - c[1]) ** 2 < (0.08 * n) ** 2
     outside = np.count_nonzero(near & ink & ~every)
     assert outside < 0.17 * np.count_nonzero(near & every)
+
+
+@pytest.mark.slow
+def test_a_written_hook_ends_thin(stiff_ink):
+    # 永's hook gathers the hair to its point (HOOK_GATHER): near its tip (0.85 of the way from
+    # the corner) the ink is at most a third of the vertical's width (8 of 17 px before)
+    ch = find_char("永")
+    n = 256
+    ink = stiff_ink("永", n)
+    med = np.array(ch["medians"][1], dtype=float)
+    tip, corner = _img(med[-1], n), _img(med[-2], n)
+    d = (tip - corner) / np.linalg.norm(tip - corner)
+    xy = corner + 0.85 * (tip - corner) + np.arange(-15, 16)[:, None] * [-d[1], d[0]]
+    xy = np.round(xy).astype(int)
+    across = int(np.count_nonzero(ink[xy[:, 1], xy[:, 0]]))
+    widths = []
+    for y in (200.0, 300.0, 500.0):
+        mid = _img([505.0, y], n).astype(int)
+        widths.append(np.count_nonzero(ink[mid[1], mid[0] - 20 : mid[0] + 20]))
+    leg = float(np.median(widths))
+    assert leg > 8 and 0 < across <= leg / 3.0
