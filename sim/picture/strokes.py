@@ -32,7 +32,15 @@ TIP_TURN = np.radians(75.0)  # a spur pruned at a junction is the tip of a strok
 TIP_STANDING = 0.25  # ... preferring a standing stroke by this much of the cosine: at a corner
 # where a vertical and a horizontal start (口's top left) the vertical is written first, and
 # its entry is the tip
-TIP_MIN = 1.0  # ... and reaches this many times the junction's half-width from its centre
+TIP_MIN = (0.5, 1.0, 1.6)  # ... its skeleton reaches the second times the junction's
+# half-width from its centre; or, pointing up (TIP_UP: the 露锋 entry of a standing stroke, at
+# 口's top left), the first, and the ink along it the third (an L's square outer corner: 1.41;
+# the skeleton stops a half-width or so short of a tip, blurred pictures' most: 品 at 150 px).
+# A foot past the corner where strokes end keeps the skeleton's reach: the brush's lift there
+# trails a thin tail past the foot (语's 口 at 300 px)
+TIP_UP = 0.3  # ... the way out of the junction rises by this share of its length or more
+DOT = (1.5, 0.7)  # a dot touching a stroke stands out this far past its edge and is this thick
+# (times the stroke's half-width there; a bump a brush's entry or turn leaves: 0.4-1.0 out)
 ZONE = 1.3  # a junction's zone: this times the ink's half-width there, plus a pixel
 
 
@@ -82,13 +90,14 @@ def _merge_close_nodes(chains: list, nodes: list) -> tuple[list, list]:
     return keep, merged
 
 
-def _prune_spurs(chains: list, nodes: list) -> tuple[list, set, dict]:
+def _prune_spurs(chains: list, nodes: list, mask, dist) -> tuple[list, set, dict]:
     """Short chains from a free end into a junction of three or more: the bumps a brush's
     entry or turn leaves, not strokes. Where that leaves a junction with one chain, its
     farthest-reaching spur comes back when it reaches HOOK_SPUR of the junction's half-width
     and clearly farther than the others: the tip of a hook (宀's 横钩, whose shoulder is the
     other spur), which the stroke turns into; and a spur that runs straight on from one of
-    the junction's chains comes back as that stroke's overhang (``_overhangs``). Returns the
+    the junction's chains comes back as that stroke's overhang (``_overhangs``). A dot that
+    touches a stroke is kept (``_dot``). Returns the
     chains, the junctions whose
     spur came back (the stroke runs on through them) and the spurs still pruned, by junction
     (``_tips``)."""
@@ -99,7 +108,8 @@ def _prune_spurs(chains: list, nodes: list) -> tuple[list, set, dict]:
             if (c.ends[0] < 0) == (c.ends[1] < 0):
                 continue
             node = nodes[max(c.ends)]
-            if len(node.chains) >= 3 and _length(c.pts) < SPUR * node.radius + 3:
+            short = _length(c.pts) < SPUR * node.radius + 3
+            if len(node.chains) >= 3 and short and not _dot(chains, c, node, mask, dist):
                 drop.add(ci)
                 pruned.setdefault(max(c.ends), []).append(c)
         if not drop:
@@ -125,7 +135,28 @@ def _prune_spurs(chains: list, nodes: list) -> tuple[list, set, dict]:
     return chains, hooked, loose
 
 
-def _tips(chains: list, nodes: list, loose: dict, partner: dict) -> None:
+def _dot(chains: list, c: Chain, node: Node, mask: np.ndarray, dist: np.ndarray) -> bool:
+    """Whether a short chain from a free end into a junction is a dot touching the stroke
+    there (宀's or 亠's dot sitting on its horizontal in a scan), not a bump: its ink stands
+    out DOT[0] of the junction's half-width or more past the stroke's edge (the chain, and the
+    ink on along its way past the skeleton's end), and it is DOT[1] of that thick or more (a
+    stroke's pointed tip reaching past a corner is thin), where a stroke runs on through the
+    junction (two of its other chains leave it nearly opposite ways: at a corner where strokes
+    start or end, a spur is a stroke's tip, ``_tips``)."""
+    ways = [_exit(chains[i], e, node)[1] for i, e in node.chains if chains[i] is not c]
+    if not any(float(u @ v) < CONTINUE_COS for i, u in enumerate(ways) for v in ways[i + 1 :]):
+        return False
+    end = 0 if c.ends[0] >= 0 else 1
+    pts = _outward(c, end)
+    run = len(_extend(pts, mask, node.radius, 0.0)[0])
+    iy, ix = np.round(pts[len(pts) // 2 :, ::-1]).astype(int).T
+    thick = float(dist[iy, ix].max())
+    return (
+        _length(pts) + run - node.radius >= DOT[0] * node.radius and thick >= DOT[1] * node.radius
+    )
+
+
+def _tips(chains: list, nodes: list, loose: dict, partner: dict, mask) -> None:
     """The pointed tips of strokes that start or end at a junction, in place: a spur pruned
     there (``_prune_spurs``) that runs on within TIP_TURN of the way a stroke comes into the
     junction, where that stroke ends (its chain end has no partner), is that stroke's tip - the
@@ -145,9 +176,13 @@ def _tips(chains: list, nodes: list, loose: dict, partner: dict) -> None:
         for spur in spurs:
             end = 0 if spur.ends[0] == ni else 1
             tip = _outward(spur, end)[-1] - node.centre
-            if np.linalg.norm(tip) < TIP_MIN * node.radius:
+            if np.linalg.norm(tip) < TIP_MIN[0] * node.radius:
                 continue
             way = tip / float(np.linalg.norm(tip))
+            run = len(_extend(np.array([node.centre, node.centre + tip]), mask, node.radius, 0)[0])
+            entry = way[1] < -TIP_UP and np.linalg.norm(tip) + run >= TIP_MIN[2] * node.radius
+            if np.linalg.norm(tip) < TIP_MIN[1] * node.radius and not entry:
+                continue
             for ce in free:
                 out = _exit(chains[ce[0]], ce[1], node)[1]
                 cos = float(out @ way)
@@ -423,9 +458,9 @@ def find_strokes(mask: np.ndarray, dist: np.ndarray | None = None) -> list[Strok
     dist = M.edt(mask) if dist is None else dist
     chains, nodes = skeleton_graph(mask, dist)
     chains, nodes = _merge_close_nodes(chains, nodes)
-    chains, hooked, loose = _prune_spurs(chains, nodes)
+    chains, hooked, loose = _prune_spurs(chains, nodes, mask, dist)
     partner = _pairs(chains, nodes)
-    _tips(chains, nodes, loose, partner)
+    _tips(chains, nodes, loose, partner, mask)
     for ni in hooked:  # the stroke turns into its hook's tip
         a, b = nodes[ni].chains
         if a not in partner and b not in partner:

@@ -1,0 +1,60 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
+"""Issue 26, part 4: what the picture reader reads off shapes real brush writing and Kaiti fonts
+have, each built here as a synthetic ink mask (no scans): a 露锋 entry whose blurred point the
+skeleton barely reaches, a dot sitting on a horizontal."""
+
+import numpy as np
+
+from sim.picture.ink import Ink
+from sim.picture.outline import read_strokes
+from sim.writing.outline import discs, to_image
+
+N = 256
+
+
+def _ink(*bars) -> Ink:
+    """Bars (a, b, half-width at a, half-width at b) swept by discs, as an Ink."""
+    t = np.linspace(0.0, 1.0, 300)[:, None]
+    m = np.zeros((N, N), bool)
+    for a, b, ra, rb in bars:
+        a, b = np.array(a, float), np.array(b, float)
+        m |= discs(a + t * (b - a), ra + t[:, 0] * (rb - ra), N)
+    return Ink(m, m.astype(float), 0.5, 1.0)
+
+
+def _medians(char: dict) -> list[np.ndarray]:
+    return [to_image(np.array(m, dtype=float), N) for m in char["medians"]]
+
+
+def test_a_blurred_entry_point_at_a_corner_is_the_verticals_start():
+    # 口's top left in a small, blurred picture: the vertical's 露锋 point reaches up and to
+    # the left past the corner, but blurred round, the skeleton's spur into it stops short
+    # (under the corner's half-width from its centre); the ink along it still reaches well
+    # past a square corner's. The vertical starts at the point, and is written first
+    ink = _ink(
+        ((60, 60), (64, 200), 9, 9),
+        ((60, 60), (200, 66), 9, 9),
+        ((60, 60), (51, 49), 12, 7),  # pressed round the corner, a blunt point up and left
+    )
+    _, _, char = read_strokes(ink)
+    meds = _medians(char)
+    vertical = [i for i, m in enumerate(meds) if m[-1][1] > 150]
+    assert len(vertical) == 1
+    start = meds[vertical[0]][0]
+    assert start[0] < 54 and start[1] < 53, start  # out at the point, not at the corner
+    assert vertical[0] == 0  # 口: the left side, then the top
+
+
+def test_a_dot_sitting_on_a_horizontal_is_a_stroke_of_its_own():
+    # 宀's dot in a scan, written down onto the horizontal: one piece of ink with it, and
+    # short beside the horizontal's width, so its skeleton was pruned as a bump and the dot
+    # left unwritten (its ink given to the horizontal). A dot is thick and stands well out
+    # past the stroke's edge; the bump of a pressed entry does not
+    ink = _ink(((40, 120), (216, 120), 12, 12), ((127, 92), (128, 112), 11, 11))
+    strokes, _, char = read_strokes(ink)
+    assert len(strokes) == 2, [np.round(s.pts[[0, -1]]) for s in strokes]
+    dot = [m for m in _medians(char) if np.ptp(m[:, 0]) < 20]
+    assert len(dot) == 1 and dot[0][0][1] < 100 and dot[0][-1][1] > 112, dot
+    # a bump: the entry of a horizontal pressed down, not a stroke
+    bump = _ink(((40, 120), (216, 120), 12, 12), ((60, 104), (60, 112), 10, 10))
+    assert len(read_strokes(bump)[0]) == 1
