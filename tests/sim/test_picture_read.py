@@ -1,10 +1,12 @@
 # SPDX-License-Identifier: GPL-3.0-or-later
 """Issue 26, part 4: what the picture reader reads off shapes real brush writing and Kaiti fonts
-have, each built here as a synthetic ink mask (no scans): a 露锋 entry whose blurred point the
-skeleton barely reaches, a dot sitting on a horizontal."""
+have, each built here as a synthetic ink mask (no scans): a 横折 whose horizontal rises into
+its shoulder, a 露锋 entry whose blurred point the skeleton barely reaches, a dot sitting on a
+horizontal."""
 
 import numpy as np
 
+from sim.image import morph as M
 from sim.picture.ink import Ink
 from sim.picture.outline import read_strokes
 from sim.writing.outline import discs, to_image
@@ -24,6 +26,28 @@ def _ink(*bars) -> Ink:
 
 def _medians(char: dict) -> list[np.ndarray]:
     return [to_image(np.array(m, dtype=float), N) for m in char["medians"]]
+
+
+def test_a_horizontal_rising_into_its_shoulder_keeps_its_median_inside_its_ink():
+    # 国's top in a Kaiti font (AR PL UKai at 400 px, read at 512: its skeleton's points and
+    # half-widths): a thin horizontal rising, thickening, into the thick corner of its 折.
+    # The corner's lines come from the legs' chords; the line from the horizontal's far part
+    # into the corner cut across the rise along the ink's lower edge, the writer read the
+    # stroke there as a hair wide, and the horizontal broke off before the shoulder
+    top = [(30, 53, 6), (119, 40, 6), (139, 37, 6.5), (178, 33, 7), (188, 32, 7.5), (198, 33, 8)]
+    top.append((206, 38, 10))
+    bars = [
+        ((a[0], a[1]), (b[0], b[1]), a[2], b[2]) for a, b in zip(top[:-1], top[1:], strict=True)
+    ]
+    ink = _ink(*bars, ((210, 40), (220, 230), 10, 11))
+    strokes, _, char = read_strokes(ink)
+    dist = M.edt(ink.mask)
+    zhe = [s for s in strokes if np.ptp(s.pts[:, 0]) > 100 and np.ptp(s.pts[:, 1]) > 100]
+    assert len(zhe) == 1, [np.round(s.pts[[0, -1]]) for s in strokes]
+    pts = zhe[0].pts
+    before = pts[(pts[:, 0] > 40) & (pts[:, 0] < 195) & (pts[:, 1] < 60)]
+    iy, ix = np.round(before[:, ::-1]).astype(int).T
+    assert dist[iy, ix].min() >= 3.0, before[np.argmin(dist[iy, ix])]  # half-width 6-8
 
 
 def test_a_blurred_entry_point_at_a_corner_is_the_verticals_start():
