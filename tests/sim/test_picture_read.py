@@ -82,3 +82,18 @@ def test_a_dot_sitting_on_a_horizontal_is_a_stroke_of_its_own():
     # a bump: the entry of a horizontal pressed down, not a stroke
     bump = _ink(((40, 120), (216, 120), 12, 12), ((60, 104), (60, 112), 10, 10))
     assert len(read_strokes(bump)[0]) == 1
+
+
+def test_the_writing_kept_is_the_one_whose_shape_agrees_with_the_pictures():
+    # an imitation is measured by its shape (both inks in their boxes): the same shape
+    # written 12 px off agrees fully; a thin tail trailed past a stroke's foot moves the box,
+    # and so every stroke against it, though it adds few pixels
+    from sim.picture.correct import shape_agreement
+
+    cross = _ink(((40, 120), (200, 120), 10, 10), ((120, 40), (120, 200), 10, 10)).mask
+    moved = np.roll(cross, (12, 12), axis=(0, 1))
+    assert shape_agreement(moved, cross) == 1.0
+    tail = cross.copy()
+    tail[210:228, 119:122] = True  # 54 px against the cross's 6,600
+    assert shape_agreement(tail, cross) < 0.9
+    assert shape_agreement(np.zeros_like(cross), cross) == 0.0
