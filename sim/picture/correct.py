@@ -15,6 +15,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from ..image import morph as M
 from ..writing.outline import TIP_REACH, to_image
 from .outline import _to_data
 
@@ -23,6 +24,8 @@ END_LOOK = 3.0  # half-widths past the median's end the inks are followed (longe
 MOVE = (1.5, 1.0)  # at most this many half-widths back (overshoot) and on (short) an end moves
 MIN_MOVE = 1.0  # px: a smaller difference is left alone
 MIN_LEFT = 2.0  # half-widths of median kept when an end is moved back
+SHAPE_SIDE = 256  # the shape's square (``shape_agreement``)
+SHAPE_SPECK = 5e-3  # of the ink: a smaller piece does not set the ink's box
 
 
 def _reach(mask: np.ndarray, p: np.ndarray, d: np.ndarray, limit: float) -> float:
@@ -116,3 +119,28 @@ def corrected(
             line = ln if end == 1 else ln[::-1]
         medians.append([[round(float(x), 1), round(float(y), 1)] for x, y in _to_data(line, n)])
     return {**char, "medians": medians}
+
+
+def _shape(mask: np.ndarray) -> np.ndarray:
+    """The ink cropped to its box (pieces of under SHAPE_SPECK of the ink left out of it: a
+    droplet thrown off a fast exit) and scaled to SHAPE_SIDE square, covered above half."""
+    lab, k = M.label(mask)
+    area = np.bincount(lab.ravel(), minlength=k + 1)
+    area[0] = 0
+    keep = area >= SHAPE_SPECK * area.sum()
+    ys, xs = np.nonzero(keep[lab] if keep.any() else mask)
+    box = mask[ys.min() : ys.max() + 1, xs.min() : xs.max() + 1].astype(np.float64)
+    big = np.repeat(np.repeat(box, 4, axis=0), 4, axis=1)  # a small box averaged fairly
+    return M.resize(big, SHAPE_SIDE, SHAPE_SIDE) > 0.5
+
+
+def shape_agreement(written: np.ndarray, picture: np.ndarray) -> float:
+    """How well the written ink's shape matches the picture's, whatever its place and size on
+    the sheet: both cropped to their boxes and scaled to one square (``_shape``), then IoU
+    (as ``scripts/picture_real.box_iou`` measures imitations). The shape is what a picture
+    asks of an imitation: a stroke end overshooting by a few pixels moves the box, and so
+    every other stroke against it. 0 when either holds no ink."""
+    if not written.any() or not picture.any():
+        return 0.0
+    a, b = _shape(written), _shape(picture)
+    return float(np.count_nonzero(a & b) / np.count_nonzero(a | b))

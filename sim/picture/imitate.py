@@ -32,7 +32,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .correct import corrected
+from .correct import corrected, shape_agreement
 from .ink import Ink, PictureError, find_ink, grey_of, load_picture
 from .outline import read_strokes
 from .piece import read_piece
@@ -98,9 +98,9 @@ def imitate(
     at that size). Returns the recording, the response, the finished simulation and the
     Imitation. With ``corrections`` the written ink is read again against the picture's and
     the character written again with its stroke ends moved (``correct.corrected``), up to that
-    many times; the writing whose ink agrees best with the picture's (IoU) stays (the
+    many times; the writing whose ink's shape agrees best with the picture's stays
+    (``correct.shape_agreement``: both inks in their boxes, as imitations are measured; the
     Imitation's character data stays the strokes as read)."""
-    from ..writing.outline import iou
     from ..writing.writer import DIP_EVERY_STROKE, coverage_mask, write_character
 
     if progress is not None:
@@ -134,7 +134,7 @@ def imitate(
             exact_ends=True,  # the picture shows where each stroke's ink begins and ends
         )
         written = coverage_mask(sim)
-        score = iou(written, target)
+        score = shape_agreement(written, target)
         if best is None or score > best[0]:
             best = (score, rec, sim, char)
         if k + 1 < rounds:

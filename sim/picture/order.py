@@ -172,12 +172,14 @@ def _starts_at(s: Stroke, node: int) -> bool:
 
 def _stands_on(b: Stroke, a: Stroke) -> bool:
     """Standing stroke ``b`` comes before flat stroke ``a``: it ends on it (the foot of 王's
-    vertical), or both start at one corner (口's left side before its top)."""
+    vertical), or both start at one corner (口's left side before its top, also when the
+    left side's 露锋 tip reaches on past the corner: ``strokes._tips``)."""
     if not _lies_flat(a) or is_flat(b) or ends_flat(b):
         return False
     for node in b.touches:
         if node in a.through and not _starts_at(b, node):
             return True
+    for node in b.touches | b.through:  # b's pointed tip may reach on past the corner
         if node in a.touches and _starts_at(b, node) and _starts_at(a, node):
             return True
     return False

@@ -38,6 +38,8 @@ STEP_PX = 2.0  # a stroke's centre line has a point every this many pixels (stro
 JOIN_REACH = 1.0  # a stroke ending on another runs on this many times the ink's half-width
 JOIN_HOLD = 0.5  # ... while the ink is this share of that thick (``into_join``)
 CORNER_HEEL = 0.6  # rad inside the way straight on that a corner's foot is looked for
+LINE_HOLD = 0.4  # the line into a corner runs through ink this share of the legs' half-width
+# thick (``_inside``; where the corner lies thinner, as thin as the corner over MEET_HOLD)
 
 
 # ----------------------------------------------------------------- each stroke's own ink
@@ -246,6 +248,27 @@ def _aligned(pts, j: int, c, way, step: int, stop: int) -> int:
     return j
 
 
+def _inside(pts, j: int, c, dist: np.ndarray, hold: float, k: int) -> int:
+    """From ``j`` towards ``k`` (the turn's point on the skeleton), the first point whose
+    straight line into the corner ``c`` runs through ink at least ``hold`` thick (the distance
+    to the paper) all the way: a leg's line is the chord of the whole leg, and where the leg
+    bends on its way into the turn (国's top rising into its shoulder) the line from the far
+    point it gives cut across the bend along the ink's edge, where the writer reads the
+    stroke as no wider than a hair and lifts the brush off (the horizontal broken before the
+    shoulder). ``k`` itself when no point's line does."""
+    h, w = dist.shape
+    step = 1 if k >= j else -1
+    while j != k:
+        d = float(np.linalg.norm(c - pts[j]))
+        t = np.linspace(0.0, 1.0, max(int(d), 1) + 1)[:, None]
+        q = np.round(pts[j] + t * (c - pts[j])).astype(int)
+        x, y = np.clip(q[:, 0], 0, w - 1), np.clip(q[:, 1], 0, h - 1)
+        if float(dist[y, x].min()) >= hold:
+            return j
+        j += step
+    return j
+
+
 def into_corners(s: Stroke, dist: np.ndarray) -> Stroke:
     """The stroke's centre line taken into its sharp corners (a 折's shoulder, a hook's foot):
     the skeleton of a thick turn cuts across it, so the brush, following it, would round the
@@ -255,7 +278,8 @@ def into_corners(s: Stroke, dist: np.ndarray) -> Stroke:
     that opens 口's box); at the foot of a stroke that came down (a hook's: 竖钩, 横折钩) it
     goes out from there, straight on
     or to the turn's outside (``_corner_point``), as far as the ink is still CORNER_HOLD of
-    the legs' half-width thick; the line runs straight into it and out of it. (Beyond the
+    the legs' half-width thick; the line runs straight into it and out of it, from where
+    that line stays inside the ink (``_inside``). (Beyond the
     paper's Sec. 9, which does not say how strokes are read off a picture: stroke data's
     medians go into their corners, and the writer presses into a corner before turning.)"""
     pts, rad = s.pts, s.radius
@@ -272,6 +296,9 @@ def into_corners(s: Stroke, dist: np.ndarray) -> Stroke:
         skip = int(np.ceil(CORNER_SKIP * r_leg / STEP_PX))  # at most this far down a leg
         i0 = _aligned(pts, i0, c, -u, -1, max(last, i0 - skip))
         i1 = _aligned(pts, i1, c, w, 1, min(len(pts) - 1, i1 + skip))
+        cx, cy = np.clip(np.round(c).astype(int), 0, len(dist) - 1)
+        hold = min(LINE_HOLD * r_leg, LINE_HOLD * float(dist[cy, cx]) / MEET_HOLD)
+        i0, i1 = _inside(pts, i0, c, dist, hold, k), _inside(pts, i1, c, dist, hold, k)
         if i0 < last or i1 <= i0 + 1:
             continue
         keep_pts += [pts[last : i0 + 1], c[None]]

@@ -1,6 +1,6 @@
 # SPDX-License-Identifier: GPL-3.0-or-later
-"""The strokes of a picture's ink (numpy only): the ink's skeleton (Zhang-Suen) as a graph of
-chains between junctions and free ends, short spurs pruned, the two junctions a thick crossing
+"""The strokes of a picture's ink (numpy only): the ink's skeleton as a graph of chains between
+junctions and free ends (``skeleton``), short spurs pruned, the two junctions a thick crossing
 thins into merged, and at every junction the chains that continue each other by direction
 (nearly opposite ways out) joined across it, so that a horizontal runs on through the vertical
 that crosses it; a chain that ends at a junction (the stem of a T) runs on to its centre. Each
@@ -14,7 +14,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from ..image import morph as M
-from ..image.filters import _gaussian, skeleton
+from .skeleton import Chain, Node, _length, _link, _outward, skeleton_graph
 
 CONTINUE_COS = -0.77  # two ways out of a junction continue each other within ~40 degrees
 LOOSE_COS = -0.5  # ... and a short overhang continues a stroke within 60 degrees
@@ -32,23 +32,16 @@ TIP_TURN = np.radians(75.0)  # a spur pruned at a junction is the tip of a strok
 TIP_STANDING = 0.25  # ... preferring a standing stroke by this much of the cosine: at a corner
 # where a vertical and a horizontal start (口's top left) the vertical is written first, and
 # its entry is the tip
-TIP_MIN = 1.0  # ... and reaches this many times the junction's half-width from its centre
+TIP_MIN = (0.5, 1.0, 1.6)  # ... its skeleton reaches the second times the junction's
+# half-width from its centre; or, pointing up (TIP_UP: the 露锋 entry of a standing stroke, at
+# 口's top left), the first, and the ink along it the third (an L's square outer corner: 1.41;
+# the skeleton stops a half-width or so short of a tip, blurred pictures' most: 品 at 150 px).
+# A foot past the corner where strokes end keeps the skeleton's reach: the brush's lift there
+# trails a thin tail past the foot (语's 口 at 300 px)
+TIP_UP = 0.3  # ... the way out of the junction rises by this share of its length or more
+DOT = (1.5, 0.7)  # a dot touching a stroke stands out this far past its edge and is this thick
+# (times the stroke's half-width there; a bump a brush's entry or turn leaves: 0.4-1.0 out)
 ZONE = 1.3  # a junction's zone: this times the ink's half-width there, plus a pixel
-
-
-@dataclass
-class Chain:
-    """Skeleton pixels from one end to the other; ``ends`` are node ids (-1: a free end)."""
-
-    pts: np.ndarray  # (K, 2) x, y
-    ends: list
-
-
-@dataclass
-class Node:
-    centre: np.ndarray  # (2,) x, y
-    radius: float  # the ink's half-width at the junction
-    chains: list = field(default_factory=list)  # (chain id, which end: 0 first, 1 last)
 
 
 @dataclass
@@ -61,138 +54,6 @@ class Stroke:
     through: set = field(default_factory=set)
     touches: set = field(default_factory=set)
     joints: dict = field(default_factory=dict)  # node id -> its centre (x, y)
-
-
-def _neighbour_count(s: np.ndarray) -> np.ndarray:
-    c = np.zeros(s.shape, dtype=np.int8)
-    for dy, dx in M.NEIGHBOURS_8:
-        c += M._shift(s, dy, dx, False)
-    return c
-
-
-def _simple(s: np.ndarray, y: int, x: int) -> bool:
-    """The pixel's set neighbours are one 8-connected piece and two or three: taking it away
-    disconnects nothing and ends no line."""
-    h, w = s.shape
-    nb = [
-        (dy, dx)
-        for dy, dx in M.NEIGHBOURS_8
-        if 0 <= y + dy < h and 0 <= x + dx < w and s[y + dy, x + dx]
-    ]
-    if not 2 <= len(nb) <= 3:
-        return False
-    seen, todo = {nb[0]}, [nb[0]]
-    while todo:
-        a = todo.pop()
-        for b in nb:
-            if b not in seen and max(abs(a[0] - b[0]), abs(a[1] - b[1])) <= 1:
-                seen.add(b)
-                todo.append(b)
-    return len(seen) == len(nb)
-
-
-def _thin_corners(s: np.ndarray) -> np.ndarray:
-    """Remove the redundant corner pixels of 4-connected staircases one at a time (a simple
-    point, ``_simple``), so that a one-pixel-wide skeleton has no false junctions."""
-    s = s.copy()
-    for y, x in np.argwhere(s & (_neighbour_count(s) >= 2)):
-        if _simple(s, int(y), int(x)):
-            s[y, x] = False
-    return s
-
-
-def _walk(start, members: set) -> list:
-    """Pixels of a chain from ``start``, each next one an unvisited 8-neighbour (4-neighbours
-    first)."""
-    path, seen = [start], {start}
-    cur = start
-    while True:
-        y, x = cur
-        nxt = None
-        for dy, dx in ((-1, 0), (1, 0), (0, -1), (0, 1), (-1, -1), (-1, 1), (1, -1), (1, 1)):
-            q = (y + dy, x + dx)
-            if q in members and q not in seen:
-                nxt = q
-                break
-        if nxt is None:
-            return path
-        path.append(nxt)
-        seen.add(nxt)
-        cur = nxt
-
-
-def _node_of(y: int, x: int, jlab: np.ndarray) -> int:
-    h, w = jlab.shape
-    for dy, dx in M.NEIGHBOURS_8:
-        yy, xx = y + dy, x + dx
-        if 0 <= yy < h and 0 <= xx < w and jlab[yy, xx]:
-            return int(jlab[yy, xx]) - 1
-    return -1
-
-
-def skeleton_graph(mask: np.ndarray, dist: np.ndarray) -> tuple[list, list]:
-    """The skeleton of the ink as chains and junction nodes."""
-    n = mask.shape[0]
-    smooth = _gaussian(mask.astype(np.float64), max(1.5 * n / 512, 0.7)) > 0.5
-    s = _thin_corners(skeleton(smooth))
-    count = _neighbour_count(s)
-    junction = s & (count >= 3)
-    jlab, k = M.label(junction)
-    nodes = []
-    for i in range(k):
-        ys, xs = np.nonzero(jlab == i + 1)
-        nodes.append(Node(np.array([xs.mean(), ys.mean()]), float(dist[ys, xs].max())))
-    clab, kc = M.label(s & ~junction)
-    chains = []
-    ys, xs = np.nonzero(clab)
-    order = np.argsort(clab[ys, xs], kind="stable")
-    bounds = np.searchsorted(clab[ys, xs][order], np.arange(1, kc + 2))
-    for i in range(kc):
-        idx = order[bounds[i] : bounds[i + 1]]
-        members = {(int(ys[j]), int(xs[j])) for j in idx}
-        ends = [p for p in members if _chain_degree(p, members) <= 1] or [min(members)]
-        path = _walk(ends[0], members)
-        a, b = path[0], path[-1]
-        pts = np.array([[p[1], p[0]] for p in path], dtype=np.float64)
-        na = _node_of(*a, jlab) if count[a] != 1 else -1
-        nb = _node_of(*b, jlab) if count[b] != 1 else -1
-        if len(path) == 1:
-            nb = _other_node(a, jlab, na)
-        chains.append(Chain(pts, [na, nb]))
-    _link(chains, nodes)
-    return chains, nodes
-
-
-def _chain_degree(p, members: set) -> int:
-    y, x = p
-    return sum((y + dy, x + dx) in members for dy, dx in M.NEIGHBOURS_8)
-
-
-def _other_node(p, jlab, first: int) -> int:
-    h, w = jlab.shape
-    for dy, dx in M.NEIGHBOURS_8:
-        yy, xx = p[0] + dy, p[1] + dx
-        if 0 <= yy < h and 0 <= xx < w and jlab[yy, xx] and jlab[yy, xx] - 1 != first:
-            return int(jlab[yy, xx]) - 1
-    return -1
-
-
-def _link(chains: list, nodes: list) -> None:
-    for node in nodes:
-        node.chains = []
-    for ci, c in enumerate(chains):
-        for end in (0, 1):
-            if c.ends[end] >= 0:
-                nodes[c.ends[end]].chains.append((ci, end))
-
-
-def _length(pts: np.ndarray) -> float:
-    return float(np.linalg.norm(np.diff(pts, axis=0), axis=1).sum()) if len(pts) > 1 else 0.0
-
-
-def _outward(c: Chain, end: int) -> np.ndarray:
-    """The chain's points running away from the given end."""
-    return c.pts if end == 0 else c.pts[::-1]
 
 
 def _merge_close_nodes(chains: list, nodes: list) -> tuple[list, list]:
@@ -229,13 +90,14 @@ def _merge_close_nodes(chains: list, nodes: list) -> tuple[list, list]:
     return keep, merged
 
 
-def _prune_spurs(chains: list, nodes: list) -> tuple[list, set, dict]:
+def _prune_spurs(chains: list, nodes: list, mask, dist) -> tuple[list, set, dict]:
     """Short chains from a free end into a junction of three or more: the bumps a brush's
     entry or turn leaves, not strokes. Where that leaves a junction with one chain, its
     farthest-reaching spur comes back when it reaches HOOK_SPUR of the junction's half-width
     and clearly farther than the others: the tip of a hook (宀's 横钩, whose shoulder is the
     other spur), which the stroke turns into; and a spur that runs straight on from one of
-    the junction's chains comes back as that stroke's overhang (``_overhangs``). Returns the
+    the junction's chains comes back as that stroke's overhang (``_overhangs``). A dot that
+    touches a stroke is kept (``_dot``). Returns the
     chains, the junctions whose
     spur came back (the stroke runs on through them) and the spurs still pruned, by junction
     (``_tips``)."""
@@ -246,7 +108,8 @@ def _prune_spurs(chains: list, nodes: list) -> tuple[list, set, dict]:
             if (c.ends[0] < 0) == (c.ends[1] < 0):
                 continue
             node = nodes[max(c.ends)]
-            if len(node.chains) >= 3 and _length(c.pts) < SPUR * node.radius + 3:
+            short = _length(c.pts) < SPUR * node.radius + 3
+            if len(node.chains) >= 3 and short and not _dot(chains, c, node, mask, dist):
                 drop.add(ci)
                 pruned.setdefault(max(c.ends), []).append(c)
         if not drop:
@@ -272,7 +135,28 @@ def _prune_spurs(chains: list, nodes: list) -> tuple[list, set, dict]:
     return chains, hooked, loose
 
 
-def _tips(chains: list, nodes: list, loose: dict, partner: dict) -> None:
+def _dot(chains: list, c: Chain, node: Node, mask: np.ndarray, dist: np.ndarray) -> bool:
+    """Whether a short chain from a free end into a junction is a dot touching the stroke
+    there (宀's or 亠's dot sitting on its horizontal in a scan), not a bump: its ink stands
+    out DOT[0] of the junction's half-width or more past the stroke's edge (the chain, and the
+    ink on along its way past the skeleton's end), and it is DOT[1] of that thick or more (a
+    stroke's pointed tip reaching past a corner is thin), where a stroke runs on through the
+    junction (two of its other chains leave it nearly opposite ways: at a corner where strokes
+    start or end, a spur is a stroke's tip, ``_tips``)."""
+    ways = [_exit(chains[i], e, node)[1] for i, e in node.chains if chains[i] is not c]
+    if not any(float(u @ v) < CONTINUE_COS for i, u in enumerate(ways) for v in ways[i + 1 :]):
+        return False
+    end = 0 if c.ends[0] >= 0 else 1
+    pts = _outward(c, end)
+    run = len(_extend(pts, mask, node.radius, 0.0)[0])
+    iy, ix = np.round(pts[len(pts) // 2 :, ::-1]).astype(int).T
+    thick = float(dist[iy, ix].max())
+    return (
+        _length(pts) + run - node.radius >= DOT[0] * node.radius and thick >= DOT[1] * node.radius
+    )
+
+
+def _tips(chains: list, nodes: list, loose: dict, partner: dict, mask) -> None:
     """The pointed tips of strokes that start or end at a junction, in place: a spur pruned
     there (``_prune_spurs``) that runs on within TIP_TURN of the way a stroke comes into the
     junction, where that stroke ends (its chain end has no partner), is that stroke's tip - the
@@ -292,9 +176,13 @@ def _tips(chains: list, nodes: list, loose: dict, partner: dict) -> None:
         for spur in spurs:
             end = 0 if spur.ends[0] == ni else 1
             tip = _outward(spur, end)[-1] - node.centre
-            if np.linalg.norm(tip) < TIP_MIN * node.radius:
+            if np.linalg.norm(tip) < TIP_MIN[0] * node.radius:
                 continue
             way = tip / float(np.linalg.norm(tip))
+            run = len(_extend(np.array([node.centre, node.centre + tip]), mask, node.radius, 0)[0])
+            entry = way[1] < -TIP_UP and np.linalg.norm(tip) + run >= TIP_MIN[2] * node.radius
+            if np.linalg.norm(tip) < TIP_MIN[1] * node.radius and not entry:
+                continue
             for ce in free:
                 out = _exit(chains[ce[0]], ce[1], node)[1]
                 cos = float(out @ way)
@@ -570,9 +458,9 @@ def find_strokes(mask: np.ndarray, dist: np.ndarray | None = None) -> list[Strok
     dist = M.edt(mask) if dist is None else dist
     chains, nodes = skeleton_graph(mask, dist)
     chains, nodes = _merge_close_nodes(chains, nodes)
-    chains, hooked, loose = _prune_spurs(chains, nodes)
+    chains, hooked, loose = _prune_spurs(chains, nodes, mask, dist)
     partner = _pairs(chains, nodes)
-    _tips(chains, nodes, loose, partner)
+    _tips(chains, nodes, loose, partner, mask)
     for ni in hooked:  # the stroke turns into its hook's tip
         a, b = nodes[ni].chains
         if a not in partner and b not in partner:

@@ -1,0 +1,99 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
+"""Issue 26, part 4: what the picture reader reads off shapes real brush writing and Kaiti fonts
+have, each built here as a synthetic ink mask (no scans): a 横折 whose horizontal rises into
+its shoulder, a 露锋 entry whose blurred point the skeleton barely reaches, a dot sitting on a
+horizontal."""
+
+import numpy as np
+
+from sim.image import morph as M
+from sim.picture.ink import Ink
+from sim.picture.outline import read_strokes
+from sim.writing.outline import discs, to_image
+
+N = 256
+
+
+def _ink(*bars) -> Ink:
+    """Bars (a, b, half-width at a, half-width at b) swept by discs, as an Ink."""
+    t = np.linspace(0.0, 1.0, 300)[:, None]
+    m = np.zeros((N, N), bool)
+    for a, b, ra, rb in bars:
+        a, b = np.array(a, float), np.array(b, float)
+        m |= discs(a + t * (b - a), ra + t[:, 0] * (rb - ra), N)
+    return Ink(m, m.astype(float), 0.5, 1.0)
+
+
+def _medians(char: dict) -> list[np.ndarray]:
+    return [to_image(np.array(m, dtype=float), N) for m in char["medians"]]
+
+
+def test_a_horizontal_rising_into_its_shoulder_keeps_its_median_inside_its_ink():
+    # 国's top in a Kaiti font (AR PL UKai at 400 px, read at 512: its skeleton's points and
+    # half-widths): a thin horizontal rising, thickening, into the thick corner of its 折.
+    # The corner's lines come from the legs' chords; the line from the horizontal's far part
+    # into the corner cut across the rise along the ink's lower edge, the writer read the
+    # stroke there as a hair wide, and the horizontal broke off before the shoulder
+    top = [(30, 53, 6), (119, 40, 6), (139, 37, 6.5), (178, 33, 7), (188, 32, 7.5), (198, 33, 8)]
+    top.append((206, 38, 10))
+    bars = [
+        ((a[0], a[1]), (b[0], b[1]), a[2], b[2]) for a, b in zip(top[:-1], top[1:], strict=True)
+    ]
+    ink = _ink(*bars, ((210, 40), (220, 230), 10, 11))
+    strokes, _, char = read_strokes(ink)
+    dist = M.edt(ink.mask)
+    zhe = [s for s in strokes if np.ptp(s.pts[:, 0]) > 100 and np.ptp(s.pts[:, 1]) > 100]
+    assert len(zhe) == 1, [np.round(s.pts[[0, -1]]) for s in strokes]
+    pts = zhe[0].pts
+    before = pts[(pts[:, 0] > 40) & (pts[:, 0] < 195) & (pts[:, 1] < 60)]
+    iy, ix = np.round(before[:, ::-1]).astype(int).T
+    assert dist[iy, ix].min() >= 3.0, before[np.argmin(dist[iy, ix])]  # half-width 6-8
+
+
+def test_a_blurred_entry_point_at_a_corner_is_the_verticals_start():
+    # 口's top left in a small, blurred picture: the vertical's 露锋 point reaches up and to
+    # the left past the corner, but blurred round, the skeleton's spur into it stops short
+    # (under the corner's half-width from its centre); the ink along it still reaches well
+    # past a square corner's. The vertical starts at the point, and is written first
+    ink = _ink(
+        ((60, 60), (64, 200), 9, 9),
+        ((60, 60), (200, 66), 9, 9),
+        ((60, 60), (51, 49), 12, 7),  # pressed round the corner, a blunt point up and left
+    )
+    _, _, char = read_strokes(ink)
+    meds = _medians(char)
+    vertical = [i for i, m in enumerate(meds) if m[-1][1] > 150]
+    assert len(vertical) == 1
+    start = meds[vertical[0]][0]
+    assert start[0] < 54 and start[1] < 53, start  # out at the point, not at the corner
+    assert vertical[0] == 0  # 口: the left side, then the top
+
+
+def test_a_dot_sitting_on_a_horizontal_is_a_stroke_of_its_own():
+    # 宀's dot in a scan, written down onto the horizontal: one piece of ink with it, and
+    # short beside the horizontal's width, so its skeleton was pruned as a bump and the dot
+    # left unwritten (its ink given to the horizontal). A dot is thick and stands well out
+    # past the stroke's edge; the bump of a pressed entry does not
+    ink = _ink(((40, 120), (216, 120), 12, 12), ((127, 92), (128, 112), 11, 11))
+    strokes, _, char = read_strokes(ink)
+    assert len(strokes) == 2, [np.round(s.pts[[0, -1]]) for s in strokes]
+    dot = [m for m in _medians(char) if np.ptp(m[:, 0]) < 20]
+    assert len(dot) == 1 and dot[0][0][1] < 100 and dot[0][-1][1] > 112, dot
+    # a bump: the entry of a horizontal pressed down, not a stroke
+    bump = _ink(((40, 120), (216, 120), 12, 12), ((60, 104), (60, 112), 10, 10))
+    assert len(read_strokes(bump)[0]) == 1
+
+
+def test_the_writing_kept_is_the_one_whose_shape_agrees_with_the_pictures():
+    # an imitation is measured by its shape (both inks in their boxes): the same shape
+    # written 12 px off agrees fully; a thin tail trailed past a stroke's foot moves the box,
+    # and so every stroke against it, though it adds few pixels
+    from sim.picture.correct import shape_agreement
+
+    cross = _ink(((40, 120), (200, 120), 10, 10), ((120, 40), (120, 200), 10, 10)).mask
+    moved = np.roll(cross, (12, 12), axis=(0, 1))
+    assert shape_agreement(moved, cross) == 1.0
+    tail = cross.copy()
+    tail[210:228, 119:122] = True  # 54 px against the cross's 6,600
+    assert shape_agreement(tail, cross) < 0.9
+    assert shape_agreement(np.zeros_like(cross), cross) == 0.0
