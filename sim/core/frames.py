@@ -63,15 +63,14 @@ def dot(a, b):
     return np.einsum("...k,...k->...", a, b)
 
 
+_NEXT = np.array([1, 2, 0])  # each component's next and next but one, cyclically (cross)
+_AFTER_NEXT = np.array([2, 0, 1])
+
+
 def cross(a, b):
-    """np.cross of (..., 3) vectors without its Python wrapper (the same products)."""
-    out = np.empty(np.broadcast_shapes(a.shape, b.shape))
-    a0, a1, a2 = a[..., 0], a[..., 1], a[..., 2]
-    b0, b1, b2 = b[..., 0], b[..., 1], b[..., 2]
-    out[..., 0] = a1 * b2 - a2 * b1
-    out[..., 1] = a2 * b0 - a0 * b2
-    out[..., 2] = a0 * b1 - a1 * b0
-    return out
+    """np.cross of (..., 3) vectors without its Python wrapper (the same products): a_j b_k -
+    a_k b_j for every component i and its cyclic successors j, k, all three at once."""
+    return a[..., _NEXT] * b[..., _AFTER_NEXT] - a[..., _AFTER_NEXT] * b[..., _NEXT]
 
 
 def unit(v, fallback=None):

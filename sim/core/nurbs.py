@@ -59,12 +59,17 @@ def bspline_bases(knots, degree: int, u) -> list:
         last = K - degree - 2
         basis[..., last] = np.where(at_end[..., 0], 1.0, basis[..., last])
     out = [basis]
+    # the differences every degree's weights take slices of, each computed once (issue 28):
+    # u - k_j and k_j - u, and degree d's knot spans k_{j+d} - k_j (its left denominators are
+    # the first K - d - 1 of them, its right ones the last: the same numbers)
+    from_knot = uu - k[..., :-1]
+    to_knot = k[..., 1:] - uu
     for d in range(1, degree + 1):
         # x / inf = 0 where a knot span is empty (0/0 := 0 in the recursion)
-        den_l = k[..., d : K - 1] - k[..., : K - d - 1]
-        den_r = k[..., d + 1 :] - k[..., 1 : K - d]
-        left = (uu - k[..., : K - d - 1]) / np.where(den_l > 0, den_l, np.inf)
-        right = (k[..., d + 1 :] - uu) / np.where(den_r > 0, den_r, np.inf)
+        den = k[..., d:] - k[..., : K - d]
+        den = np.where(den > 0, den, np.inf)
+        left = from_knot[..., : K - d - 1] / den[..., :-1]
+        right = to_knot[..., d:] / den[..., 1:]
         basis = left * basis[..., :-1] + right * basis[..., 1:]
         out.append(basis)
     return out
@@ -131,9 +136,12 @@ def solve_collocation(A, B):
     return X
 
 
+_NEGATIVE_ZERO = 1 << 63  # the bits of -0.0 (float64)
+
+
 def _negative_zero(a: np.ndarray) -> bool:
     """Whether any element of ``a`` is -0.0."""
-    return bool(np.any(np.signbit(a) & (a == 0.0)))
+    return bool((a.view(np.uint64) == _NEGATIVE_ZERO).any())  # its bits: the sign's alone
 
 
 def _solve_one(A: list, B: list, band: bool = False) -> list:
@@ -177,6 +185,15 @@ def derivative_ctrl(ctrl, knots, degree: int):
     return q, k[..., 1:-1]
 
 
+_EYE3 = np.eye(3)
+
+
+def _reflection_factor(c):
+    """2 / c of a reflection's squared vector length c, 0 where the vector is about 0."""
+    big = c > 1e-18
+    return np.where(big, 2.0 / np.where(big, c, 1.0), 0.0)
+
+
 def rotation_minimising_frames(points, tangents, r0):
     """Double-reflection RMF (Wang, Juttler, Zheng, Liu 2008). points, tangents: (m, N, 3);
     r0: (m, 3) initial normal, perpendicular to tangents[:, 0]. Returns normals (m, N, 3).
@@ -185,20 +202,19 @@ def rotation_minimising_frames(points, tangents, r0):
     the points and tangents: they are built for all steps at once, and so are their running
     products."""
     m, N, _ = points.shape
-    v1 = diff(points, axis=1)  # (m, N-1, 3)
-    c1 = np.einsum("mik,mik->mi", v1, v1)
-    f1 = np.where(c1 > 1e-18, 2.0 / np.where(c1 > 1e-18, c1, 1.0), 0.0)
+    # the two reflections' vectors and factors side by side, so that both are built in one
+    # go (the same products as one at a time; issue 28)
+    v = np.empty((2, m, N - 1, 3))
+    f = np.empty((2, m, N - 1))
+    v1 = np.subtract(points[:, 1:], points[:, :-1], out=v[0])  # (m, N-1, 3)
+    f[0] = _reflection_factor(np.einsum("mik,mik->mi", v1, v1))
     t0 = tangents[:, :-1]
-    tl = t0 - (f1 * np.einsum("mik,mik->mi", v1, t0))[..., None] * v1
-    v2 = tangents[:, 1:] - tl
-    c2 = np.einsum("mik,mik->mi", v2, v2)
-    f2 = np.where(c2 > 1e-18, 2.0 / np.where(c2 > 1e-18, c2, 1.0), 0.0)
-    eye = np.eye(3)
-    H1 = eye - f1[..., None, None] * v1[..., :, None] * v1[..., None, :]
-    H2 = eye - f2[..., None, None] * v2[..., :, None] * v2[..., None, :]
-    M = H2 @ H1  # (m, N-1, 3, 3)
+    tl = t0 - (f[0] * np.einsum("mik,mik->mi", v1, t0))[..., None] * v1
+    v2 = np.subtract(tangents[:, 1:], tl, out=v[1])
+    f[1] = _reflection_factor(np.einsum("mik,mik->mi", v2, v2))
+    H = _EYE3 - f[..., None, None] * v[..., :, None] * v[..., None, :]  # H1, H2
+    P = H[1] @ H[0]  # (m, N-1, 3, 3)
     # the running products M_i ... M_0 by doubling: log2(N) batched products, not N - 1 steps
-    P = M.copy()
     span = 1
     while span < N - 1:
         P[:, span:] = P[:, span:] @ P[:, :-span]
