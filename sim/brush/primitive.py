@@ -60,6 +60,7 @@ from .bristles import draw as draw_bundles
 
 __all__ = ["HairyBrush", "Sections", "angles_from_matrix", "rotation_matrix"]
 MAX_PRIMITIVES = 32  # the split stops adding primitives here (Sec. 5.5)
+_NO_ANGLE = np.array([0.0, 1.0])  # (cos, sin) of the ellipse's angle when it has none
 
 
 @dataclass
@@ -159,9 +160,11 @@ class HairyBrush:
         params = chord_params(self.cc)
         knots = averaged_knots(params, 3)
         u = lay.station_u
-        n = params.shape[-1]
-        stations = np.broadcast_to(u, (self.m, len(u)))
-        bases = bspline_bases(knots, 3, np.concatenate([params, stations], 1))
+        m, n = params.shape
+        at = np.empty((m, n + len(u)))  # the key points' parameters, then the stations'
+        at[:, :n] = params
+        at[:, n:] = u
+        bases = bspline_bases(knots, 3, at)
         ctrl = solve_collocation(bases[3][:, :n], self.cc)
         centres = np.ascontiguousarray(bases[3][:, n:]) @ ctrl
         dq, _ = derivative_ctrl(ctrl, knots, 3)
@@ -171,21 +174,22 @@ class HairyBrush:
         x0 = self.R[:, 0]
         r0 = x0 - np.einsum("ij,j->i", T[:, 0], x0)[:, None] * T[:, 0]
         r0 = unit(r0, fallback=self.R[:, 1])
-        N = rotation_minimising_frames(centres, T, r0)
-        Bn = cross(T, N)
+        frames = np.empty((m, len(u), 2, 3))  # the normals N and binormals Bn side by side
+        N = frames[:, :, 0]
+        N[...] = rotation_minimising_frames(centres, T, r0)
+        Bn = frames[:, :, 1]
+        Bn[...] = cross(T, N)
         # orientation of the middle control ellipse (Eq. 6): its minor axis eori, projected
-        # into the normal plane at loc, fixes the profiles' angle within the swept frames
+        # into the normal plane at loc, fixes the profiles' angle within the swept frames:
+        # (cos, sin) of its angle from N at loc (cos 0, sin 1 where it is about the axis)
         ks = clip(np.searchsorted(u, self.loc), 0, len(u) - 1)
-        idx = np.arange(self.m)
-        Nl, Bl = N[idx, ks], Bn[idx, ks]
         minor = self.eori @ self.R.T
-        cos_v = np.einsum("ij,ij->i", minor, Nl)
-        sin_v = np.einsum("ij,ij->i", minor, Bl)
-        h = np.hypot(cos_v, sin_v)
-        cos_v = np.where(h > 1e-9, cos_v / np.maximum(h, 1e-12), 0.0)
-        sin_v = np.where(h > 1e-9, sin_v / np.maximum(h, 1e-12), 1.0)
-        vhat = cos_v[:, None, None] * N + sin_v[:, None, None] * Bn  # minor axis direction
-        uhat = sin_v[:, None, None] * N - cos_v[:, None, None] * Bn  # major axis direction
+        cs = np.einsum("ij,ikj->ik", minor, frames[np.arange(m), ks])
+        h = np.hypot(cs[:, 0], cs[:, 1])[:, None]
+        cs = np.where(h > 1e-9, cs / np.maximum(h, 1e-12), _NO_ANGLE)[:, None, :, None]
+        cos_v, sin_v = cs[:, :, 0], cs[:, :, 1]
+        vhat = cos_v * N + sin_v * Bn  # minor axis direction
+        uhat = sin_v * N - cos_v * Bn  # major axis direction
         alpha, beta = self.profile_semiaxes(u)
         U = alpha[..., None] * uhat
         V = beta[..., None] * vhat
