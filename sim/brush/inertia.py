@@ -31,13 +31,25 @@ class InertiaPredictor:
 
     def estimate_velocity(self) -> np.ndarray:
         """Vel^t = sum_k wei_k (S^{t-k} - S^{t-k-1}) / dT / sum_k wei_k, over the history kept."""
-        h = list(self.history)  # h[0] = S^{t-1}
+        return np.array(self._velocity([s.tolist() for s in self.history]))
+
+    def _velocity(self, h: list) -> list:
+        """``estimate_velocity`` of the history as lists of Python floats (h[0] = S^{t-1}): the
+        same operations in the same order as on arrays (numpy's sum over the displacements
+        starts from 0.0, then adds them in order), without a numpy call per step (issue 28)."""
         n = min(len(self.weights), len(h) - 1)
         if n <= 0:
-            return np.zeros(6)
-        w = self.weights[:n]
-        diffs = np.array([(h[k] - h[k + 1]) / self.dt for k in range(n)])
-        return (w[:, None] * diffs).sum(axis=0) / w.sum()
+            return [0.0] * 6
+        dt = self.dt
+        w = self.weights[:n].tolist()
+        total = 0.0
+        for wk in w:
+            total += wk
+        vel = [0.0] * len(h[0])
+        for k in range(n):
+            wk = w[k]
+            vel = [v + wk * ((a - b) / dt) for v, a, b in zip(vel, h[k], h[k + 1], strict=True)]
+        return [v / total for v in vel]
 
     def __call__(self, sample) -> np.ndarray:
         sam = np.asarray(sample, dtype=float)
@@ -45,11 +57,18 @@ class InertiaPredictor:
             s = sam.copy()
             self.velocity = np.zeros(6)
         else:
-            vel = self.estimate_velocity()
-            m = vel * self.dt + self.history[0]  # M^t
-            s = self.wei_sam * sam + (1.0 - self.wei_sam) * m  # Eq. 9
+            # on Python floats, element by element as the arrays' operations (issue 28)
+            h = [x.tolist() for x in self.history]
+            vel = self._velocity(h)
+            dt, ws = self.dt, self.wei_sam
+            rest = 1.0 - ws
+            h0 = h[0]
+            s = [  # Eq. 9: M^t = Vel^t dT + S^{t-1}
+                ws * a + rest * (v * dt + b) for a, v, b in zip(sam.tolist(), vel, h0, strict=True)
+            ]
             # the brush's velocity for Eq. 12 and 16 is the motion of the virtual position
-            self.velocity = (s - self.history[0]) / self.dt
+            self.velocity = np.array([(a - b) / dt for a, b in zip(s, h0, strict=True)])
+            s = np.array(s)
         self.history.appendleft(s)
         return s
 
