@@ -12,6 +12,7 @@ brush behaves, are listed in ``brush``'s module doc and noted where they are imp
 
 from __future__ import annotations
 
+import functools
 import math
 
 import numpy as np
@@ -94,6 +95,10 @@ def insert_active_point(brush, new):
     below = z <= CONTACT_EPS
     below[:, 0] = False
     has = below.any(axis=1)
+    if not has.any():  # no key point on the paper: no active point (issue 28: at once)
+        brush.cc = new
+        brush.active = np.full(m, -1)
+        return
     j = np.where(has, below.argmax(axis=1), n)  # first key point on/under the paper
     jj = clip(j, 1, n - 1)
     idx = np.arange(m)
@@ -256,12 +261,14 @@ def update_stress(brush, section_area, section_height, speed, dt):
     # Eq. 11: his = hsd + hdd; 1/len is bounded by len >= r/2 (the tip starts as a point)
     hsd = (brush.a / brush.b) * (0.5 * r) / np.maximum(brush.tiplen, 0.5 * r)
     local = (brush.cc - brush.B) @ brush.R
-    rest = np.zeros_like(local)
-    rest[..., 2] = -brush.sarc
-    # mc = cc0_1 - cc_1 is zero in the brush frame: its origin is the circle's centre
-    disp = norm(rest[:, 1:] - local[:, 1:])
+    # mc = cc0_1 - cc_1 is zero in the brush frame: its origin is the circle's centre. The
+    # displacement from the rest shape (0, 0, -sarc) is taken as local - rest, its negative:
+    # the same squares, so the same lengths (issue 28: fewer numpy calls)
+    off = local[:, 1:].copy()
+    off[..., 2] += brush.sarc[:, 1:]
+    disp = norm(off)
     seglen = norm(diff(local, axis=1))
-    hdd = np.sum(disp * seglen, axis=1) / np.maximum(seglen.sum(axis=1), 1e-12) / L
+    hdd = (disp * seglen).sum(axis=1) / np.maximum(seglen.sum(axis=1), 1e-12) / L
     his = hsd + hdd
     area = (np.pi * brush.a * brush.b / 4.0) / (np.pi * r * r)
     brush.touching = section_area > 0
@@ -298,10 +305,7 @@ def lose_wetness(brush, dt):
     if not touching.any():
         return
     act = np.where(brush.active >= 0, brush.active, brush.cc[..., 2].argmin(axis=1))
-    j = np.arange(brush.n)[None, :]
-    s = np.abs(j - act[:, None])
-    d = np.where(s == 0, 1, 2)
-    loss = brush.q.ab * brush.gamma[:, None] / np.power(2.0, s + d) * (dt * REF_RATE)
+    loss = brush.q.ab * brush.gamma[:, None] / _squeeze_shares(brush.n)[act] * (dt * REF_RATE)
     loss = loss * np.minimum(brush.wet / W_SQUEEZE, 1.0)  # the last ink stays (doc)
     on, wet_on = contact_wetness(brush)
     held = np.where(on, brush.wet, 0.0)
@@ -310,6 +314,19 @@ def lose_wetness(brush, dt):
     loss = loss + spend[:, None] * held / np.maximum(total, 1e-12)[:, None]
     loss = np.where(touching[:, None], loss, 0.0)
     np.maximum(brush.wet - loss, 0.0, out=brush.wet)
+
+
+@functools.cache
+def _squeeze_shares(n: int) -> np.ndarray:
+    """Eq. 15's 2^(s+d) of every key point j (columns) from every active point (rows), s =
+    |j - active|, d = 1 for s = 0 and 2 otherwise: a table, so that a step takes a row of it
+    instead of computing it (issue 28). Read-only."""
+    j = np.arange(n)
+    s = np.abs(j[None, :] - j[:, None])
+    d = np.where(s == 0, 1, 2)
+    table = np.power(2.0, s + d)
+    table.flags.writeable = False
+    return table
 
 
 def adjust_ellipse(brush, vel6, dt):
@@ -340,6 +357,9 @@ def adjust_ellipse(brush, vel6, dt):
     tl = brush.tiplen + inc * brush.r  # Sec. 5.4: the tip control line lengthens by inc
     brush.tiplen = np.where(touching, np.minimum(tl, 0.5 * brush.a), tl * (1.0 - krec))
     # Eq. 17: loc' = nu loc + (1 - nu) (1/n) sum_j arc(P_1..P_{j+1}) / arc(P_1..P_n)
+    if not touching.any():  # no primitive on the paper moves its ellipse (issue 28: skipped)
+        brush.loc = clip(brush.loc, 0.05, 0.9)
+        return
     seg = norm(diff(brush.cc, axis=1))
     cum = seg.cumsum(axis=1)
     ideal = np.sum(cum / np.maximum(cum[:, -1:], 1e-12), axis=1) / brush.n
