@@ -81,12 +81,16 @@ def averaged_knots(params, degree: int = 3) -> np.ndarray:
     n = params.shape[-1]
     lead = params.shape[:-1]
     inner = n - degree - 1
-    c = params.cumsum(axis=-1)
-    c = np.concatenate([np.zeros(lead + (1,)), c], axis=-1)
-    # u_{j+p} = (1/p) * sum_{i=j}^{j+p-1} params_i, j = 1..n-p-1
-    j = np.arange(1, inner + 1)
-    mid = (c[..., j + degree] - c[..., j]) / degree
-    return np.concatenate([np.zeros(lead + (degree + 1,)), mid, np.ones(lead + (degree + 1,))], -1)
+    c = np.zeros(lead + (n + 1,))
+    params.cumsum(axis=-1, out=c[..., 1:])
+    # u_{j+p} = (1/p) * sum_{i=j}^{j+p-1} params_i, j = 1..n-p-1 (written in place between
+    # the clamped ends: issue 28)
+    knots = np.empty(lead + (n + degree + 1,))
+    knots[..., : degree + 1] = 0.0
+    knots[..., degree + 1 + inner :] = 1.0
+    mid = c[..., 1 + degree : 1 + degree + inner] - c[..., 1 : 1 + inner]
+    np.divide(mid, degree, out=knots[..., degree + 1 : degree + 1 + inner])
+    return knots
 
 
 def chord_params(points) -> np.ndarray:
@@ -94,7 +98,8 @@ def chord_params(points) -> np.ndarray:
     points = np.asarray(points, dtype=float)
     seg = norm(diff(points, axis=-2), axis=-1)
     seg = np.maximum(seg, 1e-9)
-    c = np.concatenate([np.zeros(seg.shape[:-1] + (1,)), seg.cumsum(axis=-1)], axis=-1)
+    c = np.zeros(points.shape[:-1])
+    seg.cumsum(axis=-1, out=c[..., 1:])
     return c / c[..., -1:]
 
 
