@@ -156,18 +156,27 @@ def _solve_one(A: list, B: list, band: bool = False) -> list:
     multiplier is zero (outside a collocation matrix's band: a row's basis functions are the
     degree + 1 around its parameter) is left as it is, and so is a row of the solution that
     takes zero times another: subtracting a zero leaves every value as it was, and changes
-    only -0.0 (to 0.0), which no step makes from a system without one (issue 28)."""
+    only -0.0 (to 0.0), which no step makes from a system without one (issue 28). For the
+    same reason, with ``band`` a row takes a finite multiple of the pivot row only where the
+    pivot row is not zero, and not in the pivot's own column (below the diagonal: no later
+    step reads it)."""
     n = len(A)
     M = [a + b for a, b in zip(A, B, strict=True)]
     cols = range(len(M[0]))
     for k in range(n - 1):
         pivot = M[k]
         d = pivot[k]
+        if band:
+            nonzero = [c for c in cols[k + 1 :] if pivot[c] != 0.0]
         for i in range(k + 1, n):
             row = M[i]
             if band and row[k] == 0.0:  # outside the band: nothing to subtract
                 continue
             f = row[k] / d
+            if band and f - f == 0.0:  # f finite: f * 0.0 is a zero
+                for c in nonzero:
+                    row[c] -= f * pivot[c]
+                continue
             for c in cols[k:]:
                 row[c] -= f * pivot[c]
     X = [row[n:] for row in M]
