@@ -33,13 +33,13 @@ def stack1(arrays):
 
 def rotation_matrix(d_deg: float, q_deg: float, r_deg: float) -> np.ndarray:
     """R = Rx(q) Ry(d) Rz(r), angles in degrees (Sec. 4, Fig. 6(a))."""
-    d, q, r = np.radians([d_deg, q_deg, r_deg])
-    cx, sx = np.cos(q), np.sin(q)
-    cy, sy = np.cos(d), np.sin(d)
-    cz, sz = np.cos(r), np.sin(r)
-    rx = np.array([[1, 0, 0], [0, cx, -sx], [0, sx, cx]])
-    ry = np.array([[cy, 0, sy], [0, 1, 0], [-sy, 0, cy]])
-    rz = np.array([[cz, -sz, 0], [sz, cz, 0], [0, 0, 1]])
+    # the three angles' cosines and sines in one call each, as Python floats (the same numbers:
+    # the matrices are built faster from them; issue 28)
+    rad = np.radians([d_deg, q_deg, r_deg])
+    (cy, cx, cz), (sy, sx, sz) = np.cos(rad).tolist(), np.sin(rad).tolist()
+    rx = np.array([[1.0, 0.0, 0.0], [0.0, cx, -sx], [0.0, sx, cx]])
+    ry = np.array([[cy, 0.0, sy], [0.0, 1.0, 0.0], [-sy, 0.0, cy]])
+    rz = np.array([[cz, -sz, 0.0], [sz, cz, 0.0], [0.0, 0.0, 1.0]])
     return rx @ ry @ rz
 
 

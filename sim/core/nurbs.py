@@ -53,9 +53,8 @@ def bspline_bases(knots, degree: int, u) -> list:
     uu = u[..., :, None]
     K = knots.shape[-1]
     basis = ((k[..., :-1] <= uu) & (uu < k[..., 1:])).astype(float)
-    at_end = uu >= k[..., -1:]
+    at_end = uu >= k[..., -1:]  # (there, no span holds u: the row is all zeros already)
     if at_end.any():
-        basis = np.where(at_end, 0.0, basis)
         last = K - degree - 2
         basis[..., last] = np.where(at_end[..., 0], 1.0, basis[..., last])
     out = [basis]
