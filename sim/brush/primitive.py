@@ -198,8 +198,9 @@ class HairyBrush:
         at_rows = np.einsum(
             "ij,mjk->mik", lay.row_from_station, np.concatenate([centres, U, V, T], axis=2)
         )
-        rows_c, rows_U, rows_V, rows_T = (at_rows[..., k : k + 3].copy() for k in (0, 3, 6, 9))
-        return Sections(centres, U, V, T, params, rows_c, rows_U, rows_V, unit(rows_T))
+        rows_c, rows_U, rows_V = (at_rows[..., k : k + 3].copy() for k in (0, 3, 6))
+        rows_T = unit(at_rows[..., 9:12])  # a new array already
+        return Sections(centres, U, V, T, params, rows_c, rows_U, rows_V, rows_T)
 
     def surface_nets(self, sec: Sections | None = None):
         """Every primitive's sweep surface SS(s, t) (Sec. 2, 6) as a homogeneous NURBS control
