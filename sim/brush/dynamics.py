@@ -312,7 +312,8 @@ def lose_wetness(brush, dt):
     total = held.sum(axis=1)
     spend = (SPEND * brush.sweep + SOAK * brush.contact) * brush.q.ab * wet_on * dt
     loss = loss + spend[:, None] * held / np.maximum(total, 1e-12)[:, None]
-    loss = np.where(touching[:, None], loss, 0.0)
+    if not touching.all():  # (a no-op where every primitive is on the paper: skipped)
+        loss = np.where(touching[:, None], loss, 0.0)
     np.maximum(brush.wet - loss, 0.0, out=brush.wet)
 
 
@@ -339,8 +340,12 @@ def adjust_ellipse(brush, vel6, dt):
     per = dt * REF_RATE
     rot = q.re * brush.gamma * (eo @ vel) * per  # Eq. 16
     inc = q.ie * brush.gamma * norm(cross(eo, vel)) * per  # Eq. 16
-    rot = np.where(touching, rot, 0.0)
-    inc = np.where(touching, inc, 0.0)
+    # (every primitive on the paper, as in most of a stroke: the picks below are no-ops and
+    # skipped; issue 28)
+    every = touching.all()
+    if not every:
+        rot = np.where(touching, rot, 0.0)
+        inc = np.where(touching, inc, 0.0)
     # rotate the minor axis about the shaft
     c, s = np.cos(rot), np.sin(rot)
     ex, ey = eo[:, 0] * c - eo[:, 1] * s, eo[:, 0] * s + eo[:, 1] * c
@@ -350,12 +355,14 @@ def adjust_ellipse(brush, vel6, dt):
     a = np.minimum(a, np.sqrt(area * MAX_FLATNESS))
     # free state: the belly rounds and the tip closes again (gap: elastic return)
     krec = min(1.0, q.e * REC_RATE * dt)
-    rnd = np.sqrt(area)
-    a = np.where(touching, a, a + krec * (rnd - a))
+    if not every:
+        rnd = np.sqrt(area)
+        a = np.where(touching, a, a + krec * (rnd - a))
     brush.a = a
     brush.b = area / a  # pi a b / 4 constant (Sec. 5.3)
     tl = brush.tiplen + inc * brush.r  # Sec. 5.4: the tip control line lengthens by inc
-    brush.tiplen = np.where(touching, np.minimum(tl, 0.5 * brush.a), tl * (1.0 - krec))
+    on = np.minimum(tl, 0.5 * brush.a)
+    brush.tiplen = on if every else np.where(touching, on, tl * (1.0 - krec))
     # Eq. 17: loc' = nu loc + (1 - nu) (1/n) sum_j arc(P_1..P_{j+1}) / arc(P_1..P_n)
     if not touching.any():  # no primitive on the paper moves its ellipse (issue 28: skipped)
         brush.loc = clip(brush.loc, 0.05, 0.9)
@@ -364,7 +371,7 @@ def adjust_ellipse(brush, vel6, dt):
     cum = seg.cumsum(axis=1)
     ideal = np.sum(cum / np.maximum(cum[:, -1:], 1e-12), axis=1) / brush.n
     new_loc = q.nu * brush.loc + (1.0 - q.nu) * ideal
-    brush.loc = clip(np.where(touching, new_loc, brush.loc), 0.05, 0.9)
+    brush.loc = clip(new_loc if every else np.where(touching, new_loc, brush.loc), 0.05, 0.9)
 
 
 def split(brush):
