@@ -392,9 +392,14 @@ def split(brush):
     (``_split_offsets``). A child splitting again stays inside its own width, so the hair of a
     split brush never spreads wider than the belly it was."""
     tre = max(brush.q.tre, 1e-3)
-    k = np.floor(brush.stress / tre).astype(int)
-    k = np.where(brush.touching, k, 1)
+    over = brush.stress / tre
+    # no primitive on the paper with floor(str / tre) >= 2 (as in most steps): no split, at
+    # once (issue 28; NaN splits nothing either way, an infinite quotient goes on below)
     room = brush.max_primitives - brush.m
+    if room <= 0 or not ((over >= 2.0) & brush.touching).any():
+        return 0
+    k = np.floor(over).astype(int)
+    k = np.where(brush.touching, k, 1)
     k = np.clip(k, 1, None)
     if room <= 0 or not np.any(k >= 2):
         return 0
