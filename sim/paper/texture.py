@@ -164,22 +164,41 @@ def sheet_draw(rows: slice, cols: slice, ppm: float, seed: int, tile: int, fibre
 RELIEF_MM = (2.3, 0.9)  # sizes of the sheet's relief under the hair (value noise scales), mm
 RELIEF_SHARE = (0.75, 0.25)  # their weights
 RELIEF_SALT = 16  # the relief's noises' numbers (apart from the clouds' and fibres')
+RELIEF_TURN = (0.52, 1.19)  # how far each scale's lattice is turned from the rows (radians)
 HOLLOW_CUT = 0.15  # the relief (in [-1, 1]) below which the sheet dips (its lowest part)
-FRAY = 1.0  # the deepest hollow the outer hair misses, in Eq. 23's f, per unit of fibre
+HOLLOW_GAIN = 2.2  # how fast a hollow deepens below that
+FRAY = 0.8  # the deepest hollow the outer hair misses, in Eq. 23's f, per unit of fibre
 FRAY_WET = 0.2  # share of it a fully loaded hair still misses
 FRAY_SOFT = 0.05  # f over which the touch fades (a pixel's edge is not a step)
+HOLLOW_TILE = 64  # pixels a side of the relief's tiles, made once and kept (``_tile_hollow``)
+HOLLOW_TILES = 256  # tiles of relief kept (16 KB each: 4 MB at most)
 
 
 def sheet_hollow(rows, cols, ppm: float, seed: int) -> np.ndarray:
     """How deep the sheet dips at the pixels (rows, cols) (paper array indices, any shape), in
-    [0, 1]: 0 where it stands up (about half of the sheet), 1 at its deepest hollows."""
+    [0, 1]: 0 where it stands up (most of the sheet), 1 at its deepest hollows. Each scale's
+    lattice is turned (RELIEF_TURN), so a stroke along the sheet's rows or columns does not
+    meet its hollows at the lattice's even spacing."""
     y = (np.asarray(rows, dtype=np.float64) + 0.5) / ppm
     x = (np.asarray(cols, dtype=np.float64) + 0.5) / ppm
-    n = sum(
-        share * _value_noise(x / size, y / size, RELIEF_SALT + k, seed)
-        for k, (share, size) in enumerate(zip(RELIEF_SHARE, RELIEF_MM, strict=True))
-    )
-    return np.clip(2.2 * (-n - HOLLOW_CUT), 0.0, 1.0)
+    n = 0.0
+    for k, (share, size, turn) in enumerate(zip(RELIEF_SHARE, RELIEF_MM, RELIEF_TURN, strict=True)):
+        c, s = np.cos(turn) / size, np.sin(turn) / size
+        n = n + share * _value_noise(x * c + y * s, y * c - x * s, RELIEF_SALT + k, seed)
+    return np.clip(HOLLOW_GAIN * (-n - HOLLOW_CUT), 0.0, 1.0)
+
+
+@lru_cache(maxsize=HOLLOW_TILES)
+def _tile_hollow(ty: int, tx: int, ppm: float, seed: int) -> np.ndarray:
+    """``sheet_hollow`` of the tile (ty, tx), HOLLOW_TILE pixels a side, kept (read-only): the
+    deposits of every step and every practice pass of a sheet make each tile once."""
+    r = np.arange(ty * HOLLOW_TILE, (ty + 1) * HOLLOW_TILE)[:, None]
+    c = np.arange(tx * HOLLOW_TILE, (tx + 1) * HOLLOW_TILE)[None, :]
+    shape = (HOLLOW_TILE, HOLLOW_TILE)
+    hollow = sheet_hollow(np.broadcast_to(r, shape), np.broadcast_to(c, shape), ppm, seed)
+    hollow = hollow.astype(np.float32)
+    hollow.flags.writeable = False
+    return hollow
 
 
 def outer_touch(paper, full, marks, offer) -> np.ndarray:
@@ -191,13 +210,28 @@ def outer_touch(paper, full, marks, offer) -> np.ndarray:
     reach = FRAY * paper.fibre
     if reach <= 0.0:
         return touch
-    depth = np.concatenate([mk.depth for mk in marks])  # Eq. 23's f
-    edge = np.flatnonzero(depth > 1.0 - reach)  # only the outer margin can miss
+    margin = 1.0 - np.concatenate([mk.depth for mk in marks]).astype(np.float64)  # 1 - f
+    edge = np.flatnonzero(margin < reach)  # only the outer margin can miss, ...
+    margin = margin[edge]
+    most = reach * (FRAY_WET + (1.0 - FRAY_WET) * np.exp(-offer[edge].astype(np.float64)))
+    deep = margin < most  # ... and only where the deepest hollow would be missed
+    edge, margin, most = edge[deep], margin[deep], most[deep]
     if edge.size == 0:
         return touch
     at = full[edge]
-    hollow = sheet_hollow(at // paper.W, at % paper.W, paper.ppm, paper.grain_seed)
-    need = reach * hollow * (FRAY_WET + (1.0 - FRAY_WET) * np.exp(-offer[edge]))
-    margin = 1.0 - depth[edge].astype(np.float64)
+    rows, cols = at // paper.W, at % paper.W
+    ty, tx = rows // HOLLOW_TILE, cols // HOLLOW_TILE
+    ty0, tx0, wide = int(ty.min()), int(tx.min()), int(tx.max() - tx.min()) + 1
+    key = (ty - ty0) * wide + (tx - tx0)
+    tiles = np.flatnonzero(np.bincount(key))  # the tiles the pixels lie in, each once
+    slot = np.zeros(int(key.max()) + 1, dtype=np.int64)
+    slot[tiles] = np.arange(tiles.size)
+    kept = np.stack(
+        [
+            _tile_hollow(ty0 + int(t) // wide, tx0 + int(t) % wide, paper.ppm, paper.grain_seed)
+            for t in tiles
+        ]
+    )
+    need = most * kept[slot[key], rows % HOLLOW_TILE, cols % HOLLOW_TILE]
     touch[edge] = np.clip(1.0 + (margin - need) / FRAY_SOFT, 0.0, 1.0)
     return touch
