@@ -148,8 +148,8 @@ def sheet_draw(rows: slice, cols: slice, ppm: float, seed: int, tile: int, fibre
 # not flat: its pulp and fibres stand up and dip a fraction of a millimetre across. Where the
 # sheet dips, the light outer hair passes over without touching: the edge shows small bays and
 # the clumps that touched beyond them, facets a fraction of a stroke width long, as real edges
-# have. Here a pixel in the outer margin of the cut (1 - f below FRAY) is touched by the hair
-# only where its margin is deeper than the sheet's hollow there,
+# have. Here a pixel in the outer margin of the cut (1 - f below FRAY fibre) is touched by the
+# hair only where its margin is deeper than the sheet's hollow there,
 #
 #     touch = clip(1 + (1 - f - FRAY fibre hollow load) / FRAY_SOFT, 0, 1),
 #
@@ -159,8 +159,8 @@ def sheet_draw(rows: slice, cols: slice, ppm: float, seed: int, tile: int, fibre
 # FRAY_WET) exp(-offer / FULL_WET): hair that offers much liquid bridges the hollows (a loaded
 # brush's edge stays fuller and crisp), a drying or fast one misses more of them, so the stroke
 # also narrows a little and frays as the brush runs dry or speeds up (its width breathes with
-# the load, which the cut alone does not give). A pixel the hair does not touch takes no
-# colour this step (Eq. 27's Cr = 0); its wetness still follows Eq. 24.
+# the load, which the cut alone does not give). The colour a pixel takes this step (Eq. 26) is
+# scaled by its touch (0: Eq. 27's Cr = 0); its wetness still follows Eq. 24.
 RELIEF_MM = (2.3, 0.9)  # sizes of the sheet's relief under the hair (value noise scales), mm
 RELIEF_SHARE = (0.75, 0.25)  # their weights
 RELIEF_SALT = 16  # the relief's noises' numbers (apart from the clouds' and fibres')
