@@ -13,6 +13,10 @@ in [-1, 1]. ``texture`` is the paper's (0: the flat colour, as before). Every va
 a hash of the pixel's place in millimetres and of the sheet's seed (``paper_grain``'s hash):
 the same sheet at every step, in any window, tile or band it is asked for, and the same
 threads in mm at any resolution. No generator is drawn, so the brush's draws are unchanged.
+
+The same hashed sheet has a relief the brush feels (``sheet_hollow``): the outer hair of a
+cluster, pressing lightly, misses its hollows, so a stroke's edge shows small bays and facets
+(``outer_touch``, see FRAY; the deposit, ``sim.paper.paper.Paper.deposit``, applies it).
 """
 
 from __future__ import annotations
@@ -134,3 +138,100 @@ def sheet_draw(rows: slice, cols: slice, ppm: float, seed: int, tile: int, fibre
     tone = sheet_tone(rows, cols, ppm, 1.0, seed, tile)
     spread = DRAW_SPREAD * fibre
     return np.clip(DRAW_BASE + spread * (tone - 1.0), DRAW_MIN, 1.0).astype(np.float32)
+
+
+# Model addition (not in the paper), extending Eq. 23 and Eq. 27: the outer hair on the sheet's
+# relief. Eq. 23 places a pixel at f = |tau - V^| / |V - V^| between the middle control axis
+# (f = 0) and the cluster's surface (f = 1); the paper inks every pixel inside the cut, so an
+# edge is the smooth section of a smooth solid. A real cluster's outer hair presses lightly
+# (little of the cluster is left above it) and lies in loose clumps, and the sheet under it is
+# not flat: its pulp and fibres stand up and dip a fraction of a millimetre across. Where the
+# sheet dips, the light outer hair passes over without touching: the edge shows small bays and
+# the clumps that touched beyond them, facets a fraction of a stroke width long, as real edges
+# have. Here a pixel in the outer margin of the cut (1 - f below FRAY fibre) is touched by the
+# hair only where its margin is deeper than the sheet's hollow there,
+#
+#     touch = clip(1 + (1 - f - FRAY fibre hollow load) / FRAY_SOFT, 0, 1),
+#
+# ``hollow`` in [0, 1] (``sheet_hollow``: value noise at RELIEF_MM, hashed from the sheet's
+# seed as ``paper_tone`` is: the same pixel at every step and in any order), ``fibre`` the
+# paper's (0: a smooth sheet, every pixel touched as before), and ``load`` = FRAY_WET + (1 -
+# FRAY_WET) exp(-offer / FULL_WET): hair that offers much liquid bridges the hollows (a loaded
+# brush's edge stays fuller and crisp), a drying or fast one misses more of them, so the stroke
+# also narrows a little and frays as the brush runs dry or speeds up (its width breathes with
+# the load, which the cut alone does not give). The colour a pixel takes this step (Eq. 26) is
+# scaled by its touch (0: Eq. 27's Cr = 0); its wetness still follows Eq. 24.
+RELIEF_MM = (2.3, 0.9)  # sizes of the sheet's relief under the hair (value noise scales), mm
+RELIEF_SHARE = (0.75, 0.25)  # their weights
+RELIEF_SALT = 16  # the relief's noises' numbers (apart from the clouds' and fibres')
+RELIEF_TURN = (0.52, 1.19)  # how far each scale's lattice is turned from the rows (radians)
+HOLLOW_CUT = 0.15  # the relief (in [-1, 1]) below which the sheet dips (its lowest part)
+HOLLOW_GAIN = 2.2  # how fast a hollow deepens below that
+FRAY = 0.8  # the deepest hollow the outer hair misses, in Eq. 23's f, per unit of fibre
+FRAY_WET = 0.2  # share of it a fully loaded hair still misses
+FRAY_SOFT = 0.05  # f over which the touch fades (a pixel's edge is not a step)
+HOLLOW_TILE = 64  # pixels a side of the relief's tiles, made once and kept (``_tile_hollow``)
+HOLLOW_TILES = 256  # tiles of relief kept (16 KB each: 4 MB at most)
+
+
+def sheet_hollow(rows, cols, ppm: float, seed: int) -> np.ndarray:
+    """How deep the sheet dips at the pixels (rows, cols) (paper array indices, any shape), in
+    [0, 1]: 0 where it stands up (most of the sheet), 1 at its deepest hollows. Each scale's
+    lattice is turned (RELIEF_TURN), so a stroke along the sheet's rows or columns does not
+    meet its hollows at the lattice's even spacing."""
+    y = (np.asarray(rows, dtype=np.float64) + 0.5) / ppm
+    x = (np.asarray(cols, dtype=np.float64) + 0.5) / ppm
+    n = 0.0
+    for k, (share, size, turn) in enumerate(zip(RELIEF_SHARE, RELIEF_MM, RELIEF_TURN, strict=True)):
+        c, s = np.cos(turn) / size, np.sin(turn) / size
+        n = n + share * _value_noise(x * c + y * s, y * c - x * s, RELIEF_SALT + k, seed)
+    return np.clip(HOLLOW_GAIN * (-n - HOLLOW_CUT), 0.0, 1.0)
+
+
+@lru_cache(maxsize=HOLLOW_TILES)
+def _tile_hollow(ty: int, tx: int, ppm: float, seed: int) -> np.ndarray:
+    """``sheet_hollow`` of the tile (ty, tx), HOLLOW_TILE pixels a side, kept (read-only): the
+    deposits of every step and every practice pass of a sheet make each tile once."""
+    r = np.arange(ty * HOLLOW_TILE, (ty + 1) * HOLLOW_TILE)[:, None]
+    c = np.arange(tx * HOLLOW_TILE, (tx + 1) * HOLLOW_TILE)[None, :]
+    shape = (HOLLOW_TILE, HOLLOW_TILE)
+    hollow = sheet_hollow(np.broadcast_to(r, shape), np.broadcast_to(c, shape), ppm, seed)
+    hollow = hollow.astype(np.float32)
+    hollow.flags.writeable = False
+    return hollow
+
+
+def outer_touch(paper, full, marks, offer) -> np.ndarray:
+    """The share (float32, per pixel of the marks, in their order) of each pixel the outer hair
+    touches (see FRAY): ``full`` the pixels' indices in the sheet (``paper``: its width,
+    resolution, seed and fibre), ``offer`` the liquid offered to them in units of FULL_WET (the
+    share of the ink's colour it cannot hold is exp(-offer))."""
+    touch = np.ones(full.shape, dtype=np.float32)
+    reach = FRAY * paper.fibre
+    if reach <= 0.0:
+        return touch
+    margin = 1.0 - np.concatenate([mk.depth for mk in marks]).astype(np.float64)  # 1 - f
+    edge = np.flatnonzero(margin < reach)  # only the outer margin can miss, ...
+    margin = margin[edge]
+    most = reach * (FRAY_WET + (1.0 - FRAY_WET) * np.exp(-offer[edge].astype(np.float64)))
+    deep = margin < most  # ... and only where the deepest hollow would be missed
+    edge, margin, most = edge[deep], margin[deep], most[deep]
+    if edge.size == 0:
+        return touch
+    at = full[edge]
+    rows, cols = at // paper.W, at % paper.W
+    ty, tx = rows // HOLLOW_TILE, cols // HOLLOW_TILE
+    ty0, tx0, wide = int(ty.min()), int(tx.min()), int(tx.max() - tx.min()) + 1
+    key = (ty - ty0) * wide + (tx - tx0)
+    tiles = np.flatnonzero(np.bincount(key))  # the tiles the pixels lie in, each once
+    slot = np.zeros(int(key.max()) + 1, dtype=np.int64)
+    slot[tiles] = np.arange(tiles.size)
+    kept = np.stack(
+        [
+            _tile_hollow(ty0 + int(t) // wide, tx0 + int(t) % wide, paper.ppm, paper.grain_seed)
+            for t in tiles
+        ]
+    )
+    need = most * kept[slot[key], rows % HOLLOW_TILE, cols % HOLLOW_TILE]
+    touch[edge] = np.clip(1.0 + (margin - need) / FRAY_SOFT, 0.0, 1.0)
+    return touch
