@@ -252,7 +252,7 @@ RUN_UP = 1.0  # the entry's run-up along the stroke (half steps a sample): the t
 
 
 def _enter_and_leave(
-    samples, pl, body, hover, hair, step_mm, corner=(None, None), run_up=RUN_UP
+    samples, pl, body, hover, hair, step_mm, corner=(None, None), run_up=RUN_UP, width_at=None
 ) -> None:
     """The brush comes down moving along the movement's first direction (over ``run_up`` times
     half a step a sample: with 0, straight down onto the start), the tip touching where
@@ -295,10 +295,39 @@ def _enter_and_leave(
     point = _point_reach(pl.target[body], pl.width[body]) if corner[1] is None else 0.0
     if point > 0.0:  # 出锋: the belly lets go evenly as the brush sweeps on, out to the point
         g = np.clip(f / POINT_LIFT, 0.0, 1.0)
-        travel = np.maximum(travel, g * point)
-        rise = np.where(f <= POINT_LIFT, z0 + (hair - z0) * g, rise)
+        clear = hair + POINT_CLEAR  # the let-go ends with the tip clear of the paper
+        rise = np.where(f <= POINT_LIFT, z0 + (clear - z0) * g, rise)
+        travel = _flick_travel(np.maximum(travel, g * point), hair - rise, g < 1.0, width_at)
     samples[lift, :2] = samples[body[-1], :2] + travel[:, None] * t1
     samples[lift, 2] = rise
+
+
+POINT_CLEAR = 1.0  # mm above the paper the tip has at the end of a point's let-go (POINT_LIFT)
+POINT_PACE = 0.75  # a point's let-go moves on at most this share of the mark's width a sample
+
+
+def _width_at(response):
+    """The band's width (mm) a press leaves, from the response's measured widths (linear in
+    between, falling linearly to none at no press below the lightest measured press)."""
+    press = np.concatenate([[0.0], response.press_mm])
+    width = np.concatenate([[0.0], response.width_mm])
+    return lambda p: np.interp(p, press, width)
+
+
+def _flick_travel(reach, press, down, width_at=None) -> np.ndarray:
+    """How far (mm) the base has moved on along the way out at each sample of a point's
+    let-go: towards ``reach`` (per sample), but while the tip may still touch (``down``, until
+    it is ``POINT_CLEAR`` above the paper) each step at most ``POINT_PACE`` of the width the
+    press (``press``, per sample; ``width_at``: the response's width for a press) lays, so the
+    shrinking marks of the tip overlap into one taper; once clear, its steps are not held back.
+    (Added in issue 26: moving on half a step a sample as the press fell below a millimetre,
+    the tip's marks fell apart into a dotted hairline past the point, and the tip, still
+    touching at no planned press, left a speck beyond it.)"""
+    if width_at is None:
+        return reach
+    step = np.diff(reach, prepend=0.0)
+    mark = np.where(down, width_at(press), np.inf)
+    return np.cumsum(np.minimum(step, POINT_PACE * mark))
 
 
 POINT_SHARE = 0.6  # a movement whose planned width ends below this share of its widest, ...
@@ -417,7 +446,9 @@ def _fill(
         nxt = None
         if r < len(runs) - 1:  # into a corner: a 折 lifts slightly, a hook's foot stays pressed
             nxt = hair - (HOOK_KEEP if hook[r + 1] else ZHE_KEEP) * p[-1]
-        _enter_and_leave(samples, pl, run, hover, hair, step_mm, (at, nxt), run_up)
+        _enter_and_leave(
+            samples, pl, run, hover, hair, step_mm, (at, nxt), run_up, _width_at(response)
+        )
         if nxt is not None:
             heights.append(nxt)
         at = nxt

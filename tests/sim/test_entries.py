@@ -294,7 +294,14 @@ def test_a_movement_that_narrows_to_its_end_sweeps_on_out_to_its_point(response)
     # before: a blunt end the width of the stroke); its 捺 (which swells to its end) and the
     # horizontal's round end (whose width falls only over the end's cap) do not
     from sim.core.params import HOVER_MM
-    from sim.writing.planner import POINT_LIFT, _fill, _movements, _point_reach, point_zone
+    from sim.writing.planner import (
+        POINT_CLEAR,
+        POINT_LIFT,
+        _fill,
+        _movements,
+        _point_reach,
+        point_zone,
+    )
 
     ch = find_char("永")
     pl = plan(ch, 100.0, 0.5)
@@ -319,6 +326,10 @@ def test_a_movement_that_narrows_to_its_end_sweeps_on_out_to_its_point(response)
     lift = np.arange(body[-1] + 1, b)
     on = lift[: int(POINT_LIFT * len(lift))]
     z = samples[on, 2]
-    assert np.all(np.diff(z) > 0) and np.all(z <= hair + 1e-9)  # letting go, still touching
+    assert np.all(np.diff(z) > 0) and np.any(z <= hair)  # letting go, touching at first
+    assert z[-1] >= hair + POINT_CLEAR - 1e-3  # and then clear of the paper (no blot past it)
     gone = float(np.linalg.norm(samples[on[-1], :2] - samples[body[-1], :2]))
-    assert gone >= 0.9 * reach[3][0]  # swept on out to the point
+    # swept on towards the point, in steps its shrinking marks overlap (``_flick_travel``), not
+    # lifted on the spot (0.9 of the reach before issue 26's clean tips, in half steps that
+    # left a dotted hairline past the point; with 16 lift samples 0.47, but 10% slower writing)
+    assert gone >= 0.33 * reach[3][0]

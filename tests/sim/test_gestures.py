@@ -253,3 +253,62 @@ def test_a_written_hook_ends_thin(stiff_ink):
         widths.append(np.count_nonzero(ink[mid[1], mid[0] - 20 : mid[0] + 20]))
     leg = float(np.median(widths))
     assert leg > 8 and 0 < across <= leg / 3.0
+
+
+def _hook_lift(response, char="永", k=1):
+    """The planned samples of stroke k's hook lifting off (the stroke's last movement), written
+    with ``stiff_template`` at 128 px, and the brush's hair length (mm)."""
+    from sim.writing.planner import LIFTING, WRITING, plan
+    from sim.writing.writer import write_character
+
+    tpl = _template()
+    ch = find_char(char)
+    rec, _, _ = write_character(ch, 128, tpl, response=response, passes=1)
+    pl = plan(ch, rec.width_mm, response.speed_mm_s / tpl.sample_rate_hz)
+    a, b = pl.strokes[k]
+    last = a + int(np.flatnonzero(pl.phase[a:b] == WRITING)[-1])
+    lift = np.arange(last, b)
+    lift = lift[(lift == last) | (pl.phase[lift] == LIFTING)]
+    return rec.samples[lift, :3], tpl.resolve()[1].hair_length_mm
+
+
+@pytest.mark.slow
+def test_a_hook_lets_go_in_overlapping_steps_and_leaves_clear(response):
+    # 出锋 (issue 26): while the tip may still touch, the brush moves on at most half the width
+    # the press lays a sample (none at no press), so the tip's marks overlap into one taper
+    # (before: half a step, 0.34 mm at 128 px, with the press falling below 0.2 mm, a dotted
+    # hairline past the point), and the let-go ends with the tip clear of the paper
+    from sim.writing.planner import POINT_CLEAR, POINT_PACE
+
+    s, hair = _hook_lift(response)
+    press = hair - s[:, 2]
+    width = np.interp(press, [0.0, *response.press_mm], [0.0, *response.width_mm])
+    moved = np.linalg.norm(np.diff(s[:, :2], axis=0), axis=1)
+    down = press[1:] > -POINT_CLEAR + 1e-6  # the tip not yet clear of the paper
+    assert down.sum() >= 3
+    assert np.all(moved[down] <= POINT_PACE * width[1:][down] + 0.02)
+    assert np.any(press <= -POINT_CLEAR + 0.02)  # and then it is clear
+
+
+@pytest.mark.slow
+def test_a_written_hook_leaves_no_specks_past_its_tip():
+    # 永's 竖钩 with the default brush at 512 px: no ink apart from the stroke within 0.06 of
+    # the em of the hook's tip (before: a dotted hairline and a speck past the point)
+    from scipy import ndimage
+
+    from sim.core.recording import DEFAULT_BRUSH, Recording
+    from sim.writing.response import calibrate
+    from sim.writing.writer import coverage_mask, write_character
+
+    n = 512
+    tpl = Recording(np.zeros((1, 6)), brush={"preset": DEFAULT_BRUSH})
+    ch = find_char("永")
+    _, _, sim = write_character(ch, n, tpl, response=calibrate(tpl), passes=1)
+    ink = coverage_mask(sim)
+    tip = _img(np.array(ch["medians"][1][-1], dtype=float), n)
+    lab, m = ndimage.label(ink, structure=np.ones((3, 3)))
+    stroke = 1 + int(np.argmax(ndimage.sum(ink, lab, range(1, m + 1))))
+    yy, xx = np.mgrid[0:n, 0:n]
+    near = np.hypot(xx + 0.5 - tip[0], yy + 0.5 - tip[1]) < 0.06 * n
+    assert np.count_nonzero(ink[near]) > 20  # the hook reaches there
+    assert not np.any(near & ink & (lab != stroke))
