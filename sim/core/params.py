@@ -87,7 +87,7 @@ MAX_PAPER_SIDE_PX = 8192
 MAX_PAPER_PIXELS = 8192 * 8192
 PAPER_CAPACITY_RANGE = (1e-3, 1e6)  # a preset's wetness capacity
 INK_PIGMENT_RANGE = (0.05, 1.0)  # an ink's pigment per unit of liquid (1: full strength)
-PAPER_TEXTURE_MAX = 0.3  # the strongest paper texture (sim.paper.texture; 0.09: sized xuan)
+PAPER_TEXTURE_MAX = 0.3  # the strongest paper texture (sim.paper.texture; 0.05: xuan's own)
 INK_FACTOR_RANGE = (-1.0, 1.0)  # an ink preset's per-mm factors of Eq. 5
 
 

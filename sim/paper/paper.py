@@ -39,7 +39,7 @@ import numpy as np
 from ..image.png import to_uint8
 from .grain import paper_grain
 from .lift import LEVEL_WET, box_mean, level_px, level_rows, spatter
-from .texture import outer_touch, paper_tone, sheet_draw, sheet_tone
+from .texture import paper_tone, sheet_draw, sheet_tone
 
 _RGB = np.dtype((np.void, 12))  # a pixel's three float32 ink densities as one item
 DRY_RATE = 1.0  # capacity units per second at dry = 1
@@ -177,16 +177,14 @@ class Paper:
         if self.halo_px:
             self.dt = float(dt)
             self._follow(step, (y0, y1, x0, x1), col, full, wet_tau)
+        col = col.reshape(-1).view(_RGB)
         skip = np.concatenate(
             [mk.skip if mk.skip is not None else np.zeros(mk.rows.size, bool) for mk in marks]
         )
         # the liquid the hair offers, as the sheet's grain lets it take it (model addition,
-        # paper_grain): some pixels take a little more of it, some a little less; the outer
-        # hair misses the sheet's hollows (model addition, texture.outer_touch)
+        # paper_grain): some pixels take a little more of it, some a little less
         grain = paper_grain(full, self.grain_seed) - 0.5
         offer = wet_tau * (1.0 - GRAIN_DEPTH * self.fibre * grain).astype(np.float32)
-        touch = outer_touch(self, full, marks, offer * np.float32(self.pigment / FULL_WET))
-        col = (col * touch[:, None]).reshape(-1).view(_RGB)
         rank, visits = _visit_ranks(locs, hw * ww)
         dried = (visits > 0).reshape(hw, ww)
         bounds = [0, loc.size]

@@ -15,7 +15,7 @@ from sim.paper.paper import (
     _wick,
     paper_grain,
 )
-from sim.paper.texture import outer_touch, sheet_draw
+from sim.paper.texture import sheet_draw
 
 _NEIGHBOURS = [(-1, -1), (-1, 0), (-1, 1), (0, -1), (0, 1), (1, -1), (1, 0), (1, 1)]
 
@@ -62,10 +62,7 @@ def reference_deposit(self, marks, q, dt: float, step: int, saturate=None):
         held = (-np.expm1(-offer / (FULL_WET / self.pigment))).astype(np.float32)
         skip = mk.skip if mk.skip is not None else np.zeros(r.size, bool)
         held = np.where(skip, 0.0, held).astype(np.float32)
-        # the outer hair misses the sheet's hollows (sim.paper.texture.outer_touch), mark by mark
-        full = (r + y0) * self.W + (c + x0)
-        touch = outer_touch(self, full, [mk], offer * np.float32(self.pigment / FULL_WET))
-        lay = (mk.col.astype(np.float32) * touch[:, None]) * held[:, None]
+        lay = mk.col.astype(np.float32) * held[:, None]
         # a second layer over ink that has set, on a pixel's first visit of the step (a model
         # change, sim.paper.paper.LAYER_S): the pigments add where it has set
         old = ink[r, c]
