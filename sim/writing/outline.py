@@ -335,10 +335,8 @@ def _foot(pts, k: int, polys, step: float, fan: float = FOOT_FAN) -> np.ndarray:
     ``FOOT_FAN`` away from the corner's turn, towards the farthest outline: the font's foot
     hangs on the corner's outer side, not where the median already bends to the next
     movement."""
-    win = max(int(round(CORNER_WINDOW / step)), 1)
-    d = pts[k] - pts[max(k - win, 0)]
-    e = pts[min(k + win, len(pts) - 1)] - pts[k]
-    away = -1.0 if d[0] * e[1] - d[1] * e[0] > 0 else 1.0  # against the turn
+    d, turn = _turn_at(pts, k, step)
+    away = -1.0 if turn > 0 else 1.0  # against the turn
     ang = np.arctan2(d[1], d[0]) + away * np.linspace(0.0, fan, 11)
     dirs = np.stack([np.cos(ang), np.sin(ang)], axis=1)
     hits = _ray_hits(np.repeat(pts[k][None], len(dirs), axis=0), dirs, polys)
@@ -478,8 +476,7 @@ def _pieces(pts, polys, step: float, edges, curl: bool = False) -> list:
         if k:  # the corner is inked by the foot: the movement's own width
             # from where it leaves the corner's disc on (a hook's too: pressed wider, the
             # belly spilled over the hook's inner edge)
-            off = min(int(np.ceil(0.5 * width[0] / step)), len(width) - 1)
-            width[:off] = np.minimum(width[:off], width[off])
+            _past_the_corner(width, step)
         pieces.append((centre, width, hook))
     return _shoulders(pts, polys, step, edges, pieces)
 
@@ -542,8 +539,7 @@ def _shoulders(pts, polys, step: float, edges, pieces) -> list:
         p = np.concatenate([pts[i0 : i1 + 1], _foot(pts, i1, polys, step, SHOULDER_FAN)])
         centre, width = _bands(p, polys)
         if k:
-            off = min(int(np.ceil(0.5 * width[0] / step)), len(width) - 1)
-            width[:off] = np.minimum(width[:off], width[off])
+            _past_the_corner(width, step)
         leg_c, leg_w, leg_h = out[k + 1]
         cap = SHOULDER_OVER * _body_width(leg_w)
         corner = pts[i1]
@@ -566,7 +562,20 @@ def _body_width(width) -> float:
 def _clockwise(pts, k: int, step: float) -> bool:
     """Whether a median turns clockwise (y up) at corner ``k``, read over ``CORNER_WINDOW``
     either side: a 横折's shoulder (right, then down), not a 竖折's corner."""
+    return bool(_turn_at(pts, k, step)[1] < 0.0)
+
+
+def _turn_at(pts, k: int, step: float) -> tuple[np.ndarray, float]:
+    """A median's way into point ``k`` (its chord over ``CORNER_WINDOW``) and how it turns
+    there: the cross product of the chords in and out (> 0 anticlockwise, y up)."""
     win = max(int(round(CORNER_WINDOW / step)), 1)
     d = pts[k] - pts[max(k - win, 0)]
     e = pts[min(k + win, len(pts) - 1)] - pts[k]
-    return bool(d[0] * e[1] - d[1] * e[0] < 0.0)
+    return d, float(d[0] * e[1] - d[1] * e[0])
+
+
+def _past_the_corner(width, step: float) -> None:
+    """A movement after a corner keeps its own width from where it leaves the corner's disc on
+    (in place): its first half-width is held to the width there."""
+    off = min(int(np.ceil(0.5 * width[0] / step)), len(width) - 1)
+    width[:off] = np.minimum(width[:off], width[off])

@@ -431,6 +431,7 @@ def _fill(
     runs = _movements(body)
     hook = _is_hook(pl, runs)
     at, heights = None, []  # the base's height at the corner the movement begins after
+    width_at = _width_at(response)  # the band a press lays (a point's let-go paces by it)
     for r, run in enumerate(runs):
         j1 = j0 + len(run)
         touch = 1.0 if hook[r] else ZHE_TOUCH if r else ENTRY_TOUCH  # a hook sets off pressed
@@ -446,9 +447,7 @@ def _fill(
         nxt = None
         if r < len(runs) - 1:  # into a corner: a 折 lifts slightly, a hook's foot stays pressed
             nxt = hair - (HOOK_KEEP if hook[r + 1] else ZHE_KEEP) * p[-1]
-        _enter_and_leave(
-            samples, pl, run, hover, hair, step_mm, (at, nxt), run_up, _width_at(response)
-        )
+        _enter_and_leave(samples, pl, run, hover, hair, step_mm, (at, nxt), run_up, width_at)
         if nxt is not None:
             heights.append(nxt)
         at = nxt
