@@ -35,6 +35,7 @@ sys.path.insert(0, str(ROOT))
 
 from sim.image import morph as M  # noqa: E402
 from sim.image.filters import _gaussian, skeleton  # noqa: E402
+from sim.picture.correct import box_shape, ink_box, shape_agreement  # noqa: E402
 
 FONTS = {
     "ukai": "/usr/share/fonts/truetype/arphic/ukai.ttc",  # AR PL UKai: Kaiti
@@ -47,7 +48,6 @@ FONTS = {
 BOX = 256  # the common square of the box-normalised IoU
 MIN_HOLE = 5e-4  # of the ink's box area: a smaller hole is a pin-hole
 MIN_PIECE = 5e-4  # of the ink's box area: a smaller piece is a speck
-SPECK = 5e-3  # of the ink: a smaller piece does not set the ink's box (``_box``)
 MARGIN = 0.25  # of the character's size, paper round it on every side
 
 
@@ -144,33 +144,17 @@ def real_style(ch: str, font: str, kind: str, seed: int = 0):
 
 
 # ------------------------------------------------------------------------------- measures
-def _box(mask: np.ndarray) -> np.ndarray:
-    """The ink's bounding box: of its pieces, specks left out (a piece of under SPECK of the
-    ink: a droplet thrown off a fast exit, dust on a scan), so that one speck a stroke's width
-    outside the character does not move the box the measures are normalised to."""
-    lab, k = M.label(mask)
-    area = np.bincount(lab.ravel(), minlength=k + 1)
-    area[0] = 0
-    keep = area >= SPECK * area.sum()
-    ys, xs = np.nonzero(keep[lab] if keep.any() else mask)
-    return mask[ys.min() : ys.max() + 1, xs.min() : xs.max() + 1]
+_box = ink_box  # the ink's box, specks left out (one home: sim.picture.correct)
 
 
 def box_normalised(mask: np.ndarray, side: int = BOX) -> np.ndarray:
-    """The ink cropped to its bounding box and scaled to side x side (area-averaged: each output
-    pixel is inked when more than half of what it covers is)."""
-    box = _box(np.asarray(mask, bool)).astype(np.float64)
-    k = 4  # up first so that the area average of a small box is fair
-    big = np.repeat(np.repeat(box, k, axis=0), k, axis=1)
-    return M.resize(big, side, side) > 0.5
+    """The ink cropped to its bounding box and scaled to side x side (``correct.box_shape``)."""
+    return box_shape(mask, side)
 
 
 def box_iou(a: np.ndarray, b: np.ndarray, side: int = BOX) -> float:
-    """The box-normalised IoU of two inks (module docstring)."""
-    if not np.any(a) or not np.any(b):
-        return 0.0
-    x, y = box_normalised(a, side), box_normalised(b, side)
-    return float(np.count_nonzero(x & y) / np.count_nonzero(x | y))
+    """The box-normalised IoU of two inks (module docstring; ``correct.shape_agreement``)."""
+    return shape_agreement(a, b, side)
 
 
 def holes(mask: np.ndarray) -> int:

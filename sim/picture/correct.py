@@ -121,26 +121,33 @@ def corrected(
     return {**char, "medians": medians}
 
 
-def _shape(mask: np.ndarray) -> np.ndarray:
-    """The ink cropped to its box (pieces of under SHAPE_SPECK of the ink left out of it: a
-    droplet thrown off a fast exit) and scaled to SHAPE_SIDE square, covered above half."""
+def ink_box(mask: np.ndarray) -> np.ndarray:
+    """The ink's bounding box: of its pieces, specks left out (a piece of under SHAPE_SPECK of
+    the ink: a droplet thrown off a fast exit, dust on a scan), so that one speck a stroke's
+    width outside the character does not move the box."""
     lab, k = M.label(mask)
     area = np.bincount(lab.ravel(), minlength=k + 1)
     area[0] = 0
     keep = area >= SHAPE_SPECK * area.sum()
     ys, xs = np.nonzero(keep[lab] if keep.any() else mask)
-    box = mask[ys.min() : ys.max() + 1, xs.min() : xs.max() + 1].astype(np.float64)
+    return mask[ys.min() : ys.max() + 1, xs.min() : xs.max() + 1]
+
+
+def box_shape(mask: np.ndarray, side: int = SHAPE_SIDE) -> np.ndarray:
+    """The ink cropped to its box (``ink_box``) and scaled to ``side`` square (area-averaged:
+    a pixel is inked when more than half of what it covers is)."""
+    box = ink_box(np.asarray(mask, bool)).astype(np.float64)
     big = np.repeat(np.repeat(box, 4, axis=0), 4, axis=1)  # a small box averaged fairly
-    return M.resize(big, SHAPE_SIDE, SHAPE_SIDE) > 0.5
+    return M.resize(big, side, side) > 0.5
 
 
-def shape_agreement(written: np.ndarray, picture: np.ndarray) -> float:
+def shape_agreement(written: np.ndarray, picture: np.ndarray, side: int = SHAPE_SIDE) -> float:
     """How well the written ink's shape matches the picture's, whatever its place and size on
-    the sheet: both cropped to their boxes and scaled to one square (``_shape``), then IoU
-    (as ``scripts/picture_real.box_iou`` measures imitations). The shape is what a picture
-    asks of an imitation: a stroke end overshooting by a few pixels moves the box, and so
-    every other stroke against it. 0 when either holds no ink."""
-    if not written.any() or not picture.any():
+    the sheet: both cropped to their boxes and scaled to one square (``box_shape``), then IoU
+    (the box-normalised IoU imitations are measured by, ``scripts/picture_real``). The shape is
+    what a picture asks of an imitation: a stroke end overshooting by a few pixels moves the
+    box, and so every other stroke against it. 0 when either holds no ink."""
+    if not np.any(written) or not np.any(picture):
         return 0.0
-    a, b = _shape(written), _shape(picture)
+    a, b = box_shape(written, side), box_shape(picture, side)
     return float(np.count_nonzero(a & b) / np.count_nonzero(a | b))
