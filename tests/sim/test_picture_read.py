@@ -97,3 +97,29 @@ def test_the_writing_kept_is_the_one_whose_shape_agrees_with_the_pictures():
     tail[210:228, 119:122] = True  # 54 px against the cross's 6,600
     assert shape_agreement(tail, cross) < 0.9
     assert shape_agreement(np.zeros_like(cross), cross) == 0.0
+
+
+def test_a_shoulder_pressed_out_past_its_legs_is_written_into():
+    # a kaishu 折 (口's, 国's top right): the brush lifts at the end of the horizontal and
+    # presses down and out, and the shoulder bulges up and right past both legs' outer edges,
+    # the character's outermost ink there. A corner where the legs' lines meet left the bulge
+    # unwritten and the imitation narrower than the picture (品 in a small picture: 10 px of
+    # its right edge, box IoU 0.76); the corner goes out into it, still inside the ink, and
+    # the line on down the vertical stays in the ink
+    ink = _ink(
+        ((40, 100), (170, 100), 10, 10),
+        ((170, 100), (172, 230), 10, 10),
+        ((170, 100), (182, 88), 12, 9),  # the pressed shoulder
+    )
+    strokes, _, char = read_strokes(ink)
+    zhe = [m for m in _medians(char) if np.ptp(m[:, 0]) > 100 and np.ptp(m[:, 1]) > 100]
+    assert len(zhe) == 1, [np.round(m[[0, -1]]) for m in _medians(char)]
+    med = zhe[0]
+    out = med[(med[:, 0] > 160) & (med[:, 1] < 110)]
+    assert out.size and (out[:, 0] - 170 + 100 - out[:, 1]).max() >= 8.0, out  # into the bulge
+    dist = M.edt(ink.mask)
+    t = np.linspace(0.0, 1.0, 20)[:, None]
+    line = np.concatenate([a + t * (b - a) for a, b in zip(med[:-1], med[1:], strict=True)])
+    iy, ix = np.round(line[:, ::-1]).astype(int).T
+    assert dist[iy, ix].min() >= 2.0  # the median never runs along the ink's edge
+
