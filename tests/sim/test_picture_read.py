@@ -123,3 +123,24 @@ def test_a_shoulder_pressed_out_past_its_legs_is_written_into():
     iy, ix = np.round(line[:, ::-1]).astype(int).T
     assert dist[iy, ix].min() >= 2.0  # the median never runs along the ink's edge
 
+
+def test_a_copybook_squares_frame_is_not_writing():
+    # a scan cut tight round one character of a copybook shows the ruled frame of its square
+    # (or the page's edge): thin lines along the picture's edges, read as strokes, set the
+    # imitation's box. Pieces lying in a band round the edges and running along them are not
+    # writing; a stroke that runs out to the edge crosses the band and stays
+    from sim.picture.ink import find_ink
+
+    n = 300
+    grey = np.full((n, n), 0.92)
+    grey[150:170, 40:260] = 0.1  # a horizontal
+    grey[60:299, 140:160] = 0.1  # a vertical running out to the bottom edge
+    grey[3:6, 5:-5] = 0.3  # the frame, 3 px wide, a few px in from the top, left and right
+    grey[5:-5, 3:6] = 0.3
+    grey[5:-5, -6:-3] = 0.3
+    mask = find_ink(grey, 256).mask
+    edge = np.zeros_like(mask)
+    edge[:8], edge[:, :8], edge[:, -8:] = True, True, True
+    assert not (mask & edge).any()
+    assert mask[248:254, 122:134].all()  # the vertical's foot at the edge is kept
+    assert mask[130:144, 40:220].all()  # and the horizontal
