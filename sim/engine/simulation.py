@@ -247,15 +247,13 @@ class Simulation:
         each sample's marks and whether the bundles have measured them (``_fill``)."""
         t0 = time.perf_counter()
         ppm = self.paper.ppm
+        if self.surface is None:
+            self._deposit_flat(pending, filled)
+            self._tick("paper", t0)
+            return
         for p, (marks, measured) in zip(pending, filled, strict=True):
             if not measured:
                 marks = bristles.across(marks, p.bristles, ppm)  # on the chart, on a surface
-            if self.surface is None:
-                if not measured:
-                    marks = bristles.lay(marks, p.bristles, ppm)  # the hair bundles (Eq. 27)
-                self.paper.deposit(marks, self.q, self.dt, p.step)  # Eq. 24-27
-                self.last_marks = marks
-                continue
             t1 = time.perf_counter()
             groups = self.surface.splat(marks, p.step - 1) or [[]]  # texels under the marks
             self._tick("surface splat", t1)
@@ -264,6 +262,29 @@ class Simulation:
                 self.paper.deposit(group, self.q, self.dt, p.step)
             self.last_marks = [mk for group in groups for mk in group]
         self._tick("paper", t0)
+
+    def _deposit_flat(self, pending, filled):
+        """``_deposit`` on the flat paper: the paper lays out the marks of a run of samples the
+        bundles have measured together (``Paper.lay_out``: one pass of numpy calls for what
+        does not depend on the paper), then takes them one sample after the other; a sample
+        with large marks is measured, laid and laid out on its own (issue 28)."""
+        ppm = self.paper.ppm
+        i = 0
+        while i < len(pending):
+            j = i + 1
+            if filled[i][1]:
+                while j < len(filled) and filled[j][1]:
+                    j += 1
+                steps = [marks for marks, _ in filled[i:j]]
+            else:
+                st = pending[i].bristles
+                marks = bristles.across(filled[i][0], st, ppm)
+                steps = [bristles.lay(marks, st, ppm)]  # the hair bundles (Eq. 27)
+            layings = self.paper.lay_out(steps)
+            for p, marks, laying in zip(pending[i:j], steps, layings, strict=True):
+                self.paper.take(laying, self.q, self.dt, p.step)  # Eq. 24-27
+                self.last_marks = marks
+            i = j
 
     def run(self, until: int | None = None, progress=None):
         end = len(self.rec.samples) if until is None else min(until, len(self.rec.samples))

@@ -151,13 +151,98 @@ class Paper:
     def deposit(self, marks, q, dt: float, step: int):
         """Apply this step's marks (one per touching primitive), Eq. 24-27. A mark's ``skip``
         (Eq. 27, drawn by the brush's hair bundles) marks the pixels that take no ink."""
+        self.take(self.lay_out([marks])[0], q, dt, step)
+
+    def lay_out(self, steps) -> list:
+        """What the paper takes of each step's marks (``steps``: a list of steps' marks) that
+        does not depend on the paper: where their pixels lie, the liquid each is offered and
+        the colour it can hold (Eq. 26-27), and the order in which a pixel several marks cover
+        takes them - for many steps in one pass of numpy calls (issue 28). ``take`` puts each
+        down, in order: the same arithmetic, element by element, as step by step. A
+        ``Laying`` a step, None for a step whose marks have no pixels."""
+        steps = [[mk for mk in marks if mk.rows.size] for marks in steps]
+        live = [mk for marks in steps for mk in marks]
+        if not live:
+            return [None] * len(steps)
+        n = np.array([mk.rows.size for mk in live])
+        rows = np.concatenate([mk.rows for mk in live]) + np.repeat([mk.iy0 for mk in live], n)
+        cols = np.concatenate([mk.cols for mk in live]) + np.repeat([mk.ix0 for mk in live], n)
+        full = rows * self.W + cols  # index in the paper
+        wet_tau = np.concatenate([mk.wet for mk in live]).astype(np.float32, copy=False)
+        col = np.concatenate([mk.col for mk in live]).astype(np.float32, copy=False)
+        skip = np.concatenate(
+            [mk.skip if mk.skip is not None else np.zeros(mk.rows.size, bool) for mk in live]
+        )
+        # the liquid the hair offers, as the sheet's grain lets it take it (model addition,
+        # paper_grain): some pixels take a little more of it, some a little less
+        grain = paper_grain(full, self.grain_seed) - 0.5
+        offer = wet_tau * (1.0 - GRAIN_DEPTH * self.fibre * grain).astype(np.float32)
+        # Eq. 26-27 (model change, see FULL_WET): where the hair bundle lays ink (Cr not 0)
+        # the pixel takes the colour the liquid offered to it can hold
+        held = -np.expm1(-offer / (FULL_WET / self.pigment))
+        held = np.where(skip, 0.0, held).astype(np.float32)
+        lay = col * held[:, None]
+        out, at, m = [], 0, 0
+        for marks in steps:
+            if not marks:
+                out.append(None)
+                continue
+            size = int(n[m : m + len(marks)].sum())
+            part = slice(at, at + size)
+            out.append(
+                self._laying(
+                    marks,
+                    (rows[part], cols[part]),
+                    full[part],
+                    wet_tau[part],
+                    (col[part], lay[part]),
+                )
+            )
+            at, m = at + size, m + len(marks)
+        return out
+
+    def _laying(self, marks, pixels, full, wet_tau, colours) -> Laying:
+        """One step's ``Laying`` (``lay_out``): its ``marks`` (with pixels), their pixels'
+        (rows, columns) and ``full`` index in the paper, the liquid offered, and (colours, the
+        colours the pixels can hold), all in the marks' order."""
+        y0, y1, x0, x1 = window = self._window(marks)
+        ww = x1 - x0
+        rows, cols = pixels
+        loc = (rows - y0) * ww + (cols - x0)  # index in the window
+        # a pixel that several marks cover takes them one after the other (its k-th visit in
+        # round k), exactly as in sequence
+        cut = np.cumsum([mk.rows.size for mk in marks])[:-1]
+        rank, visits = _visit_ranks(np.split(loc, cut), (y1 - y0) * ww)
+        col, lay = colours
+        follow = None
+        if self.halo_px:  # the stroke's darkest colour and the marks' middle (_follow)
+            row_sum, col_sum = _pixel_sums(marks)
+            n = wet_tau.size
+            here = (
+                float(np.float64(row_sum) / n),  # as the pixels' rows' mean() gives it
+                float(np.float64(col_sum) / n),
+                float(wet_tau.mean()),
+                float(np.sqrt(n / np.pi)),
+            )
+            follow = (tuple(float(c) for c in col.max(axis=0)), here)
+        bounds = [0, loc.size]
+        top = int(rank.max())
+        if top:
+            perm = np.argsort(rank, kind="stable")
+            bounds = np.r_[0, np.cumsum(np.bincount(rank, minlength=top + 1))].tolist()
+            loc, full, wet_tau = loc[perm], full[perm], wet_tau[perm]
+            lay = np.take(lay.reshape(-1).view(_RGB), perm).view(np.float32).reshape(-1, 3)
+        return Laying(window, loc, full, wet_tau, lay, bounds, visits > 0, follow)
+
+    def take(self, laying: Laying | None, q, dt: float, step: int):
+        """Put down one step's marks as ``lay_out`` laid them out (None: none touch the
+        paper), Eq. 24-27."""
         self.step = step
-        marks = [mk for mk in marks if mk.rows.size]
-        if not marks:
+        if laying is None:
             if self.stroke is not None:  # the brush has left the paper
                 self._halo()
             return
-        y0, y1, x0, x1 = self._window(marks)
+        y0, y1, x0, x1 = laying.window
         self._touch(y0, y1, x0, x1)
         wet = self.wet[y0:y1, x0:x1]
         ink = self.ink[y0:y1, x0:x1]
@@ -166,36 +251,10 @@ class Paper:
         # lazy drying through the previous step; this step's "- dry" follows (Eq. 24)
         missed = np.maximum(step - 1 - last, 0).astype(np.float32)
         w = np.maximum(wet - drystep * missed, 0.0)
-        # every mark's pixels at once, in the marks' order; a pixel that several marks cover
-        # takes them one after the other (its k-th visit in round k), exactly as in sequence
-        hw, ww = w.shape
-        locs = [(mk.rows + (mk.iy0 - y0)) * ww + (mk.cols + (mk.ix0 - x0)) for mk in marks]
-        loc = np.concatenate(locs)
-        full = loc + ((y0 * self.W + x0) - (loc // ww) * (ww - self.W))  # index in the paper
-        wet_tau = np.concatenate([mk.wet for mk in marks]).astype(np.float32, copy=False)
-        col = np.concatenate([mk.col for mk in marks]).astype(np.float32, copy=False)
-        if self.halo_px:
+        if laying.follow is not None:
             self.dt = float(dt)
-            self._follow(step, (y0, y1, x0, x1), col, marks, wet_tau)
-        col = col.reshape(-1).view(_RGB)
-        skip = np.concatenate(
-            [mk.skip if mk.skip is not None else np.zeros(mk.rows.size, bool) for mk in marks]
-        )
-        # the liquid the hair offers, as the sheet's grain lets it take it (model addition,
-        # paper_grain): some pixels take a little more of it, some a little less
-        grain = paper_grain(full, self.grain_seed) - 0.5
-        offer = wet_tau * (1.0 - GRAIN_DEPTH * self.fibre * grain).astype(np.float32)
-        rank, visits = _visit_ranks(locs, hw * ww)
-        dried = (visits > 0).reshape(hw, ww)
-        bounds = [0, loc.size]
-        top = int(rank.max())
-        if top:
-            perm = np.argsort(rank, kind="stable")
-            bounds = np.r_[0, np.cumsum(np.bincount(rank, minlength=top + 1))].tolist()
-            loc, full, wet_tau, skip = loc[perm], full[perm], wet_tau[perm], skip[perm]
-            offer = offer[perm]
-            col = np.take(col, perm)
-        col = col.view(np.float32).reshape(-1, 3)
+            self._follow(step, laying.window, *laying.follow)
+        loc, full, wet_tau, lays, bounds = laying[1:6]
         wf = w.reshape(-1)
         inkv = self.ink.reshape(-1).view(_RGB)  # one 12-byte element per pixel
         ab = np.float32(q.ab)
@@ -207,13 +266,11 @@ class Paper:
             new = ab * lam + (1 - ab) * wet_tau[sel]
             new = np.maximum(new - np.where(k == 0, drystep, 0), 0.0)
             np.put(wf, li, new)
-            # Eq. 26-27 (model change, see FULL_WET): where the hair bundle lays ink (Cr not
-            # 0) the pixel takes the colour the liquid offered to it can hold, and keeps the
-            # darker of that and what it had (pigment laid is not taken back)
-            held = -np.expm1(-offer[sel] / (FULL_WET / self.pigment))
-            held = np.where(skip[sel], 0.0, held).astype(np.float32)
+            # Eq. 26-27 (model change, see FULL_WET): the pixel keeps the darker of the colour
+            # the liquid offered can hold (lay_out) and what it had (pigment laid is not taken
+            # back)
             old = np.take(inkv, fi).view(np.float32).reshape(-1, 3)
-            lay = col[sel] * held[:, None]
+            lay = lays[sel]
             if k == 0:  # a second layer over ink that has set (see LAYER_S)
                 after = LAYER_S / dt if dt > 0 else np.inf  # steps for the ink to set
                 set_ = _set_share(lam, np.take(missed.reshape(-1), li), after)
@@ -222,7 +279,7 @@ class Paper:
                 lay = top + set_[:, None] * (stacked - top)
             np.maximum(old, lay, out=old)
             np.put(inkv, fi, old.reshape(-1).view(_RGB))
-        w = np.where(dried, w, np.maximum(w - drystep, 0.0))
+        w = np.where(laying.dried.reshape(w.shape), w, np.maximum(w - drystep, 0.0))
         self._saturate_window(w, ink)
         if self.wick_passes:
             draw = sheet_draw(
@@ -241,21 +298,12 @@ class Paper:
         x1 = min(max(mk.ix0 + mk.shape[1] for mk in marks) + margin, self.W)
         return y0, y1, x0, x1
 
-    def _follow(self, step: int, window, col, marks, offer):
+    def _follow(self, step: int, window, darkest: tuple, here: tuple):
         """Keep the stroke being written in ``stroke``: where its windows lie, the step it
         began, the darkest colour its marks laid (the water halo's source, ``_halo``), and
         where the hair touched the paper first and in its last steps, with the liquid it
-        offered there (the droplets it throws, ``lift.spatter``)."""
+        offered there (``here``: the step's; the droplets it throws, ``lift.spatter``)."""
         y0, y1, x0, x1 = window
-        darkest = tuple(float(c) for c in col.max(axis=0))
-        n = offer.size
-        row_sum, col_sum = _pixel_sums(marks)
-        here = (
-            float(np.float64(row_sum) / n),  # the marks' middle: as rows.mean() gives it
-            float(np.float64(col_sum) / n),
-            float(offer.mean()),
-            float(np.sqrt(n / np.pi)),
-        )
         t = self.stroke
         if t is None:
             self.stroke = WetStroke(step, y0, y1, x0, x1, darkest, here, (here,))
@@ -492,6 +540,23 @@ class WetStroke(NamedTuple):
     colour: tuple
     land: tuple = ()
     trail: tuple = ()
+
+
+class Laying(NamedTuple):
+    """One step's marks as the paper will take them (``Paper.lay_out``, ``Paper.take``): the
+    window, every mark pixel's index in it and in the paper, the liquid offered (Eq. 24's
+    wet_tau) and the colour it can hold (Eq. 26-27), in the order the pixels take them (round
+    by round: ``bounds``), which pixels of the window a mark covers, and the step's darkest
+    colour and middle (``Paper._follow``; None without a halo)."""
+
+    window: tuple
+    loc: np.ndarray
+    full: np.ndarray
+    wet_tau: np.ndarray
+    lay: np.ndarray
+    bounds: list
+    dried: np.ndarray
+    follow: tuple | None
 
 
 TRAIL_STEPS = 4
