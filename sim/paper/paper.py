@@ -607,42 +607,29 @@ def _wick(w, ink, draw, passes: int, rate: float = WICK_RATE) -> None:
     """Capillary wicking (see WICK_MM) of the window's wetness ``w`` (h, w) and ink (h, w, 3),
     in place, over ``passes`` passes at ``rate``; ``draw`` (h, w) in [0, 1] how well each pixel
     draws.
-    Each pass moves liquid down the rows, then along them (each stable on its own). Where the
-    window's ink is grey (its three densities equal, as black or any grey ink leaves them) the
-    pigment is carried in one plane and copied to the others: the same arithmetic on the same
-    numbers, a third of the work (issue 28)."""
+    Each pass moves liquid down the rows, then along them (each stable on its own)."""
     rate = np.float32(rate)
     down = rate * draw[:-1] * draw[1:]  # between a pixel and the one below it, ...
     along = rate * draw[:, :-1] * draw[:, 1:]  # ... and the one beside it
     for _ in range(passes):
         if not (w > 0.0).any():
             return
-        grey = _is_grey(ink)
-        planes = ink[..., :1] if grey else ink
         inflow = np.zeros_like(w)
-        carried = np.zeros_like(planes)
+        carried = np.zeros_like(ink)
         for g, a, b in ((down, np.s_[:-1], np.s_[1:]), (along, np.s_[:, :-1], np.s_[:, 1:])):
             flux = g * (w[a] - w[b])  # > 0: from a to b
             to_b, to_a = np.maximum(flux, 0.0), np.maximum(-flux, 0.0)
             inflow[b] += to_b
             inflow[a] += to_a
-            carried[b] += to_b[..., None] * planes[a]
-            carried[a] += to_a[..., None] * planes[b]
+            carried[b] += to_b[..., None] * ink[a]
+            carried[a] += to_a[..., None] * ink[b]
             w[a] -= flux
             w[b] += flux
         # the pigment the liquid carried in: the givers' colour, weighted by what each gave,
         # laid over what the pixel holds as Eq. 26's change lays it (more liquid, more of it)
         take = WICK_PIGMENT * -np.expm1(-inflow / FULL_WET)
         take /= np.where(inflow > 0.0, inflow, 1.0)
-        planes += (1.0 - planes) * (carried * take[..., None])
-        if grey:
-            ink[..., 1:] = planes
-
-
-def _is_grey(ink) -> bool:
-    """Whether the three densities of every pixel of ``ink`` (h, w, 3) are equal."""
-    first = ink[..., 0]
-    return bool(((first == ink[..., 1]) & (first == ink[..., 2])).all())
+        ink += (1.0 - ink) * (carried * take[..., None])
 
 
 def _pixel_sums(marks) -> tuple[int, int]:
