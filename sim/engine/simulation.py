@@ -222,8 +222,11 @@ class Simulation:
     def _fill(self, pending) -> list:
         """The marks of waiting samples, filled in together (Eq. 21-23). Small marks are
         measured and laid by the hair bundles (``bristles``) here too, many samples at once;
-        a sample with large marks is left to ``_deposit`` (None in its place), which lays
-        them just before the paper takes them, while they are in the processor's cache."""
+        a sample with large marks is left to ``_deposit``, which lays them just before the
+        paper takes them, while they are in the processor's cache. On the flat paper the
+        measured samples' marks are laid out for it together too (``Paper.lay_out``: what the
+        paper takes of them that does not depend on the paper; issue 28). Each sample's
+        (marks, whether measured, its ``Laying`` or None)."""
         t0 = time.perf_counter()
         ppm = self.paper.ppm
         _rows_ink([p.cut for p in pending], self.brush.layout.grid_s)
@@ -233,29 +236,32 @@ class Simulation:
         for a, b in _groups([sum(mk.rows.size for mk in m) for m in marks], LAY_PIXELS):
             part, states = marks[a:b], [p.bristles for p in pending[a:b]]
             if b - a == 1:  # large marks: a sample at a time, as the paper takes them
-                out.append((part[0], False))
+                out.append((part[0], False, None))
                 continue
             part = bristles.across_steps(part, states, ppm)  # on the chart, on a surface
             if self.surface is None:
                 part = bristles.lay_steps(part, states, ppm)  # the hair bundles (Eq. 27)
-            out += [(m, True) for m in part]
+            out += [(m, True, None) for m in part]
+        if self.surface is None:
+            laid = [k for k, f in enumerate(out) if f[1]]
+            for k, laying in zip(laid, self.paper.lay_out([out[k][0] for k in laid]), strict=True):
+                out[k] = (out[k][0], True, laying)
         self._tick("paper", t0)
         return out
 
     def _deposit(self, pending, filled):
         """Deposit the filled marks of waiting samples, in order (Eq. 24-27): ``filled`` has
-        each sample's marks and whether the bundles have measured them (``_fill``)."""
+        each sample's marks, whether the bundles have measured them and on the flat paper
+        their ``Laying`` (``_fill``)."""
         t0 = time.perf_counter()
         ppm = self.paper.ppm
-        for p, (marks, measured) in zip(pending, filled, strict=True):
+        if self.surface is None:
+            self._deposit_flat(pending, filled)
+            self._tick("paper", t0)
+            return
+        for p, (marks, measured, _) in zip(pending, filled, strict=True):
             if not measured:
                 marks = bristles.across(marks, p.bristles, ppm)  # on the chart, on a surface
-            if self.surface is None:
-                if not measured:
-                    marks = bristles.lay(marks, p.bristles, ppm)  # the hair bundles (Eq. 27)
-                self.paper.deposit(marks, self.q, self.dt, p.step)  # Eq. 24-27
-                self.last_marks = marks
-                continue
             t1 = time.perf_counter()
             groups = self.surface.splat(marks, p.step - 1) or [[]]  # texels under the marks
             self._tick("surface splat", t1)
@@ -264,6 +270,18 @@ class Simulation:
                 self.paper.deposit(group, self.q, self.dt, p.step)
             self.last_marks = [mk for group in groups for mk in group]
         self._tick("paper", t0)
+
+    def _deposit_flat(self, pending, filled):
+        """``_deposit`` on the flat paper: the paper takes each sample's marks as ``_fill``
+        laid them out; a sample with large marks is measured, laid by the hair bundles (Eq.
+        27) and laid out here, just before (issue 28)."""
+        ppm = self.paper.ppm
+        for p, (marks, measured, laying) in zip(pending, filled, strict=True):
+            if not measured:
+                marks = bristles.lay(bristles.across(marks, p.bristles, ppm), p.bristles, ppm)
+                laying = self.paper.lay_out([marks])[0]
+            self.paper.take(laying, self.q, self.dt, p.step)  # Eq. 24-27
+            self.last_marks = marks
 
     def run(self, until: int | None = None, progress=None):
         end = len(self.rec.samples) if until is None else min(until, len(self.rec.samples))

@@ -37,11 +37,11 @@ from typing import NamedTuple
 import numpy as np
 
 from ..image.png import to_uint8
-from .grain import paper_grain
+from .grain import paper_grain  # noqa: F401 (the sheet's grain: read from here too)
+from .laying import _RGB, Laying, lay_out
 from .lift import LEVEL_WET, box_mean, level_px, level_rows, spatter
 from .texture import paper_tone, sheet_draw, sheet_tone
 
-_RGB = np.dtype((np.void, 12))  # a pixel's three float32 ink densities as one item
 DRY_RATE = 1.0  # capacity units per second at dry = 1
 TILE = 64  # pixels a side of the tiles by which changes are tracked
 
@@ -151,13 +151,23 @@ class Paper:
     def deposit(self, marks, q, dt: float, step: int):
         """Apply this step's marks (one per touching primitive), Eq. 24-27. A mark's ``skip``
         (Eq. 27, drawn by the brush's hair bundles) marks the pixels that take no ink."""
+        self.take(self.lay_out([marks])[0], q, dt, step)
+
+    def lay_out(self, steps) -> list:
+        """What the paper takes of each step's marks (``steps``: a list of steps' marks) that
+        does not depend on the paper, for many steps at once (``sim.paper.laying``); ``take``
+        puts each step's down, in order."""
+        return lay_out(self, steps, GRAIN_DEPTH * self.fibre, FULL_WET / self.pigment)
+
+    def take(self, laying: Laying | None, q, dt: float, step: int):
+        """Put down one step's marks as ``lay_out`` laid them out (None: none touch the
+        paper), Eq. 24-27."""
         self.step = step
-        marks = [mk for mk in marks if mk.rows.size]
-        if not marks:
+        if laying is None:
             if self.stroke is not None:  # the brush has left the paper
                 self._halo()
             return
-        y0, y1, x0, x1 = self._window(marks)
+        y0, y1, x0, x1 = laying.window
         self._touch(y0, y1, x0, x1)
         wet = self.wet[y0:y1, x0:x1]
         ink = self.ink[y0:y1, x0:x1]
@@ -166,36 +176,10 @@ class Paper:
         # lazy drying through the previous step; this step's "- dry" follows (Eq. 24)
         missed = np.maximum(step - 1 - last, 0).astype(np.float32)
         w = np.maximum(wet - drystep * missed, 0.0)
-        # every mark's pixels at once, in the marks' order; a pixel that several marks cover
-        # takes them one after the other (its k-th visit in round k), exactly as in sequence
-        hw, ww = w.shape
-        locs = [(mk.rows + (mk.iy0 - y0)) * ww + (mk.cols + (mk.ix0 - x0)) for mk in marks]
-        loc = np.concatenate(locs)
-        full = loc + ((y0 * self.W + x0) - (loc // ww) * (ww - self.W))  # index in the paper
-        wet_tau = np.concatenate([mk.wet for mk in marks]).astype(np.float32, copy=False)
-        col = np.concatenate([mk.col for mk in marks]).astype(np.float32, copy=False)
-        if self.halo_px:
+        if laying.follow is not None:
             self.dt = float(dt)
-            self._follow(step, (y0, y1, x0, x1), col, full, wet_tau)
-        col = col.reshape(-1).view(_RGB)
-        skip = np.concatenate(
-            [mk.skip if mk.skip is not None else np.zeros(mk.rows.size, bool) for mk in marks]
-        )
-        # the liquid the hair offers, as the sheet's grain lets it take it (model addition,
-        # paper_grain): some pixels take a little more of it, some a little less
-        grain = paper_grain(full, self.grain_seed) - 0.5
-        offer = wet_tau * (1.0 - GRAIN_DEPTH * self.fibre * grain).astype(np.float32)
-        rank, visits = _visit_ranks(locs, hw * ww)
-        dried = (visits > 0).reshape(hw, ww)
-        bounds = [0, loc.size]
-        top = int(rank.max())
-        if top:
-            perm = np.argsort(rank, kind="stable")
-            bounds = np.r_[0, np.cumsum(np.bincount(rank, minlength=top + 1))].tolist()
-            loc, full, wet_tau, skip = loc[perm], full[perm], wet_tau[perm], skip[perm]
-            offer = offer[perm]
-            col = np.take(col, perm)
-        col = col.view(np.float32).reshape(-1, 3)
+            self._follow(step, laying.window, *laying.follow)
+        loc, full, wet_tau, lays, bounds = laying[1:6]
         wf = w.reshape(-1)
         inkv = self.ink.reshape(-1).view(_RGB)  # one 12-byte element per pixel
         ab = np.float32(q.ab)
@@ -207,13 +191,11 @@ class Paper:
             new = ab * lam + (1 - ab) * wet_tau[sel]
             new = np.maximum(new - np.where(k == 0, drystep, 0), 0.0)
             np.put(wf, li, new)
-            # Eq. 26-27 (model change, see FULL_WET): where the hair bundle lays ink (Cr not
-            # 0) the pixel takes the colour the liquid offered to it can hold, and keeps the
-            # darker of that and what it had (pigment laid is not taken back)
-            held = -np.expm1(-offer[sel] / (FULL_WET / self.pigment))
-            held = np.where(skip[sel], 0.0, held).astype(np.float32)
+            # Eq. 26-27 (model change, see FULL_WET): the pixel keeps the darker of the colour
+            # the liquid offered can hold (lay_out) and what it had (pigment laid is not taken
+            # back)
             old = np.take(inkv, fi).view(np.float32).reshape(-1, 3)
-            lay = col[sel] * held[:, None]
+            lay = lays[sel]
             if k == 0:  # a second layer over ink that has set (see LAYER_S)
                 after = LAYER_S / dt if dt > 0 else np.inf  # steps for the ink to set
                 set_ = _set_share(lam, np.take(missed.reshape(-1), li), after)
@@ -222,7 +204,7 @@ class Paper:
                 lay = top + set_[:, None] * (stacked - top)
             np.maximum(old, lay, out=old)
             np.put(inkv, fi, old.reshape(-1).view(_RGB))
-        w = np.where(dried, w, np.maximum(w - drystep, 0.0))
+        w = np.where(laying.dried.reshape(w.shape), w, np.maximum(w - drystep, 0.0))
         self._saturate_window(w, ink)
         if self.wick_passes:
             draw = sheet_draw(
@@ -241,20 +223,12 @@ class Paper:
         x1 = min(max(mk.ix0 + mk.shape[1] for mk in marks) + margin, self.W)
         return y0, y1, x0, x1
 
-    def _follow(self, step: int, window, col, full, offer):
+    def _follow(self, step: int, window, darkest: tuple, here: tuple):
         """Keep the stroke being written in ``stroke``: where its windows lie, the step it
         began, the darkest colour its marks laid (the water halo's source, ``_halo``), and
         where the hair touched the paper first and in its last steps, with the liquid it
-        offered there (the droplets it throws, ``lift.spatter``)."""
+        offered there (``here``: the step's; the droplets it throws, ``lift.spatter``)."""
         y0, y1, x0, x1 = window
-        darkest = tuple(float(c) for c in col.max(axis=0))
-        rows, cols, n = full // self.W, full % self.W, full.size
-        here = (
-            float(rows.mean()),
-            float(cols.mean()),
-            float(offer.mean()),
-            float(np.sqrt(n / np.pi)),
-        )
         t = self.stroke
         if t is None:
             self.stroke = WetStroke(step, y0, y1, x0, x1, darkest, here, (here,))
@@ -564,20 +538,6 @@ def _wick(w, ink, draw, passes: int, rate: float = WICK_RATE) -> None:
         take = WICK_PIGMENT * -np.expm1(-inflow / FULL_WET)
         take /= np.where(inflow > 0.0, inflow, 1.0)
         ink += (1.0 - ink) * (carried * take[..., None])
-
-
-def _visit_ranks(locs, size: int) -> tuple[np.ndarray, np.ndarray]:
-    """A pixel that several marks cover takes them in the marks' order: the rank of each mark
-    pixel (its pixel's k-th visit is made in round k, visits counted mark by mark) and the
-    visits of every pixel of the window (``size`` of them)."""
-    visits = np.zeros(size, dtype=np.uint16)
-    rank = np.empty(sum(li.size for li in locs), dtype=np.uint16)
-    at = 0
-    for li in locs:
-        rank[at : at + li.size] = visits[li]
-        visits[li] += 1  # a mark covers each of its pixels once
-        at += li.size
-    return rank, visits
 
 
 class PaperHold:
