@@ -22,7 +22,7 @@ from ..core.recording import PAPER_MM_RANGE, PX_PER_MM_RANGE, Dip, Recording, qu
 from ..engine.simulation import Simulation
 from .hanzi import check_char
 from .outline import EM, median_radii, rasterise
-from .planner import RUN_UP, _fill, plan
+from .planner import RUN_UP, WRITING, _fill, plan
 from .practice import _practise_stroke, _stroke_masks
 from .response import Response, _coverage, _settings, calibrate
 
@@ -160,11 +160,17 @@ def write_character(
         return _fill(samples, pl, response, (a, b), press, side, brush, ends, run_up)
 
     full = full_load(template)
+    areas = stroke_areas(pl, step_mm)
+    since = (full, 0.0)  # the load at the last dip and the area written since it
     for n_stroke, (a, b) in enumerate(pl.strokes):
         sim.run(until=a)  # travel in the air up to the stroke
-        if dip_every_mm is None and n_stroke and dips_when_low(brush_load(sim.brush), full):
+        load = brush_load(sim.brush)
+        need = ink_needed(since, load, areas[n_stroke])
+        if dip_every_mm is None and n_stroke and dips_when_low(load, full, need):
             rec.dips.append(Dip(a, ink.depth, tuple(ink.color), ink.wetness))
             sim.dips = rec.dips
+            since = (full, 0.0)
+        since = (since[0], since[1] + areas[n_stroke])
         own = masks[n_stroke] if passes > 1 else None
         ctx = (pl, response, step_mm, reach)
         _practise_stroke(sim, a, b, passes, fill, own, ctx, whole, exact_ends)
@@ -183,14 +189,39 @@ LOW_INK = 0.75  # share of a full load (``brush_load``) below which the brush is
 DIP_EVERY_STROKE = 1e-3  # a ``dip_every_mm`` that dips before every stroke
 
 
-def dips_when_low(load: float, full: float) -> bool:
+RUN_DRY = 0.5  # share of a full load below which a stroke is foreseen to end: dip before it
+# (issue 26: begun at 0.75, a long 横折钩 ended at 0.38 and its hook was a dry broom of hairs)
+
+
+def dips_when_low(load: float, full: float, need: float = 0.0) -> bool:
     """Without ``dip_every_mm``, the writer dips before the first stroke and before any later
     stroke that the brush would begin holding less than ``LOW_INK`` of a full load (the load
-    the paper has taken from it, Eq. 15), as a calligrapher dips once for a character and
-    again only when the brush runs low: the tone runs from dark and wet after a dip to grey,
-    with flying white, before the next. (Beyond the paper: it dips before every stroke of its
-    figures.)"""
-    return load < LOW_INK * full
+    the paper has taken from it, Eq. 15), or would end below ``RUN_DRY`` of it, spending
+    ``need`` (``ink_needed``) on the stroke: as a calligrapher dips once for a character and
+    again when the brush runs low or the next stroke is long: the tone runs from dark and wet
+    after a dip to grey, with flying white, before the next. (Beyond the paper: it dips before
+    every stroke of its figures.)"""
+    return load < LOW_INK * full or load - need < RUN_DRY * full
+
+
+def stroke_areas(pl, step_mm: float) -> list[float]:
+    """The area (mm^2) each stroke of plan ``pl`` covers: its planned width summed along its
+    body samples, a sample ``step_mm`` apart."""
+    return [float(pl.width[a:b][pl.phase[a:b] == WRITING].sum() * step_mm) for a, b in pl.strokes]
+
+
+FORESEE_FROM = 0.5  # share of a stroke's area written since the dip before its need is foreseen
+
+
+def ink_needed(since, load: float, area: float) -> float:
+    """The load a stroke of ``area`` mm^2 will take from the brush, foreseen from what the
+    strokes since the last dip took per mm^2 (``since``: the load at the dip and the area
+    written since); 0 until at least ``FORESEE_FROM`` of its area has been written since the
+    dip (a dot, pressed on a small area, takes more a mm^2 than a long stroke: no guide)."""
+    at_dip, written = since
+    if written <= 0 or written < FORESEE_FROM * area:
+        return 0.0
+    return max(at_dip - load, 0.0) / written * area
 
 
 def coverage_mask(sim: Simulation) -> np.ndarray:

@@ -14,12 +14,39 @@ from sim.writing.outline import EM, TOP
 from sim.writing.planner import plan
 from sim.writing.practice import _stroke_masks
 from sim.writing.response import calibrate
-from sim.writing.writer import DIP_EVERY_STROKE, LOW_INK, dips_when_low, write_character
+from sim.writing.writer import (
+    DIP_EVERY_STROKE,
+    LOW_INK,
+    RUN_DRY,
+    dips_when_low,
+    ink_needed,
+    stroke_areas,
+    write_character,
+)
 
 
 def test_dips_when_the_brush_runs_low():
     assert not dips_when_low(1.0, 1.0) and not dips_when_low(LOW_INK + 0.01, 1.0)
     assert dips_when_low(LOW_INK - 0.01, 1.0) and dips_when_low(0.3, 0.5)
+
+
+def test_dips_before_a_stroke_the_brush_would_end_dry():
+    # begun above LOW_INK, a stroke that would take the load below RUN_DRY gets a dip first
+    load = LOW_INK + 0.05
+    assert not dips_when_low(load, 1.0, need=load - RUN_DRY - 0.01)
+    assert dips_when_low(load, 1.0, need=load - RUN_DRY + 0.01)
+
+
+def test_the_ink_a_stroke_needs_is_foreseen_from_the_strokes_before_it():
+    # 0.2 of the load went on 500 mm^2 since the dip: a 250 mm^2 stroke will take 0.1
+    assert ink_needed((1.0, 500.0), 0.8, 250.0) == pytest.approx(0.1)
+    assert ink_needed((1.0, 0.0), 1.0, 250.0) == 0.0  # nothing written yet: nothing to go by
+    assert ink_needed((1.0, 100.0), 0.9, 700.0) == 0.0  # a dot is no guide to a long stroke
+    ch = find_char("永")
+    pl = plan(ch, 60.0, 0.5)
+    areas = stroke_areas(pl, 0.5)
+    assert len(areas) == len(ch["medians"]) and min(areas) > 0.0
+    assert np.argmax(areas) != np.argmin(areas)  # 永's long 横折钩 against its dot
 
 
 def test_a_spent_load_is_less_than_a_full_one():
