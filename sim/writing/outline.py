@@ -11,6 +11,16 @@ import re
 
 import numpy as np
 
+from .feet import (
+    _body_width,
+    _from_the_foot,
+    _gathered_foot,
+    _past_the_corner,
+    _rises_back,
+    is_hook,
+    narrows,
+)
+
 EM = 1024.0
 TOP = 900.0
 _TOKEN = re.compile(r"[A-Za-z]|[-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?")
@@ -346,14 +356,6 @@ def _foot(pts, k: int, polys, step: float, fan: float = FOOT_FAN) -> np.ndarray:
     return pts[k] + (np.arange(1, n + 1) * step)[:, None] * dirs[j]
 
 
-HOOK_COS = -0.2  # a corner whose way out turns back by more than this (cosine, about 100
-# degrees) from its way in, into a short last piece, is a hook's foot: the belly stays pressed
-HOOK_UP_COS = 0.45  # ... or by more than this (about 63 degrees) into a short last piece that
-# narrows to a point (HOOK_POINT): a 竖弯钩's, a 卧钩's, a 斜钩's flick, square to the way in
-HOOK_POINT = 0.6  # a hook's end is narrower than this share of its widest (a point, not a
-# pressed end: a short leg after a 折 ends as wide as it began)
-HOOK_LENGTH = 3.0  # a hook is at most this many times as long as the stroke before it is wide
-# (a 竖折's leg turning back as much is a long stroke of its own)
 HOOK_WINDOW = 100.0  # data units either side over which a stroke's end curls into a hook off a
 # curve (乙, 也, 九, 飞: its turn spreads over more of the median than a corner's CORNER_WINDOW)
 CURL_FOOT = 0.5  # share of the foot (FOOT_REACH) the movement before such a hook presses into:
@@ -361,23 +363,6 @@ CURL_FOOT = 0.5  # share of the foot (FOOT_REACH) the movement before such a hoo
 # out past it in a round knob (乙, 巴: 189 and 286 px more than 2 px outside the outline at
 # 512 px against 56 and 55)
 HOOK_TURN = 0.9  # rad of turn over +-HOOK_WINDOW where such a hook leaves the curve
-
-
-def is_hook(cos: float, length: float, before_width: float, narrows: bool, curl: bool) -> bool:
-    """Whether a stroke's last movement, after a corner, is a hook (钩): short (at most
-    ``HOOK_LENGTH`` times ``before_width``, the stroke's width before the corner) and turned
-    back on the way in (``cos`` of the turn below ``HOOK_COS``: a 竖钩, a 斜钩), or, after an
-    end that curls off a curve (``curl``, ``_curled_end``), turned about square to it (below
-    ``HOOK_UP_COS``) and narrowing to a point (``narrows``: a 竖弯钩, a 卧钩). A sharp corner
-    turned only square into a short narrowing leg stays a 折 (墨's 罒, 口's shoulder)."""
-    short = length <= HOOK_LENGTH * before_width
-    return short and (cos < HOOK_COS or (curl and cos < HOOK_UP_COS and narrows))
-
-
-def narrows(width) -> bool:
-    """Whether a movement's widths (along it) end narrower than ``HOOK_POINT`` of their widest."""
-    w = np.asarray(width, dtype=float)
-    return w.size > 1 and float(w[-1]) < HOOK_POINT * float(w.max())
 
 
 def _hooks_back(way_in, piece, before, step: float, width, curl: bool = False) -> bool:
@@ -393,7 +378,8 @@ def _hooks_back(way_in, piece, before, step: float, width, curl: bool = False) -
     e = piece[min(win, len(piece) - 1)] - piece[0]
     cos = float(d @ e) / max(float(np.linalg.norm(d) * np.linalg.norm(e)), 1e-9)
     length = float(np.linalg.norm(np.diff(piece, axis=0), axis=1).sum())
-    return is_hook(cos, length, float(before[1].max()), narrows(width), curl)
+    back = curl or _rises_back(d, e)
+    return is_hook(cos, length, float(before[1].max()), narrows(width), back)
 
 
 def _curled_end(pts, step: float, after: int) -> int | None:
@@ -413,30 +399,15 @@ def _curled_end(pts, step: float, after: int) -> int | None:
     return int(k[i]) if turn[i] > HOOK_TURN else None
 
 
-HOOK_FROM_FOOT = 0.5  # share of the way from the median's corner to the foot's end (where the
-# movement before pressed into) a hook sets off from: the middle of the triangle's base
-# (measured on 永 剑 虎 戈 at 4x: from the corner, a thin band along the triangle's inner edge
-# over a round bulb; from the foot's end, a band along its outer edge, the inner part bare)
-
-
-def _from_the_foot(piece, foot) -> np.ndarray:
-    """A hook's points moved to set off ``HOOK_FROM_FOOT`` of the way from the median's corner
-    to ``foot`` (where the movement before ended, pressed into the foot), the shift fading out
-    along the hook to its tip: the hook's ink is the triangle from the whole foot out to the
-    point, as a calligrapher flicks it from the pressed foot. Added in issue 26."""
-    s = np.concatenate([[0.0], np.cumsum(np.linalg.norm(np.diff(piece, axis=0), axis=1))])
-    fade = HOOK_FROM_FOOT * (1.0 - s / max(float(s[-1]), 1e-9))
-    return piece + fade[:, None] * (np.asarray(foot) - piece[0])[None, :]
-
-
 def median_pieces(char: dict, step: float = 4.0) -> list[list[tuple[np.ndarray, np.ndarray]]]:
     """For every stroke, points along the middle of its outline and the stroke's full width
     there (``_bands``, every ``step`` along the median), split into movements at the median's
     sharp corners (``corners``): each movement that ends at a corner goes on into the foot
-    (``_foot``), the next starts on the corner, but a hook (``_hooks_back``) from the foot
-    (``_from_the_foot``); an end that curls into a hook off a curve (``_curled_end``) is cut
-    there too. A calligrapher writes a hook or a 折 so: presses into the corner, turns the tip
-    and sets off anew; dragging the pressed hair round the corner sweeps a round blot."""
+    (``_foot``; a hook's foot gathered, ``_gathered_foot``), the next starts on the corner, but
+    a hook (``_hooks_back``) from the foot (``_from_the_foot``); an end that curls into a hook
+    off a curve (``_curled_end``) is cut there too. A calligrapher writes a hook or a 折 so:
+    presses into the corner, turns the tip and sets off anew; dragging the pressed hair round
+    the corner sweeps a round blot."""
     return [pieces for pieces, _ in median_movements(char, step)]
 
 
@@ -478,6 +449,10 @@ def _pieces(pts, polys, step: float, edges, curl: bool = False) -> list:
             # belly spilled over the hook's inner edge)
             _past_the_corner(width, step)
         pieces.append((centre, width, hook))
+    if pieces[-1][2] and _clockwise(pts, edges[-2], step):  # a foot gathered, as wide as the stroke
+        centre, width, _ = pieces[-2]
+        k = edges[-2] - edges[-3]  # the corner, in the movement into it
+        pieces[-2] = (centre, _gathered_foot(width, k, step), False)
     return _shoulders(pts, polys, step, edges, pieces)
 
 
@@ -552,13 +527,6 @@ def _shoulders(pts, polys, step: float, edges, pieces) -> list:
     return out
 
 
-def _body_width(width) -> float:
-    """A movement's own width: the median of its middle half (not its ends, feet or heads)."""
-    w = np.asarray(width, dtype=float)
-    n = len(w)
-    return float(np.median(w[n // 4 : max(3 * n // 4, n // 4 + 1)]))
-
-
 def _clockwise(pts, k: int, step: float) -> bool:
     """Whether a median turns clockwise (y up) at corner ``k``, read over ``CORNER_WINDOW``
     either side: a 横折's shoulder (right, then down), not a 竖折's corner."""
@@ -572,10 +540,3 @@ def _turn_at(pts, k: int, step: float) -> tuple[np.ndarray, float]:
     d = pts[k] - pts[max(k - win, 0)]
     e = pts[min(k + win, len(pts) - 1)] - pts[k]
     return d, float(d[0] * e[1] - d[1] * e[0])
-
-
-def _past_the_corner(width, step: float) -> None:
-    """A movement after a corner keeps its own width from where it leaves the corner's disc on
-    (in place): its first half-width is held to the width there."""
-    off = min(int(np.ceil(0.5 * width[0] / step)), len(width) - 1)
-    width[:off] = np.minimum(width[:off], width[off])

@@ -12,6 +12,7 @@ from sim.writing.outline import (
     TOP,
     corners,
     fill,
+    median_movements,
     median_pieces,
     resample,
     stroke_polygons,
@@ -51,7 +52,7 @@ def test_a_hook_sets_off_from_the_foot_and_narrows_to_its_point():
     # 永's 竖钩: the hook sets off from the middle of the foot (HOOK_FROM_FOOT of the way from
     # the median's corner at (478, 24) down to where the leg ended in the foot), planned as
     # wide as the vertical there, and its width falls to the tip
-    from sim.writing.outline import HOOK_FROM_FOOT
+    from sim.writing.feet import HOOK_FROM_FOOT
 
     (_, _), (leg, leg_w), (hook, hook_w) = median_pieces(find_char("永"))[1]
     corner = np.array([478.0, 24.0])
@@ -141,7 +142,7 @@ def test_an_end_curling_into_a_hook_off_a_curve_is_a_hook():
     # than a corner's window, so read as a corner it was one sweeping movement, the pressed
     # belly dragged round the curl (a smear beside the hook, the tip split in prongs); it is a
     # movement of its own, a hook that narrows to its point, and the planner writes it as one
-    from sim.writing.outline import HOOK_POINT
+    from sim.writing.feet import HOOK_POINT
     from sim.writing.planner import WRITING, _is_hook, _movements, plan
 
     for c, k in (("乙", 0), ("也", 2), ("儿", 1)):
@@ -315,3 +316,57 @@ def test_a_written_hook_leaves_no_specks_past_its_tip():
     near = np.hypot(xx + 0.5 - tip[0], yy + 0.5 - tip[1]) < 0.06 * n
     assert np.count_nonzero(ink[near]) > 20  # the hook reaches there
     assert not np.any(near & ink & (lab != stroke))
+
+
+@pytest.mark.parametrize(("char", "k"), [("刀", 0), ("力", 0), ("了", 1), ("同", 1), ("家", 5)])
+def test_a_hook_flicked_back_up_off_a_slanting_leg_is_a_hook(char, k):
+    # a 横折钩's or 弯钩's hook off a leg that slants or curves (issue 26, part 2): it leaves
+    # the leg 80-100 degrees from the way in, back up, and was written as a 折 into a leg (a
+    # lift on the corner, the hook's triangle a thin spur beside a round bulb); a 横折's leg
+    # going down stays a 折
+    assert median_movements(find_char(char))[k][1]
+    for zhe in ("口", "日", "墨"):
+        assert not any(hook for _, hook in median_movements(find_char(zhe)))
+
+
+@pytest.mark.parametrize(("char", "k"), [("永", 1), ("我", 2), ("月", 1), ("刀", 0)])
+def test_a_hook_foot_is_planned_no_wider_than_the_stroke(char, k):
+    # the movement into a hook's foot: the font's foot, where the hook's triangle joins, is cut
+    # up to twice as wide as the stroke (我's 竖钩: 112 data units against 55), and pressed so
+    # wide the belly left a round bulb below and beside the corner; gathered, it is planned no
+    # wider than HOOK_FOOT_OVER times the stroke's own width
+    from sim.writing.feet import HOOK_FOOT_OVER, _body_width
+
+    pieces, hook = median_movements(find_char(char))[k]
+    assert hook
+    _, width = pieces[-2]
+    foot = width[-8:]  # past the corner, where the leg presses into the foot
+    assert foot.max() <= HOOK_FOOT_OVER * _body_width(width) + 1e-9
+    assert HOOK_FOOT_OVER < 1.5  # the font's is up to twice as wide
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize(("char", "k"), [("永", 1), ("我", 2), ("月", 1)])
+def test_a_written_hook_foot_has_no_bulb_outside_the_outline(stiff_ink, char, k):
+    # the ink more than a pixel outside the font's outline within 1.5 stroke widths of the
+    # hook's corner, against the outline's pixels there (256 px, stiff brush; before the foot
+    # was gathered: 永 0.11, 我 0.25, 月 0.13, a round bulb below and beside the corner; now 0.06,
+    # 0.05, 0.03)
+    from scipy.ndimage import distance_transform_edt
+
+    from sim.writing.feet import _body_width
+    from sim.writing.outline import _to_the_tips
+
+    n = 256
+    ch = find_char(char)
+    ink = stiff_ink(char, n)
+    every = font_mask(ch, n)
+    pieces, _ = median_movements(ch)[k]
+    pts, _ = resample(_to_the_tips(ch["medians"][k], stroke_polygons(ch)[k]), 4.0)
+    c = _img(pts[corners(pts, 4.0)[-1]], n)
+    body = _body_width(pieces[-2][1]) * n / EM
+    yy, xx = np.mgrid[0:n, 0:n]
+    near = np.hypot(xx + 0.5 - c[0], yy + 0.5 - c[1]) < 1.5 * body
+    outside = near & ink & (distance_transform_edt(~every) > 1.0)
+    assert np.count_nonzero(outside) < 0.08 * np.count_nonzero(near & every)
+    assert np.count_nonzero(near & every & ~ink) < 0.1 * np.count_nonzero(near & every)
