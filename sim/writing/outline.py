@@ -15,6 +15,7 @@ from .feet import (
     _body_width,
     _from_the_foot,
     _gathered_foot,
+    _held_foot,
     _past_the_corner,
     _rises_back,
     is_hook,
@@ -400,14 +401,14 @@ def _curled_end(pts, step: float, after: int) -> int | None:
 
 
 def median_pieces(char: dict, step: float = 4.0) -> list[list[tuple[np.ndarray, np.ndarray]]]:
-    """For every stroke, points along the middle of its outline and the stroke's full width
-    there (``_bands``, every ``step`` along the median), split into movements at the median's
-    sharp corners (``corners``): each movement that ends at a corner goes on into the foot
-    (``_foot``; a hook's foot gathered, ``_gathered_foot``), the next starts on the corner, but
-    a hook (``_hooks_back``) from the foot (``_from_the_foot``); an end that curls into a hook
-    off a curve (``_curled_end``) is cut there too. A calligrapher writes a hook or a 折 so:
-    presses into the corner, turns the tip and sets off anew; dragging the pressed hair round
-    the corner sweeps a round blot."""
+    """For every stroke, points along the middle of its outline and the stroke's full width there
+    (``_bands``, every ``step`` along the median), split into movements at the median's sharp
+    corners (``corners``): each movement that ends at a corner goes on into the foot (``_foot``;
+    a hook's foot gathered, ``_gathered_foot``, and held, ``_held_foot``), the next starts on
+    the corner, but a hook (``_hooks_back``) from the foot (``_from_the_foot``); an end that
+    curls into a hook off a curve (``_curled_end``) is cut there too. A calligrapher writes a
+    hook or a 折 so: presses into the corner, turns the tip and sets off anew; dragging the
+    pressed hair round the corner sweeps a round blot."""
     return [pieces for pieces, _ in median_movements(char, step)]
 
 
@@ -434,6 +435,10 @@ def _pieces(pts, polys, step: float, edges, curl: bool = False) -> list:
         p = pts[i0 : i1 + 1]
         if k < len(edges) - 2:
             foot = _foot(pts, i1, polys, step)
+            if k == len(edges) - 3 and _clockwise(pts, i1, step):  # a hook's foot (a 折's
+                # shoulder is made again by _shoulders): only while the outline holds it
+                own = _body_width(_bands(p, polys)[1])
+                foot = _held_foot(foot, distance_to_outline(foot, polys), own)
             if curl and k == len(edges) - 3:  # into a curled end's hook: less far
                 foot = foot[: int(len(foot) * CURL_FOOT)]
             p = np.concatenate([p, foot])

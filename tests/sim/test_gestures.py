@@ -370,3 +370,33 @@ def test_a_written_hook_foot_has_no_bulb_outside_the_outline(stiff_ink, char, k)
     outside = near & ink & (distance_transform_edt(~every) > 1.0)
     assert np.count_nonzero(outside) < 0.08 * np.count_nonzero(near & every)
     assert np.count_nonzero(near & every & ~ink) < 0.1 * np.count_nonzero(near & every)
+
+
+@pytest.mark.parametrize(("char", "k"), [("也", 0), ("地", 3), ("鸟", 1), ("雹", 9), ("句", 1)])
+def test_a_hook_foot_off_a_curved_leg_stays_where_the_outline_holds_it(char, k):
+    # a 横折钩's or 弯钩's foot off a curved leg (issue 26, part 2): the font's foot is a
+    # narrowing round V, and the foot went on into it as far as a straight leg's (on main 也's
+    # foot ended where the outline held a disc of 0.60 of the stroke's half-width, 地's 0.63):
+    # the pressed belly stood out past the V in a bulb (ink outside the outline near the foot,
+    # 512 px: 也 298 px, 地 143, 鸟 121); now the foot stops while it still has room
+    from sim.writing.feet import FOOT_HOLD, _body_width
+    from sim.writing.outline import distance_to_outline
+
+    ch = find_char(char)
+    pieces, hook = median_movements(ch)[k]
+    assert hook
+    centre, width = pieces[-2]
+    room = distance_to_outline(centre[-1:], stroke_polygons(ch)[k])[0]
+    assert room >= 0.95 * FOOT_HOLD * 0.5 * _body_width(width)
+
+
+@pytest.mark.parametrize(("char", "k"), [("刀", 0), ("力", 0), ("永", 1), ("我", 2)])
+def test_a_hook_foot_off_a_straight_leg_keeps_its_reach(monkeypatch, char, k):
+    # a straight leg's square foot (刀, 力, 永's and 我's 竖钩) keeps room to its end: held,
+    # it goes on as far as before (cut, 刀's foot bottom was left bare)
+    import sim.writing.feet as feet
+
+    held = median_movements(find_char(char))[k][0][-2][0]
+    monkeypatch.setattr(feet, "FOOT_HOLD", 0.0)
+    free = median_movements(find_char(char))[k][0][-2][0]
+    assert len(held) == len(free)
