@@ -94,6 +94,11 @@ def level_rows(paper, start: int, colour, rows, outer):
 # count is Poisson with mean SPATTER_EXIT times (exit speed / SPATTER_SPEED)^2 (the liquid's
 # kinetic energy against its surface tension) times the liquid the hair offered there against
 # SPATTER_WET; the landings' with mean SPATTER_LAND times the liquid offered as it landed.
+# A brush that leaves in a gathered point (a hook's or a 撇's let-go: its last contact under
+# SPATTER_POINT_MM in radius) throws none: the hair closed round the point holds its liquid
+# (capillarity), only a spread, loaded belly leaving fast sheds it (times the share of
+# SPATTER_POINT_MM by which the contact is wider than that, up to 1; issue 26: no specks past
+# a point).
 # Each droplet is SPATTER_MM across (mostly the small end), up to SPATTER_REACH_MM away. Every
 # draw is the sheet's hash of where the stroke landed and of its seed (``paper_grain``), not
 # the brush's generator: the brush's draws are unchanged, and the same stroke throws the same
@@ -107,6 +112,7 @@ SPATTER_REACH_MM = 3.0
 SPATTER_DENSITY = 0.8  # a droplet's density (of the ink's), SPATTER_FULL_MM or larger
 SPATTER_FULL_MM = 0.2  # a smaller droplet is a thinner film: lighter
 SPATTER_MAX = 6
+SPATTER_POINT_MM = 0.3  # an exit's contact radius below which the hair is gathered in a point
 SPATTER_DRAWS = 2 + 4 * SPATTER_MAX
 SPATTER_SALT = 21 << 40  # keeps these draws apart from the grain's and the texture's
 
@@ -140,6 +146,7 @@ def spatter(paper, t, colour) -> None:
     )
     drops = []
     fling = SPATTER_EXIT * min(hwet / SPATTER_WET, 1.0) * (speed / SPATTER_SPEED) ** 2
+    fling *= min(max(hr / (paper.ppm * SPATTER_POINT_MM) - 1.0, 0.0), 1.0)  # not from a point
     land = SPATTER_LAND * min(lwet / SPATTER_WET, 1.0)
     n_exit, n_land = _poisson(fling, u[0]), _poisson(land, u[1])
     ahead = np.array([vy, vx]) / max(float(np.hypot(vy, vx)), 1e-9)
