@@ -166,17 +166,7 @@ def insert_active_point(brush, new):
 def constrain(brush, vel6):
     """Hair is inextensible and cannot pass through the paper. Walking from the bottom
     control circle to the tip: a key point too far from its predecessor is pulled after it
-    (sliding on the paper); a key point on the paper lies flat at its full arc distance.
-
-    Which way a key point coming down on the paper lies (beyond the paper, whose Sec. 5.2.2
-    drags the hair under the paper along the motion but does not say where hanging hair
-    falls): as far as its own horizontal offset from the previous key point reaches, that way;
-    for the rest of its reach, the way the drag takes it (``fb``: back along the motion, or
-    the way a tilted shaft leans; at rest, back along the way it came). Before (issue 26) the
-    offset's direction alone decided, however small: hair straightened in the air by the
-    elastic return keeps a bend of 1e-8 mm the way it last lay, so a belly pressed down at a
-    shoulder or a foot fell that way, often across the new stroke, and left a lobe beside it
-    (家's 横钩 shoulder; tests/sim/test_turns.py)."""
+    (sliding on the paper); a key point on the paper lies flat at its full arc distance."""
     points = brush.cc
     m, n = brush.m, brush.n
     shaft = -brush.R[:, 2]
@@ -207,10 +197,8 @@ def constrain(brush, vel6):
         if reach.any():  # lies flat on the paper at its full arc distance
             H = np.sqrt(np.maximum(seg * seg - h * h, 0.0))
             dxy = d[:, :2]
-            # the way it falls: its own offset, and the drag for the reach that leaves (doc)
-            fall = dxy + np.maximum(H - norm(dxy), 0.0)[:, None] * fb
-            nd = norm(fall)
-            dirxy = np.where(nd[:, None] > 1e-9, fall / np.maximum(nd, 1e-12)[:, None], fb)
+            nd = norm(dxy)
+            dirxy = np.where(nd[:, None] > 1e-9, dxy / np.maximum(nd, 1e-12)[:, None], fb)
             flat = np.zeros((m, 3))
             flat[:, :2] = prev[:, :2] + H[:, None] * dirxy
             p = np.where(reach[:, None], flat, cand)
@@ -239,11 +227,9 @@ def _constrain_one(points, sarc, fb) -> list:
         h = _max(pz, 0.0)
         if on_paper and seg > h:  # lies flat on the paper at its full arc distance
             H = math.sqrt(_max(seg * seg - h * h, 0.0))
-            w = _max(H - math.sqrt(dx * dx + dy * dy), 0.0)
-            fx, fy = dx + w * fb[0], dy + w * fb[1]
-            nd = math.sqrt(fx * fx + fy * fy)
+            nd = math.sqrt(dx * dx + dy * dy)
             if nd > 1e-9:
-                ux, uy = fx / _max(nd, 1e-12), fy / _max(nd, 1e-12)
+                ux, uy = dx / _max(nd, 1e-12), dy / _max(nd, 1e-12)
             else:
                 ux, uy = fb
             cx, cy, cz = px + H * ux, py + H * uy, 0.0
