@@ -30,7 +30,7 @@ from typing import NamedTuple
 
 import numpy as np
 
-from ..core.frames import cross, dot, norm, stack1
+from ..core.frames import dot, norm, stack1
 from .ink import LOAD, TEXTURE, TEXTURE_NAMES
 from .state import INK_FIELDS
 
@@ -998,16 +998,20 @@ def _pixel_ink_run(per, n_ok, lam, cols, nf: int, tex_scalars, ppm):
 
 def _cover(rk: ContactRows, slab, n_ok, lam, p, q, ppm) -> np.ndarray:
     """``section_cover`` of the inked pixels, from their sections' semi-axes between the rows
-    of their slabs (per interval, repeated over its inked pixels, a cache-sized run of
-    intervals at a time)."""
+    of their slabs: per interval the twelve components of U, V at row j and their change to
+    row j + 1, repeated over its inked pixels as contiguous rows (a cache-sized run of
+    intervals at a time), then each component as U0 + lam dU (the same products and sums as
+    on (P, 3) vectors)."""
     U0, V0 = (a[:, :-1].reshape(-1, 3)[slab] for a in (rk.U, rk.V))
     dU, dV = (np.diff(a, axis=1).reshape(-1, 3)[slab] for a in (rk.U, rk.V))
+    per = np.concatenate([U0.T, V0.T, dU.T, dV.T])  # (12, intervals)
     out = np.empty(len(lam))
     for i0, i1, e0, e1 in _interval_chunks(n_ok):
-        n, L = n_ok[i0:i1], lam[e0:e1, None]
-        U = np.repeat(U0[i0:i1], n, axis=0) + L * np.repeat(dU[i0:i1], n, axis=0)
-        V = np.repeat(V0[i0:i1], n, axis=0) + L * np.repeat(dV[i0:i1], n, axis=0)
-        out[e0:e1] = section_cover(U, V, p[e0:e1], q[e0:e1], ppm)
+        D = np.repeat(per[:, i0:i1], n_ok[i0:i1], axis=1)
+        L = lam[e0:e1]
+        u = [D[c] + L * D[6 + c] for c in range(3)]
+        v = [D[3 + c] + L * D[9 + c] for c in range(3)]
+        out[e0:e1] = _section_cover(u, v, p[e0:e1], q[e0:e1], ppm)
     return out
 
 
@@ -1020,16 +1024,29 @@ def section_cover(U, V, p, q, ppm: float) -> np.ndarray:
     pixel is scaled by it (a pixel partly under the hair takes part of its colour), so the edge
     a section leaves is as smooth as the section, not the staircase of the pixel centres it
     holds. The section parallel to the paper (no horizontal line) takes h along U."""
-    N = cross(U, V)
-    n = np.hypot(N[:, 0], N[:, 1])
-    uu = np.maximum(np.einsum("ij,ij->i", U, U), 1e-12)
+    return _section_cover([U[:, 0], U[:, 1], U[:, 2]], [V[:, 0], V[:, 1], V[:, 2]], p, q, ppm)
+
+
+def _section_cover(u, v, p, q, ppm: float) -> np.ndarray:
+    """``section_cover`` of semi-axes given by their components ``u``, ``v`` ([x, y, z],
+    arrays of P): the same arithmetic (N = U x V's x and y as ``cross``'s, |U|^2 summed as
+    ``dot``'s einsum sums: x, then z, then y)."""
+    ux, uy, uz = u
+    vx, vy, vz = v
+    nx = uy * vz - uz * vy  # (U x V)_x
+    ny = uz * vx - ux * vz  # (U x V)_y
+    n = np.hypot(nx, ny)
+    uu = np.maximum(ux * ux + uz * uz + uy * uy, 1e-12)
     along_u = n <= 1e-9 * uu
-    un = np.maximum(np.hypot(U[:, 0], U[:, 1]), 1e-12)
-    hx = np.where(along_u, U[:, 0] / un, N[:, 1] / np.where(along_u, 1.0, n))
-    hy = np.where(along_u, U[:, 1] / un, -N[:, 0] / np.where(along_u, 1.0, n))
-    vv = np.maximum(np.einsum("ij,ij->i", V, V), 1e-12)
-    alpha = (hx * U[:, 0] + hy * U[:, 1]) / uu
-    beta = (hx * V[:, 0] + hy * V[:, 1]) / vv
+    if along_u.any():
+        un = np.maximum(np.hypot(ux, uy), 1e-12)
+        hx = np.where(along_u, ux / un, ny / np.where(along_u, 1.0, n))
+        hy = np.where(along_u, uy / un, -nx / np.where(along_u, 1.0, n))
+    else:
+        hx, hy = ny / n, -nx / n
+    vv = np.maximum(vx * vx + vz * vz + vy * vy, 1e-12)
+    alpha = (hx * ux + hy * uy) / uu
+    beta = (hx * vx + hy * vy) / vv
     a = np.maximum(alpha * alpha + beta * beta, 1e-12)
     b = p * alpha + q * beta
     c = p * p + q * q - 1.0
