@@ -683,9 +683,11 @@ def _marks_ink(prims, win, lo, hi, ppm, rows: SurfaceRows) -> WindowsInk:
     lateral = np.clip(sol.p[ok], -1.0, 1.0)
     depth = np.sqrt(sol.f2[ok])
     rws = sc.row[ent.entry_scan[ok]]
-    cut = np.cumsum(np.bincount(ent.win, weights=n_ok, minlength=k)).astype(np.int64)[:-1]
-    fields = [np.split(a, cut) for a in (rws, cols, wet, col, lateral, depth)]
-    return WindowsInk([PixelInk(*f) for f in zip(*fields, strict=True)], edge)
+    ends = np.cumsum(np.bincount(ent.win, weights=n_ok, minlength=k)).astype(np.int64).tolist()
+    fields = (rws, cols, wet, col, lateral, depth)  # every window's run of them (views)
+    starts = [0, *ends[:-1]]
+    pixels = [PixelInk._make(a[s:e] for a in fields) for s, e in zip(starts, ends, strict=True)]
+    return WindowsInk(pixels, edge)
 
 
 def _scanlines(win, lo, hi, ppm) -> Scanlines:
