@@ -276,11 +276,7 @@ def cut_marks(brush, sec, ink_rows, ppm: float, paper_shape) -> Cut | None:
     # its row's lowest point)
     low = np.nonzero((Zmin[touching] <= 1e-9).any(axis=0))[0]  # (rounding of the ring)
     r0, r1 = max(int(low[0]) - 1, 0), int(low[-1]) + 2
-    X = (
-        rows_c[touching, r0:r1][:, :, None, :]
-        + rows_U[touching, r0:r1][:, :, None, :] * ring[None, None, :, 0, None]
-        + rows_V[touching, r0:r1][:, :, None, :] * ring[None, None, :, 1, None]
-    )
+    X = _grid_of(rows_c[touching, r0:r1], rows_U[touching, r0:r1], rows_V[touching, r0:r1], ring)
     pts, grid = edge_crossings(X)
     if grid.size == 0:
         return None
@@ -355,7 +351,16 @@ def _cur_u(cuts: list[Cut]):
     only cells wholly off the paper, and each cut's segments are the same, in the same order."""
     r0 = min(c.near[0] for c in cuts)
     r1 = max(c.near[1] for c in cuts)
-    X = np.concatenate([_grid(c, r0, r1) for c in cuts])
+    ring = cuts[0].ring
+    if all(c.ring is ring or np.array_equal(c.ring, ring) for c in cuts):
+        # one ring for all: the grids of all cuts at once (each point's sums as ``_grid``'s)
+        c, U, V = (
+            np.concatenate([getattr(k.rows, f)[k.touching, r0:r1] for k in cuts])
+            for f in ("centre", "U", "V")
+        )
+        X = _grid_of(c, U, V, ring)
+    else:
+        X = np.concatenate([_grid(c, r0, r1) for c in cuts])
     segs, owner = slice_grids(X)
     order = np.argsort(owner, kind="stable")
     count = np.bincount(owner, minlength=len(X))
@@ -367,11 +372,16 @@ def _cur_u(cuts: list[Cut]):
 
 def _grid(c: Cut, r0: int, r1: int) -> np.ndarray:
     """The surface grid (k, r1 - r0, Nt, 3) of a cut's touching primitives, rows r0..r1."""
-    t, r, ring = c.touching, c.rows, c.ring
+    t, r = c.touching, c.rows
+    return _grid_of(r.centre[t, r0:r1], r.U[t, r0:r1], r.V[t, r0:r1], c.ring)
+
+
+def _grid_of(centre, U, V, ring) -> np.ndarray:
+    """The grid (k, rows, Nt, 3) of rows centre + U Cx(t) + V Cy(t) at the ring's points."""
     return (
-        r.centre[t, r0:r1][:, :, None, :]
-        + r.U[t, r0:r1][:, :, None, :] * ring[None, None, :, 0, None]
-        + r.V[t, r0:r1][:, :, None, :] * ring[None, None, :, 1, None]
+        centre[:, :, None, :]
+        + U[:, :, None, :] * ring[None, None, :, 0, None]
+        + V[:, :, None, :] * ring[None, None, :, 1, None]
     )
 
 
