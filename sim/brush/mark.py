@@ -30,7 +30,7 @@ from typing import NamedTuple
 
 import numpy as np
 
-from ..core.frames import cross, dot, norm, stack1
+from ..core.frames import dot, norm, stack1
 from .ink import LOAD, TEXTURE, TEXTURE_NAMES
 from .state import INK_FIELDS
 
@@ -276,11 +276,7 @@ def cut_marks(brush, sec, ink_rows, ppm: float, paper_shape) -> Cut | None:
     # its row's lowest point)
     low = np.nonzero((Zmin[touching] <= 1e-9).any(axis=0))[0]  # (rounding of the ring)
     r0, r1 = max(int(low[0]) - 1, 0), int(low[-1]) + 2
-    X = (
-        rows_c[touching, r0:r1][:, :, None, :]
-        + rows_U[touching, r0:r1][:, :, None, :] * ring[None, None, :, 0, None]
-        + rows_V[touching, r0:r1][:, :, None, :] * ring[None, None, :, 1, None]
-    )
+    X = _grid_of(rows_c[touching, r0:r1], rows_U[touching, r0:r1], rows_V[touching, r0:r1], ring)
     pts, grid = edge_crossings(X)
     if grid.size == 0:
         return None
@@ -355,7 +351,16 @@ def _cur_u(cuts: list[Cut]):
     only cells wholly off the paper, and each cut's segments are the same, in the same order."""
     r0 = min(c.near[0] for c in cuts)
     r1 = max(c.near[1] for c in cuts)
-    X = np.concatenate([_grid(c, r0, r1) for c in cuts])
+    ring = cuts[0].ring
+    if all(c.ring is ring or np.array_equal(c.ring, ring) for c in cuts):
+        # one ring for all: the grids of all cuts at once (each point's sums as ``_grid``'s)
+        c, U, V = (
+            np.concatenate([getattr(k.rows, f)[k.touching, r0:r1] for k in cuts])
+            for f in ("centre", "U", "V")
+        )
+        X = _grid_of(c, U, V, ring)
+    else:
+        X = np.concatenate([_grid(c, r0, r1) for c in cuts])
     segs, owner = slice_grids(X)
     order = np.argsort(owner, kind="stable")
     count = np.bincount(owner, minlength=len(X))
@@ -367,11 +372,16 @@ def _cur_u(cuts: list[Cut]):
 
 def _grid(c: Cut, r0: int, r1: int) -> np.ndarray:
     """The surface grid (k, r1 - r0, Nt, 3) of a cut's touching primitives, rows r0..r1."""
-    t, r, ring = c.touching, c.rows, c.ring
+    t, r = c.touching, c.rows
+    return _grid_of(r.centre[t, r0:r1], r.U[t, r0:r1], r.V[t, r0:r1], c.ring)
+
+
+def _grid_of(centre, U, V, ring) -> np.ndarray:
+    """The grid (k, rows, Nt, 3) of rows centre + U Cx(t) + V Cy(t) at the ring's points."""
     return (
-        r.centre[t, r0:r1][:, :, None, :]
-        + r.U[t, r0:r1][:, :, None, :] * ring[None, None, :, 0, None]
-        + r.V[t, r0:r1][:, :, None, :] * ring[None, None, :, 1, None]
+        centre[:, :, None, :]
+        + U[:, :, None, :] * ring[None, None, :, 0, None]
+        + V[:, :, None, :] * ring[None, None, :, 1, None]
     )
 
 
@@ -683,9 +693,11 @@ def _marks_ink(prims, win, lo, hi, ppm, rows: SurfaceRows) -> WindowsInk:
     lateral = np.clip(sol.p[ok], -1.0, 1.0)
     depth = np.sqrt(sol.f2[ok])
     rws = sc.row[ent.entry_scan[ok]]
-    cut = np.cumsum(np.bincount(ent.win, weights=n_ok, minlength=k)).astype(np.int64)[:-1]
-    fields = [np.split(a, cut) for a in (rws, cols, wet, col, lateral, depth)]
-    return WindowsInk([PixelInk(*f) for f in zip(*fields, strict=True)], edge)
+    ends = np.cumsum(np.bincount(ent.win, weights=n_ok, minlength=k)).astype(np.int64).tolist()
+    fields = (rws, cols, wet, col, lateral, depth)  # every window's run of them (views)
+    starts = [0, *ends[:-1]]
+    pixels = [PixelInk._make(a[s:e] for a in fields) for s, e in zip(starts, ends, strict=True)]
+    return WindowsInk(pixels, edge)
 
 
 def _scanlines(win, lo, hi, ppm) -> Scanlines:
@@ -998,16 +1010,20 @@ def _pixel_ink_run(per, n_ok, lam, cols, nf: int, tex_scalars, ppm):
 
 def _cover(rk: ContactRows, slab, n_ok, lam, p, q, ppm) -> np.ndarray:
     """``section_cover`` of the inked pixels, from their sections' semi-axes between the rows
-    of their slabs (per interval, repeated over its inked pixels, a cache-sized run of
-    intervals at a time)."""
+    of their slabs: per interval the twelve components of U, V at row j and their change to
+    row j + 1, repeated over its inked pixels as contiguous rows (a cache-sized run of
+    intervals at a time), then each component as U0 + lam dU (the same products and sums as
+    on (P, 3) vectors)."""
     U0, V0 = (a[:, :-1].reshape(-1, 3)[slab] for a in (rk.U, rk.V))
     dU, dV = (np.diff(a, axis=1).reshape(-1, 3)[slab] for a in (rk.U, rk.V))
+    per = np.concatenate([U0.T, V0.T, dU.T, dV.T])  # (12, intervals)
     out = np.empty(len(lam))
     for i0, i1, e0, e1 in _interval_chunks(n_ok):
-        n, L = n_ok[i0:i1], lam[e0:e1, None]
-        U = np.repeat(U0[i0:i1], n, axis=0) + L * np.repeat(dU[i0:i1], n, axis=0)
-        V = np.repeat(V0[i0:i1], n, axis=0) + L * np.repeat(dV[i0:i1], n, axis=0)
-        out[e0:e1] = section_cover(U, V, p[e0:e1], q[e0:e1], ppm)
+        D = np.repeat(per[:, i0:i1], n_ok[i0:i1], axis=1)
+        L = lam[e0:e1]
+        u = [D[c] + L * D[6 + c] for c in range(3)]
+        v = [D[3 + c] + L * D[9 + c] for c in range(3)]
+        out[e0:e1] = _section_cover(u, v, p[e0:e1], q[e0:e1], ppm)
     return out
 
 
@@ -1020,16 +1036,29 @@ def section_cover(U, V, p, q, ppm: float) -> np.ndarray:
     pixel is scaled by it (a pixel partly under the hair takes part of its colour), so the edge
     a section leaves is as smooth as the section, not the staircase of the pixel centres it
     holds. The section parallel to the paper (no horizontal line) takes h along U."""
-    N = cross(U, V)
-    n = np.hypot(N[:, 0], N[:, 1])
-    uu = np.maximum(np.einsum("ij,ij->i", U, U), 1e-12)
+    return _section_cover([U[:, 0], U[:, 1], U[:, 2]], [V[:, 0], V[:, 1], V[:, 2]], p, q, ppm)
+
+
+def _section_cover(u, v, p, q, ppm: float) -> np.ndarray:
+    """``section_cover`` of semi-axes given by their components ``u``, ``v`` ([x, y, z],
+    arrays of P): the same arithmetic (N = U x V's x and y as ``cross``'s, |U|^2 summed as
+    ``dot``'s einsum sums: x, then z, then y)."""
+    ux, uy, uz = u
+    vx, vy, vz = v
+    nx = uy * vz - uz * vy  # (U x V)_x
+    ny = uz * vx - ux * vz  # (U x V)_y
+    n = np.hypot(nx, ny)
+    uu = np.maximum(ux * ux + uz * uz + uy * uy, 1e-12)
     along_u = n <= 1e-9 * uu
-    un = np.maximum(np.hypot(U[:, 0], U[:, 1]), 1e-12)
-    hx = np.where(along_u, U[:, 0] / un, N[:, 1] / np.where(along_u, 1.0, n))
-    hy = np.where(along_u, U[:, 1] / un, -N[:, 0] / np.where(along_u, 1.0, n))
-    vv = np.maximum(np.einsum("ij,ij->i", V, V), 1e-12)
-    alpha = (hx * U[:, 0] + hy * U[:, 1]) / uu
-    beta = (hx * V[:, 0] + hy * V[:, 1]) / vv
+    if along_u.any():
+        un = np.maximum(np.hypot(ux, uy), 1e-12)
+        hx = np.where(along_u, ux / un, ny / np.where(along_u, 1.0, n))
+        hy = np.where(along_u, uy / un, -nx / np.where(along_u, 1.0, n))
+    else:
+        hx, hy = ny / n, -nx / n
+    vv = np.maximum(vx * vx + vz * vz + vy * vy, 1e-12)
+    alpha = (hx * ux + hy * uy) / uu
+    beta = (hx * vx + hy * vy) / vv
     a = np.maximum(alpha * alpha + beta * beta, 1e-12)
     b = p * alpha + q * beta
     c = p * p + q * q - 1.0

@@ -168,10 +168,7 @@ def signed_distances_many(paths, owner, rows, cols, ppm: float) -> np.ndarray:
     out = np.empty(rows.size, dtype=np.float32)
     if rows.size == 0:
         return out
-    parts = [segments(np.asarray(p, dtype=float)) for p in paths]
-    n_seg = np.array([len(p[0]) for p in parts])
-    seg_at = np.cumsum(n_seg) - n_seg  # every path's first segment in the table
-    tab = _table(tuple(np.concatenate(f) for f in zip(*parts, strict=True)))
+    tab, n_seg, seg_at = _table_of(paths)
     # every step's pixels in a box of its own (as step by step), the boxes one after another
     box = _boxes(owner, rows, cols, len(paths))
     r0, c0, wb, base = (v[owner] for v in box[:4])
@@ -185,6 +182,26 @@ def signed_distances_many(paths, owner, rows, cols, ppm: float) -> np.ndarray:
     lo_s, hi_s = _segment_ranges_many(tab, seg_at, n_seg, (us, ur, uc), box[:2], ppm, paths)
     out[:] = _in_blocks(_measure_runs, x, y, tab, lo_s, hi_s - lo_s)[inverse]
     return out
+
+
+def _table_of(paths):
+    """The ``_Table`` of the segments of all ``paths`` (``segments`` of each, one after
+    another: the same subtractions and sums, done on all points at once), the number of
+    segments of every path and where its first one is in the table."""
+    pts = [np.asarray(p, dtype=float) for p in paths]
+    n_pts = np.array([len(p) for p in pts])
+    n_seg = n_pts - 1
+    seg_at = np.cumsum(n_seg) - n_seg
+    allp = np.concatenate(pts)
+    # a segment from every point but each path's last: drop the steps from path to path
+    keep = np.ones(len(allp) - 1, dtype=bool)
+    keep[np.cumsum(n_pts)[:-1] - 1] = False
+    a, d = allp[:-1][keep], np.diff(allp, axis=0)[keep]
+    dd = np.maximum(np.einsum("ij,ij->i", d, d), 1e-12)
+    lo = np.zeros(len(a))
+    hi = np.ones(len(a))
+    lo[seg_at], hi[seg_at + n_seg - 1] = -np.inf, np.inf
+    return _table((a, d, dd, lo, hi)), n_seg, seg_at
 
 
 def _boxes(owner, rows, cols, steps: int):

@@ -17,13 +17,14 @@ from ..core.recording import (
     PX_PER_MM_RANGE,
     RecordingError,
 )
+from ..paper.texture import keep_tiles_in
 from .compose import _add_compose
 from .evaluate import cmd_iou
 from .fit import _add_fit
 from .imitate import _add_imitate
 from .memory import EXIT_CODE, NotEnoughMemory, out_of_memory, reserve_workspace
 from .render import add_matte_option, cmd_render
-from .shared import _named, _real, _whole
+from .shared import _named, _real, _whole, cache_dir
 from .write import cmd_write, cmd_write_set
 
 
@@ -126,6 +127,7 @@ def main(argv=None) -> int:
     args = _parser().parse_args(argv)
     try:
         reserve_workspace()
+        keep_tiles_in(cache_dir())  # the paper's tiles of tone, made once (issue 28)
         return args.func(args)
     except NotEnoughMemory as exc:
         print(f"error: {exc}", file=sys.stderr)

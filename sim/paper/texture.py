@@ -17,7 +17,11 @@ threads in mm at any resolution. No generator is drawn, so the brush's draws are
 
 from __future__ import annotations
 
+import hashlib
+import os
+import tempfile
 from functools import lru_cache
+from pathlib import Path
 
 import numpy as np
 
@@ -32,6 +36,9 @@ FIBRE_SHARE = 0.12  # share of a fibre noise's range at either end that shows as
 MOTTLE = 0.6  # the clouds' and ...
 THREADS = 0.4  # ... the fibres' share of the texture
 TONE_TILES = 2048  # tiles of tone kept (``sheet_tone``; 16 KB each at 64 px: 32 MB at most)
+# tiles a process writes to the folder of ``keep_tiles_in`` at most (32 MB at 64 px: a sheet
+# rendered whole at 600 dpi does not fill the cache with its every tile)
+DISK_TILES = 2048
 _OCTAVE = 1 << 40  # index offsets that keep the noises' lattices apart
 _HALF = 1 << 19  # lattice indices are offset by this to stay positive (sheets < 2**19 cells)
 
@@ -88,14 +95,87 @@ def paper_tone(rows: slice, cols: slice, ppm: float, texture: float, seed: int =
     return (1.0 + texture * (MOTTLE * clouds + THREADS * fibres)).astype(np.float32)
 
 
+# where tiles of tone are kept between processes (``keep_tiles_in``), or None: only in memory
+_tile_folder: Path | None = None
+_tiles_written = [0]  # by this process, up to DISK_TILES
+
+
+def keep_tiles_in(cache_dir) -> None:
+    """Keep the tiles of tone in ``cache_dir`` too (None: stop), so that a new process reads
+    them instead of making them again (issue 28: 0.2-0.4 s a process). They are regenerable:
+    a subfolder named after a hash of this module's and the grain's source, so a changed
+    texture makes new tiles; a missing or unreadable file is made again."""
+    global _tile_folder
+    if cache_dir is None:
+        _tile_folder = None
+        return
+    here = Path(__file__).resolve().parent
+    digest = hashlib.sha256()
+    for name in ("texture.py", "grain.py"):
+        digest.update((here / name).read_bytes())
+    _tile_folder = Path(cache_dir) / f"paper-tone-{digest.hexdigest()[:16]}"
+
+
+def _tile_file(ty: int, tx: int, tile: int, ppm: float, texture: float, seed: int):
+    """The file of a tile in ``_tile_folder`` (the floats by their exact hex)."""
+    key = f"{tile}_{float(ppm).hex()}_{float(texture).hex()}_{int(seed)}_{ty}_{tx}"
+    return _tile_folder / f"{key}.npy"
+
+
+def _read_tile(path, tile: int):
+    """A kept tile, or None when it is missing or not a whole tile."""
+    try:
+        tone = np.load(path, allow_pickle=False)
+    except (OSError, ValueError):
+        return None
+    if tone.shape != (tile, tile) or tone.dtype != np.float32:
+        return None
+    return tone
+
+
+def _write_tile(path, tone) -> None:
+    """Keep a tile (written whole, then renamed: a reader never sees half a file); a folder
+    that cannot be written only costs the time of making the tile again next time."""
+    if _tiles_written[0] >= DISK_TILES:
+        return
+    _tiles_written[0] += 1
+    try:
+        path.parent.mkdir(parents=True, exist_ok=True)
+        fd, tmp = tempfile.mkstemp(dir=path.parent, suffix=".tmp")
+        with os.fdopen(fd, "wb") as f:
+            np.save(f, tone, allow_pickle=False)
+        os.replace(tmp, path)
+    except OSError:
+        return
+
+
 @lru_cache(maxsize=TONE_TILES)
 def _tile_tone(ty: int, tx: int, tile: int, ppm: float, texture: float, seed: int):
-    """``paper_tone`` of the tile (ty, tx), ``tile`` pixels a side, kept (read-only)."""
-    tone = paper_tone(
-        slice(ty * tile, (ty + 1) * tile), slice(tx * tile, (tx + 1) * tile), ppm, texture, seed
-    )
+    """``paper_tone`` of the tile (ty, tx), ``tile`` pixels a side, kept (read-only), and in
+    ``_tile_folder`` when one is set."""
+    path = None if _tile_folder is None else _tile_file(ty, tx, tile, ppm, texture, seed)
+    tone = None if path is None else _read_tile(path, tile)
+    if tone is None:
+        tone = paper_tone(
+            slice(ty * tile, (ty + 1) * tile), slice(tx * tile, (tx + 1) * tile), ppm, texture, seed
+        )
+        if path is not None:
+            _write_tile(path, tone)
     tone.flags.writeable = False
     return tone
+
+
+def _from_tiles(rows: slice, cols: slice, tile: int, tile_of) -> np.ndarray:
+    """The window (rows, cols) put together from the tiles ``tile_of(ty, tx)``."""
+    out = np.empty((rows.stop - rows.start, cols.stop - cols.start), dtype=np.float32)
+    for ty in range(rows.start // tile, (rows.stop - 1) // tile + 1):
+        r0, r1 = max(rows.start, ty * tile), min(rows.stop, (ty + 1) * tile)
+        for tx in range(cols.start // tile, (cols.stop - 1) // tile + 1):
+            c0, c1 = max(cols.start, tx * tile), min(cols.stop, (tx + 1) * tile)
+            out[r0 - rows.start : r1 - rows.start, c0 - cols.start : c1 - cols.start] = tile_of(
+                ty, tx
+            )[r0 - ty * tile : r1 - ty * tile, c0 - tx * tile : c1 - tx * tile]
+    return out
 
 
 def sheet_tone(rows: slice, cols: slice, ppm: float, texture: float, seed: int, tile: int):
@@ -105,16 +185,9 @@ def sheet_tone(rows: slice, cols: slice, ppm: float, texture: float, seed: int, 
     h, w = rows.stop - rows.start, cols.stop - cols.start
     if texture <= 0.0 or h <= 0 or w <= 0:
         return paper_tone(rows, cols, ppm, texture, seed)
-    out = np.empty((h, w), dtype=np.float32)
-    for ty in range(rows.start // tile, (rows.stop - 1) // tile + 1):
-        r0, r1 = max(rows.start, ty * tile), min(rows.stop, (ty + 1) * tile)
-        for tx in range(cols.start // tile, (cols.stop - 1) // tile + 1):
-            c0, c1 = max(cols.start, tx * tile), min(cols.stop, (tx + 1) * tile)
-            t = _tile_tone(ty, tx, tile, ppm, texture, seed)
-            out[r0 - rows.start : r1 - rows.start, c0 - cols.start : c1 - cols.start] = t[
-                r0 - ty * tile : r1 - ty * tile, c0 - tx * tile : c1 - tx * tile
-            ]
-    return out
+    return _from_tiles(
+        rows, cols, tile, lambda ty, tx: _tile_tone(ty, tx, tile, ppm, texture, seed)
+    )
 
 
 DRAW_BASE = 0.7  # how well the sheet draws liquid where its tone is even, ...
@@ -128,9 +201,24 @@ def sheet_draw(rows: slice, cols: slice, ppm: float, seed: int, tile: int, fibre
     ``sim.paper.paper._wick``), in [DRAW_MIN, 1]: more on a fibre and where the pulp lies thick,
     less between them, as much as the paper's ``fibre`` says (0: evenly); the sheet's own
     clouds and fibres (``paper_tone`` at full texture), so the same in every window and at any
-    resolution in mm."""
+    resolution in mm. Put together from tiles of draw made once and kept (``_tile_draw``: each
+    pixel's draw is its own, so the same values as from the window's tone)."""
     if fibre <= 0.0:
         return np.full((rows.stop - rows.start, cols.stop - cols.start), DRAW_BASE, np.float32)
-    tone = sheet_tone(rows, cols, ppm, 1.0, seed, tile)
+    if rows.stop <= rows.start or cols.stop <= cols.start:
+        return _draw_of(sheet_tone(rows, cols, ppm, 1.0, seed, tile), fibre)
+    return _from_tiles(rows, cols, tile, lambda ty, tx: _tile_draw(ty, tx, tile, ppm, seed, fibre))
+
+
+@lru_cache(maxsize=TONE_TILES)
+def _tile_draw(ty: int, tx: int, tile: int, ppm: float, seed: int, fibre: float):
+    """``sheet_draw`` of the tile (ty, tx), kept (read-only)."""
+    draw = _draw_of(_tile_tone(ty, tx, tile, ppm, 1.0, seed), fibre)
+    draw.flags.writeable = False
+    return draw
+
+
+def _draw_of(tone, fibre: float) -> np.ndarray:
+    """The draw of pixels of tone ``tone`` (full texture) on a paper of ``fibre``."""
     spread = DRAW_SPREAD * fibre
     return np.clip(DRAW_BASE + spread * (tone - 1.0), DRAW_MIN, 1.0).astype(np.float32)

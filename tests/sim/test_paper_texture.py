@@ -76,3 +76,35 @@ def test_a_print_shows_the_sheet_at_its_own_resolution():
     assert bare_big[..., 1].std() > 0.002  # its clouds and fibres, not a flat colour
     matte = print_image(paper, 450, 330, matte=True)
     assert np.all(matte[-60:, :, 3] == 0)  # the ink's matte carries no paper
+
+
+def test_kept_tiles_are_read_back_by_a_new_process_and_made_again_when_spoilt(tmp_path):
+    """issue 28: the tiles of tone are kept in the cache folder; a new process (the memory's
+    tiles forgotten) reads them back, the same values, and a spoilt file is made again."""
+    from sim.paper import texture
+
+    window = (slice(31, 77), slice(50, 119), 5.0, 0.05, 3)
+    plain = paper_tone(*window)
+    try:
+        texture.keep_tiles_in(tmp_path)
+        texture._tile_tone.cache_clear()
+        first = sheet_tone(*window, tile=16)
+        files = sorted(tmp_path.rglob("*.npy"))
+        assert len(files) == 4 * 5  # the window's tiles, every one kept
+        texture._tile_tone.cache_clear()  # as a new process
+        files[0].write_bytes(b"not a tile")
+        again = sheet_tone(*window, tile=16)
+        assert np.load(files[0]).shape == (16, 16)  # made again
+    finally:
+        texture.keep_tiles_in(None)
+        texture._tile_tone.cache_clear()
+    assert first.tobytes() == plain.tobytes() == again.tobytes()
+
+
+def test_the_draw_from_kept_tiles_is_the_draw_of_the_windows_tone():
+    from sim.paper.texture import DRAW_BASE, DRAW_MIN, DRAW_SPREAD, sheet_draw
+
+    tone = paper_tone(slice(3, 70), slice(20, 41), 6.0, 1.0, 5)
+    want = np.clip(DRAW_BASE + DRAW_SPREAD * 0.62 * (tone - 1.0), DRAW_MIN, 1.0)
+    got = sheet_draw(slice(3, 70), slice(20, 41), 6.0, 5, 16, 0.62)
+    assert got.dtype == np.float32 and got.tobytes() == want.astype(np.float32).tobytes()
