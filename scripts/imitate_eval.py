@@ -11,7 +11,10 @@ median width error and ratio) and one JSON line.
 The characters are not those the reading was tuned on (TUNE); --tune measures those instead.
 
     python scripts/imitate_eval.py [--fonts ukai,cwkai] [--kinds scan,photo] [--chars 国何]
-        [--read-only] [--out /tmp/picture/eval]
+        [--only 品高] [--read-only] [--out /tmp/picture/eval]
+
+(``--only``: of the cases, those of the characters given, each in the font and kind it has
+among all the characters: one bad case measured again alone.)
 """
 
 from __future__ import annotations
@@ -136,6 +139,7 @@ def main(argv=None) -> int:
     ap.add_argument("--fonts", default=",".join(DEFAULT_FONTS))
     ap.add_argument("--kinds", default=",".join(DEFAULT_KINDS))
     ap.add_argument("--per-char", type=int, default=2, help="kinds each character is shown in")
+    ap.add_argument("--only", default="", help="of the cases, only those of these characters")
     ap.add_argument("--read-only", action="store_true", help="the outlines read, not written")
     ap.add_argument("--out", default="/tmp/picture/eval", help="folder for the pictures")
     ap.add_argument("--workers", type=int, default=1, help="processes (each case is one)")
@@ -157,7 +161,11 @@ def main(argv=None) -> int:
         template = Recording(np.zeros((1, 6)))  # the command line's defaults
         ctx = (template, calibrate(template, cache_dir=cache_dir()))
     rows = []
-    todo = [(*c, out, args.read_only, ctx) for c in cases(chars, fonts, kinds, args.per_char)]
+    todo = [
+        (*c, out, args.read_only, ctx)
+        for c in cases(chars, fonts, kinds, args.per_char)
+        if not args.only or c[0] in args.only
+    ]
     if args.workers > 1:
         import multiprocessing
 

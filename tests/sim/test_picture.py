@@ -587,3 +587,28 @@ def test_a_speck_does_not_move_the_box_the_imitation_is_measured_in():
     specked[185:188, 190:193] = True  # 9 px against the character's 5,600
     assert box_iou(specked, char) == 1.0
     assert pieces(specked) == pieces(char) == 1
+
+
+def test_a_hooks_foot_is_followed_down_into_its_heel():
+    # a 竖钩's foot tapers to a heel below the turn (half-width 10 down to 5; Kaiti's 高, 雨,
+    # 何): the corner goes down into it, so the brush pressed there reaches the heel, the
+    # character's lowest ink (from where the ink was 0.85 of the legs' half-width thick the
+    # median stopped 22 px above the heel's tip and the imitation's box was short)
+    from sim.picture.outline import into_corners
+    from sim.writing.outline import discs
+
+    t = np.linspace(0.0, 1.0, 200)[:, None]
+    ink = np.zeros((256, 256), bool)
+    for a, b, r in (
+        ((150, 40), (150, 200), (10, 10)),  # the vertical
+        ((150, 200), (105, 175), (9, 3)),  # the hook, up to the left
+        ((150, 200), (153, 222), (10, 5)),  # the heel
+    ):
+        a, b = np.array(a, float), np.array(b, float)
+        ink |= discs(a + t * (b - a), np.linspace(*r, 200), 256)
+    legs = [np.linspace((150.0, 45.0), (150.0, 200.0), 78), np.linspace((150, 200), (108, 177), 25)]
+    pts = np.concatenate([legs[0], legs[1][1:]])
+    out = into_corners(Stroke(pts, np.full(len(pts), 10.0)), M.edt(ink))
+    bottom = int(np.nonzero(ink)[0].max())
+    assert out.pts[:, 1].max() + 10.0 >= bottom - 4.0  # the brush's foot reaches the heel
+    assert out.pts[:, 1].max() < bottom  # inside the ink
