@@ -57,13 +57,13 @@ def move(brush, pose6, vel6, dt: float):
     B0, R0 = brush.B, brush.R
     x, y, z, d, qq, rr = (float(v) for v in pose6)
     B1 = np.array([x, y, max(z, 0.0)])
-    R1 = rotation_matrix(d, qq, rr)
+    R1 = _rotation(d.hex(), qq.hex(), rr.hex())
     lift = B1[2] - B0[2]
     points = brush.cc
     contact = points[..., 2] <= CONTACT_EPS
     contact[:, 0] = False
     local = (points - B0) @ R0
-    rest = np.zeros_like(local)
+    rest = np.zeros(local.shape)  # (local is float64: np.zeros_like without its wrapper)
     rest[..., 2] = -brush.sarc
     krec = min(1.0, q.e * REC_RATE * dt)  # elastic return of free hair (gap, see module doc)
     local = np.where(contact[..., None], local, local + krec * (rest - local))
@@ -85,6 +85,16 @@ def move(brush, pose6, vel6, dt: float):
     brush.B, brush.R = B1, R1
     insert_active_point(brush, new)
     constrain(brush, vel6)
+
+
+@functools.lru_cache(maxsize=256)
+def _rotation(d: str, q: str, r: str) -> np.ndarray:
+    """rotation_matrix of the angles (their float.hex: -0.0 is not 0.0), read-only, kept: a
+    brush held at one tilt through a stroke (as the writer holds it) turns by the same matrix
+    step after step, built once (issue 28)."""
+    R = rotation_matrix(float.fromhex(d), float.fromhex(q), float.fromhex(r))
+    R.flags.writeable = False
+    return R
 
 
 def insert_active_point(brush, new):
@@ -369,7 +379,7 @@ def adjust_ellipse(brush, vel6, dt):
         return
     seg = norm(diff(brush.cc, axis=1))
     cum = seg.cumsum(axis=1)
-    ideal = np.sum(cum / np.maximum(cum[:, -1:], 1e-12), axis=1) / brush.n
+    ideal = np.add.reduce(cum / np.maximum(cum[:, -1:], 1e-12), axis=1) / brush.n  # np.sum
     new_loc = q.nu * brush.loc + (1.0 - q.nu) * ideal
     brush.loc = clip(new_loc if every else np.where(touching, new_loc, brush.loc), 0.05, 0.9)
 

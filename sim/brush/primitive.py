@@ -48,6 +48,7 @@ from ..core.nurbs import (
     bspline_bases,
     chord_params,
     derivative_ctrl,
+    einsum,
     rotation_minimising_frames,
     solve_collocation,
     surface_control_net,
@@ -172,7 +173,7 @@ class HairyBrush:
         T = unit(np.ascontiguousarray(bases[2][:, n:])[..., 1:-1] @ dq)
         # initial frame: the bottom control circle's own x axis (cori = shaft direction)
         x0 = self.R[:, 0]
-        r0 = x0 - np.einsum("ij,j->i", T[:, 0], x0)[:, None] * T[:, 0]
+        r0 = x0 - einsum("ij,j->i", T[:, 0], x0)[:, None] * T[:, 0]
         r0 = unit(r0, fallback=self.R[:, 1])
         frames = np.empty((m, len(u), 2, 3))  # the normals N and binormals Bn side by side
         N = frames[:, :, 0]
@@ -182,9 +183,9 @@ class HairyBrush:
         # orientation of the middle control ellipse (Eq. 6): its minor axis eori, projected
         # into the normal plane at loc, fixes the profiles' angle within the swept frames:
         # (cos, sin) of its angle from N at loc (cos 0, sin 1 where it is about the axis)
-        ks = clip(np.searchsorted(u, self.loc), 0, len(u) - 1)
+        ks = clip(u.searchsorted(self.loc), 0, len(u) - 1)
         minor = self.eori @ self.R.T
-        cs = np.einsum("ij,ikj->ik", minor, frames[np.arange(m), ks])
+        cs = einsum("ij,ikj->ik", minor, frames[np.arange(m), ks])
         h = np.hypot(cs[:, 0], cs[:, 1])[:, None]
         cs = np.where(h > 1e-9, cs / np.maximum(h, 1e-12), _NO_ANGLE)[:, None, :, None]
         cos_v, sin_v = cs[:, :, 0], cs[:, :, 1]
@@ -195,7 +196,7 @@ class HairyBrush:
         V = beta[..., None] * vhat
         # the surface rows from the stations: one product for the four fields side by side
         # (every element is the same sum over the stations, in the same order, as four)
-        at_rows = np.einsum(
+        at_rows = einsum(
             "ij,mjk->mik", lay.row_from_station, np.concatenate([centres, U, V, T], axis=2)
         )
         rows_c, rows_U, rows_V = (at_rows[..., k : k + 3].copy() for k in (0, 3, 6))

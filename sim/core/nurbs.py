@@ -21,7 +21,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .frames import diff, norm
+from .frames import _NUMPY_2, diff, norm
 
 # The 9-point rational quadratic unit circle (Piegl & Tiller, Ex. 7.2).
 _W = np.sqrt(0.5)
@@ -199,6 +199,8 @@ def derivative_ctrl(ctrl, knots, degree: int):
 
 
 _EYE3 = np.eye(3)
+# np.einsum without its Python wrapper (with optimize off it calls this: the same sums; issue 28)
+einsum = (np._core if _NUMPY_2 else np.core).multiarray.c_einsum
 
 
 def _reflection_factor(c):
@@ -220,11 +222,11 @@ def rotation_minimising_frames(points, tangents, r0):
     v = np.empty((2, m, N - 1, 3))
     f = np.empty((2, m, N - 1))
     v1 = np.subtract(points[:, 1:], points[:, :-1], out=v[0])  # (m, N-1, 3)
-    f[0] = _reflection_factor(np.einsum("mik,mik->mi", v1, v1))
+    f[0] = _reflection_factor(einsum("mik,mik->mi", v1, v1))
     t0 = tangents[:, :-1]
-    tl = t0 - (f[0] * np.einsum("mik,mik->mi", v1, t0))[..., None] * v1
+    tl = t0 - (f[0] * einsum("mik,mik->mi", v1, t0))[..., None] * v1
     v2 = np.subtract(tangents[:, 1:], tl, out=v[1])
-    f[1] = _reflection_factor(np.einsum("mik,mik->mi", v2, v2))
+    f[1] = _reflection_factor(einsum("mik,mik->mi", v2, v2))
     H = _EYE3 - f[..., None, None] * v[..., :, None] * v[..., None, :]  # H1, H2
     P = H[1] @ H[0]  # (m, N-1, 3, 3)
     # the running products M_i ... M_0 by doubling: log2(N) batched products, not N - 1 steps
@@ -234,9 +236,9 @@ def rotation_minimising_frames(points, tangents, r0):
         span *= 2
     out = np.empty_like(points)
     out[:, 0] = r0
-    out[:, 1:] = np.einsum("mnij,mj->mni", P, np.asarray(r0, dtype=float))
+    out[:, 1:] = einsum("mnij,mj->mni", P, np.asarray(r0, dtype=float))
     # against round-off: exactly perpendicular to the tangents and of unit length
-    out -= np.einsum("mik,mik->mi", out, tangents)[..., None] * tangents
+    out -= einsum("mik,mik->mi", out, tangents)[..., None] * tangents
     out /= np.maximum(norm(out, axis=2), 1e-12)[..., None]
     return out
 
