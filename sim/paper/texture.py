@@ -106,6 +106,7 @@ def keep_tiles_in(cache_dir) -> None:
     a subfolder named after a hash of this module's and the grain's source, so a changed
     texture makes new tiles; a missing or unreadable file is made again."""
     global _tile_folder
+    _tiles_written[0] = 0  # DISK_TILES for each command (a test runs many in one process)
     if cache_dir is None:
         _tile_folder = None
         return
