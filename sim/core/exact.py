@@ -97,42 +97,38 @@ _C = (
 )
 
 
-def _sin_kernel(r):
-    """sin r for |r| <= pi/4."""
+def _kernels(r):
+    """(sin r, cos r) for |r| <= pi/4 (fdlibm k_sin.c and k_cos.c, sharing r**2)."""
     z = r * r
-    p = _S[1] + z * (_S[2] + z * (_S[3] + z * (_S[4] + z * _S[5])))
-    return r + (z * r) * (_S[0] + z * p)
+    ps = _S[1] + z * (_S[2] + z * (_S[3] + z * (_S[4] + z * _S[5])))
+    pc = z * (_C[0] + z * (_C[1] + z * (_C[2] + z * (_C[3] + z * (_C[4] + z * _C[5])))))
+    return r + (z * r) * (_S[0] + z * ps), 1.0 - (0.5 * z - z * pc)
 
 
-def _cos_kernel(r):
-    """cos r for |r| <= pi/4."""
-    z = r * r
-    p = z * (_C[0] + z * (_C[1] + z * (_C[2] + z * (_C[3] + z * (_C[4] + z * _C[5])))))
-    return 1.0 - (0.5 * z - z * p)
+def _reduced(x, n):
+    """r = x - n pi/2, |r| <= pi/4 (about; exact enough for |x| < 2**20); x itself for n = 0."""
+    return ((x - n * _PIO2_1) - n * _PIO2_2) - n * _PIO2_3
 
 
-def _reduce(x):
-    """(n, r) with x = n pi/2 + r, |r| <= pi/4 (about; exact enough for |x| < 2**20)."""
-    if isinstance(x, float):
-        n = float(round(x * _TWO_OVER_PI))
-    else:
-        n = np.rint(x * _TWO_OVER_PI)
-    return n, ((x - n * _PIO2_1) - n * _PIO2_2) - n * _PIO2_3
+_FEW = 8  # arrays up to this size go number by number (Python floats, the same operations)
 
 
 @_keeps_float32
 def sin_cos(x):
     """(sin x, cos x) for a float or an array of floats, the same bits on any machine."""
-    if not isinstance(x, float):
-        x = np.asarray(x, dtype=float)
-    n, r = _reduce(x)
-    s, c = _sin_kernel(r), _cos_kernel(r)
     if isinstance(x, float):
+        n = float(round(x * _TWO_OVER_PI))
+        s, c = _kernels(x if n == 0.0 else _reduced(x, n))
         q = int(n) & 3
-        sin_x, cos_x = (s, c, -s, -c)[q], (c, -s, -c, s)[q]
-        return sin_x, cos_x
+        return (s, c, -s, -c)[q], (c, -s, -c, s)[q]
+    x = np.asarray(x, dtype=float)
+    if x.size <= _FEW:  # cheaper than the array operations below, for a few numbers
+        pairs = [sin_cos(v) for v in x.ravel().tolist()]
+        return tuple(np.array([p[k] for p in pairs]).reshape(x.shape) for k in (0, 1))
+    n = np.rint(x * _TWO_OVER_PI)
     if not n.any():  # all within pi/4 of 0 (a turn's small angles)
-        return s, c
+        return _kernels(x)
+    s, c = _kernels(np.where(n == 0.0, x, _reduced(x, n)))
     q = n.astype(np.int64) & 3
     odd = (q & 1).astype(bool)
     sin_x = np.where(odd, c, s)
