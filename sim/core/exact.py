@@ -49,7 +49,11 @@ def _keeps_float32(f):
 
 def matmul(a, b):
     """a @ b (numpy's broadcasting rules for 1-d and stacked operands), each entry summed over
-    the inner index 0, 1, 2, ... one product at a time: the same numbers on any machine."""
+    the inner index 0, 1, 2, ... one product at a time: the same numbers on any machine.
+
+    Where it can, all the products are made in one go, laid out with the inner index on an axis
+    that is not the innermost, and np.add.reduce sums along it: numpy reduces such an axis by
+    adding its slices in turn, the same sums as the loops (which take the other cases)."""
     if a.__class__ is not np.ndarray:
         a = np.asarray(a, dtype=float)
     if b.__class__ is not np.ndarray:
@@ -57,7 +61,11 @@ def matmul(a, b):
     k = a.shape[-1]
     if b.shape[-2 if b.ndim > 1 else 0] != k:
         raise ValueError(f"matmul: inner sizes {k} and {b.shape} do not match")
-    if b.ndim == 1:  # (..., n, k) @ (k,) -> (..., n)
+    if b.ndim == 1 and a.ndim > 1 and a.shape[-2] > 1:  # (..., n, k) @ (k,) -> (..., n)
+        out = np.add.reduce(np.swapaxes(a, -1, -2) * b[:, None], axis=-2)
+    elif a.ndim == 1 and b.ndim > 1 and b.shape[-1] > 1:  # (k,) @ (..., k, m) -> (..., m)
+        out = np.add.reduce(a[:, None] * b, axis=-2)
+    elif b.ndim == 1:
         out = a[..., 0] * b[0]
         for j in range(1, k):
             out += a[..., j] * b[j]
@@ -65,7 +73,9 @@ def matmul(a, b):
         out = a[0] * b[..., 0, :]
         for j in range(1, k):
             out += a[j] * b[..., j, :]
-    else:  # (..., n, k) @ (..., k, m) -> (..., n, m)
+    elif b.shape[-1] > 1:  # (..., n, k) @ (..., k, m) -> (..., n, m)
+        out = np.add.reduce(a[..., :, :, None] * b[..., None, :, :], axis=-2)
+    else:
         out = a[..., :, 0, None] * b[..., None, 0, :]
         for j in range(1, k):
             out += a[..., :, j, None] * b[..., None, j, :]
