@@ -8,6 +8,7 @@ choice, one under the older kernels; the image and the recording must be the sam
 
 import ctypes
 import glob
+import math
 import os
 import subprocess
 import sys
@@ -16,6 +17,7 @@ from concurrent.futures import ThreadPoolExecutor
 import numpy as np
 import pytest
 
+from sim.core import exact
 from tests.paths import ROOT
 
 # numpy's and OpenBLAS's own switches, removed from the environment of the machine's own run
@@ -106,3 +108,94 @@ def test_a_write_is_the_same_bytes_under_other_cpu_kernels(tmp_path):
         (png, rec), (old_png, old_rec) = own.result(), old.result()
     assert old_rec == rec, f"the recording differs under {older}"
     assert old_png == png, f"the image differs under {older}"
+
+
+# --- the deterministic home itself (sim/core/exact.py) ---------------------------------------
+
+RNG_SEED = 28
+
+
+def _ulps(got, want) -> np.ndarray:
+    got, want = np.asarray(got, dtype=float), np.asarray(want, dtype=float)
+    return np.abs(got - want) / np.spacing(np.maximum(np.abs(want), 1e-300))
+
+
+@pytest.mark.parametrize(
+    "name, ref, lo, hi",
+    [
+        ("sin", math.sin, -30.0, 30.0),
+        ("cos", math.cos, -30.0, 30.0),
+        ("exp", math.exp, -700.0, 700.0),
+        ("exp2", lambda v: 2.0**v, -60.0, 60.0),
+        ("log", math.log, 1e-6, 1e6),
+        ("log1p", math.log1p, -0.999, 10.0),
+        ("expm1", math.expm1, -30.0, 30.0),
+        ("arcsin", math.asin, -1.0, 1.0),
+        ("arccos", math.acos, -1.0, 1.0),
+    ],
+)
+def test_the_transcendentals_take_ieee_arithmetic_only_and_are_near_the_c_library(
+    name, ref, lo, hi
+):
+    """Each array result is the same bits as the same steps on Python floats (IEEE double
+    arithmetic with no SIMD kernel to pick), and within 2 units in the last place of the C
+    library's."""
+    f = getattr(exact, name)
+    x = np.random.default_rng(RNG_SEED).uniform(lo, hi, 3000)
+    got = f(x)
+    one_by_one = np.array([f(v) for v in x.tolist()])
+    assert got.view(np.int64).tolist() == one_by_one.view(np.int64).tolist()
+    assert _ulps(got, [ref(v) for v in x.tolist()]).max() <= 2.0
+
+
+def test_arctan2_takes_every_quadrant_as_the_c_library():
+    rng = np.random.default_rng(RNG_SEED)
+    y, x = rng.normal(size=3000) * 10.0, rng.normal(size=3000)
+    y[:4], x[:4] = [0.0, -0.0, 1.0, -1.0], [-1.0, -1.0, 0.0, -0.0]
+    got = exact.arctan2(y, x)
+    want = [math.atan2(a, b) for a, b in zip(y.tolist(), x.tolist(), strict=True)]
+    assert _ulps(got, want).max() <= 1.0
+    assert np.array_equal(np.signbit(got), np.signbit(want))
+    assert got.tolist() == [
+        exact.arctan2(a, b) for a, b in zip(y.tolist(), x.tolist(), strict=True)
+    ]
+
+
+def test_float32_arrays_stay_float32_and_round_from_float64():
+    x = np.random.default_rng(RNG_SEED).uniform(-3.0, 3.0, 500).astype(np.float32)
+    for name in ("expm1", "exp", "log1p"):
+        v = np.abs(x) if name == "log1p" else x
+        got = getattr(exact, name)(v)
+        assert got.dtype == np.float32
+        want = np.array([getattr(math, name)(t) for t in v.astype(float).tolist()])
+        assert _ulps(got.astype(float), want.astype(np.float32).astype(float)).max() <= 1.0
+
+
+@pytest.mark.parametrize(
+    "sa, sb",
+    [
+        ((9, 3), (3, 3)),
+        ((3,), (3, 3)),
+        ((9, 3), (3,)),
+        ((3,), (3,)),
+        ((2, 12, 9), (2, 9, 3)),
+        ((4, 6, 3, 3), (4, 6, 3, 3)),
+        ((5, 3), (3, 1)),
+    ],
+)
+def test_matmul_sums_the_products_in_order(sa, sb):
+    """a @ b's shape, each entry a_0 b_0 + a_1 b_1 + ... added left to right (BLAS's kernels
+    split and fuse these sums differently from machine to machine)."""
+    rng = np.random.default_rng(RNG_SEED)
+    a, b = rng.normal(size=sa), rng.normal(size=sb)
+    got = exact.matmul(a, b)
+    A = a if a.ndim > 1 else a[None]
+    B = b if b.ndim > 1 else b[:, None]
+    want = A[..., :, 0, None] * B[..., None, 0, :]
+    for j in range(1, A.shape[-1]):
+        want = want + A[..., :, j, None] * B[..., None, j, :]
+    want = want[..., 0, :] if a.ndim == 1 else want
+    want = want[..., 0] if b.ndim == 1 else want
+    assert np.shape(got) == np.shape(a @ b)
+    assert np.asarray(got).tolist() == np.asarray(want).tolist()
+    assert np.allclose(got, a @ b, rtol=1e-12, atol=1e-12)
