@@ -440,3 +440,35 @@ def arccos(x):
         return arctan2(math.sqrt((1.0 - x) * (1.0 + x)), x)
     x = np.asarray(x, dtype=float)
     return arctan2(np.sqrt((1.0 - x) * (1.0 + x)), x)
+
+
+# --- small linear algebra (LAPACK's kernels differ by CPU as BLAS's do) -----------------------
+
+
+def inv(m) -> np.ndarray:
+    """The inverse of a small square matrix (a pose's 4 x 4, a 2 x 2), by Gauss-Jordan
+    elimination with partial pivoting on Python floats: the same steps on any machine. Raises
+    ValueError for a singular matrix (np.linalg.inv's LinAlgError)."""
+    a = np.asarray(m, dtype=float)
+    n = a.shape[0]
+    if a.shape != (n, n):
+        raise ValueError(f"inv: not a square matrix: {a.shape}")
+    rows = [r + [1.0 if i == j else 0.0 for j in range(n)] for i, r in enumerate(a.tolist())]
+    for k in range(n):
+        p = max(range(k, n), key=lambda i: abs(rows[i][k]))  # the first of the largest
+        if rows[p][k] == 0.0:
+            raise ValueError("inv: singular matrix")
+        rows[k], rows[p] = rows[p], rows[k]
+        pivot = rows[k][k]
+        rows[k] = [v / pivot for v in rows[k]]
+        for i in range(n):
+            f = rows[i][k]
+            if i != k and f != 0.0:
+                rows[i] = [v - f * w for v, w in zip(rows[i], rows[k], strict=True)]
+    return np.array([r[n:] for r in rows])
+
+
+def det3(m) -> float:
+    """The determinant of a 3 x 3 matrix by its first row's cofactors."""
+    (a, b, c), (d, e, f), (g, h, i) = np.asarray(m, dtype=float).tolist()
+    return a * (e * i - f * h) - b * (d * i - f * g) + c * (d * h - e * g)

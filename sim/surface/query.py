@@ -9,7 +9,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..core.exact import matmul
+from ..core.exact import inv, matmul
 from .mesh import Surface
 
 
@@ -193,7 +193,7 @@ def uv_axes(surface: Surface, tri: int) -> tuple[np.ndarray, np.ndarray]:
     t, c = surface.uvs[tri], surface.corners[tri]
     d = np.stack([t[1] - t[0], t[2] - t[0]], axis=1)  # (2, 2): UV edges as columns
     e = np.stack([c[1] - c[0], c[2] - c[0]], axis=1)  # (3, 2): the same edges in 3D
-    j = matmul(e, np.linalg.inv(d))
+    j = matmul(e, inv(d))
     return j[:, 0], j[:, 1]
 
 
