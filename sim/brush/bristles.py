@@ -48,6 +48,7 @@ from typing import NamedTuple
 
 import numpy as np
 
+from ..core import exact
 from ..core.frames import clip
 from . import trailpath
 from .state import BUNDLES, CONTACT_EPS
@@ -125,7 +126,7 @@ def step(brush, speed: float, dt: float):
     """The bundles after this step: dry-brush draws redrawn at REDRAW_RATE per second, and
     every bundle's gap opening toward 1 where the bundle is dry (Eq. 27 with its dryness) and
     closing toward 0 where it is not, by dt / RAMP_S."""
-    chance = 1.0 - np.exp(-REDRAW_RATE * dt)
+    chance = 1.0 - exact.exp(-REDRAW_RATE * dt)
     again = brush.rng.random(brush.hair_u.shape) < chance
     fresh = brush.rng.random(brush.hair_u.shape)
     brush.hair_u = np.where(again, fresh, brush.hair_u)
@@ -133,7 +134,7 @@ def step(brush, speed: float, dt: float):
     _, wet_on = contact_wetness(brush)
     # the hair's wetness on the paper as the bundles feel it: followed over SETTLE_S seconds
     # (the key points on the paper change from step to step; the hair's load does not)
-    follow = 1.0 - np.exp(-dt / SETTLE_S)
+    follow = 1.0 - exact.exp(-dt / SETTLE_S)
     brush.moist = np.where(brush.moist > 0, brush.moist + follow * (wet_on - brush.moist), wet_on)
     w = brush.moist[:, None] * brush.bundle
     dryness = clip(1.0 - w / (W_DRY * (1.0 + speed / V_FLY)), 0.0, 1.0)

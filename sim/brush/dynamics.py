@@ -17,6 +17,8 @@ import math
 
 import numpy as np
 
+from ..core import exact
+from ..core.exact import matmul
 from ..core.frames import clip, cross, diff, norm, rotation_matrix, stack1, unit
 from ..core.params import REF_RATE
 from .bristles import contact_wetness
@@ -62,12 +64,12 @@ def move(brush, pose6, vel6, dt: float):
     points = brush.cc
     contact = points[..., 2] <= CONTACT_EPS
     contact[:, 0] = False
-    local = (points - B0) @ R0
+    local = matmul(points - B0, R0)
     rest = np.zeros(local.shape)  # (local is float64: np.zeros_like without its wrapper)
     rest[..., 2] = -brush.sarc
     krec = min(1.0, q.e * REC_RATE * dt)  # elastic return of free hair (gap, see module doc)
     local = np.where(contact[..., None], local, local + krec * (rest - local))
-    carried = B1 + local @ R1.T
+    carried = B1 + matmul(local, R1.T)
     vxy = np.asarray(vel6[:2], dtype=float)
     speed = float(np.hypot(*vxy))
     lag = -vxy / speed if speed > 1e-9 else np.zeros(2)
@@ -270,7 +272,7 @@ def update_stress(brush, section_area, section_height, speed, dt):
     cone = (section_area / (np.pi * r * r)) * (section_height / L)  # (S*hei/3) / (pi r^2 L/3)
     # Eq. 11: his = hsd + hdd; 1/len is bounded by len >= r/2 (the tip starts as a point)
     hsd = (brush.a / brush.b) * (0.5 * r) / np.maximum(brush.tiplen, 0.5 * r)
-    local = (brush.cc - brush.B) @ brush.R
+    local = matmul(brush.cc - brush.B, brush.R)
     # mc = cc0_1 - cc_1 is zero in the brush frame: its origin is the circle's centre. The
     # displacement from the rest shape (0, 0, -sarc) is taken as local - rest, its negative:
     # the same squares, so the same lengths (issue 28: fewer numpy calls)
@@ -335,7 +337,7 @@ def _squeeze_shares(n: int) -> np.ndarray:
     j = np.arange(n)
     s = np.abs(j[None, :] - j[:, None])
     d = np.where(s == 0, 1, 2)
-    table = np.power(2.0, s + d)
+    table = exact.exp2(s + d)
     table.flags.writeable = False
     return table
 
@@ -344,11 +346,11 @@ def adjust_ellipse(brush, vel6, dt):
     """Eq. 16 (rotation and elongation of the middle control ellipse at constant hair area),
     Sec. 5.4 (the tip control line follows), Eq. 17 (relocation)."""
     q = brush.q
-    vel = (np.asarray(vel6[:3], dtype=float) @ brush.R) / V_REF  # brush frame, scaled
+    vel = matmul(np.asarray(vel6[:3], dtype=float), brush.R) / V_REF  # brush frame, scaled
     touching = brush.touching
     eo = brush.eori
     per = dt * REF_RATE
-    rot = q.re * brush.gamma * (eo @ vel) * per  # Eq. 16
+    rot = q.re * brush.gamma * matmul(eo, vel) * per  # Eq. 16
     inc = q.ie * brush.gamma * norm(cross(eo, vel)) * per  # Eq. 16
     # (every primitive on the paper, as in most of a stroke: the picks below are no-ops and
     # skipped; issue 28)
@@ -357,7 +359,7 @@ def adjust_ellipse(brush, vel6, dt):
         rot = np.where(touching, rot, 0.0)
         inc = np.where(touching, inc, 0.0)
     # rotate the minor axis about the shaft
-    c, s = np.cos(rot), np.sin(rot)
+    s, c = exact.sin_cos(rot)
     ex, ey = eo[:, 0] * c - eo[:, 1] * s, eo[:, 0] * s + eo[:, 1] * c
     brush.eori = unit(stack1([ex, ey, eo[:, 2]]))
     area = brush.a * brush.b
@@ -444,7 +446,7 @@ def split(brush):
     for name, value in draw_bundles(brush.rng, total).items():  # the children's own bundles
         setattr(brush, name, np.where(split_child[:, None], value, getattr(brush, name)))
     ang = brush.rng.random(total) * 2 * np.pi
-    brush.lay = np.stack([np.cos(ang), np.sin(ang)], axis=1)
+    brush.lay = np.stack(exact.sin_cos(ang)[::-1], axis=1)
     new = int(np.sum(k - 1))
     brush.splits += new
     return new
@@ -463,9 +465,9 @@ def _split_offsets(brush, src, kk, tre) -> np.ndarray:
     spread = np.maximum(0.5 - 0.5 / kk, 1e-12)  # the outermost child's place (none unsplit)
     place = clip(((order + 0.5 + 0.5 * jitter) / kk - 0.5) / spread, -1.0, 1.0)
     across = np.array([-brush.travel[1], brush.travel[0], 0.0])  # left of the way it goes
-    eo = brush.eori[src] @ brush.R.T  # the minor axis, paper frame
+    eo = matmul(brush.eori[src], brush.R.T)  # the minor axis, paper frame
     major = cross(np.broadcast_to(brush.R[:, 2], eo.shape), eo)
-    width = np.hypot(brush.a[src] * (major @ across), brush.b[src] * (eo @ across))
+    width = np.hypot(brush.a[src] * matmul(major, across), brush.b[src] * matmul(eo, across))
     room = 0.5 * width * (1.0 - 1.0 / np.sqrt(kk))  # a child of width / sqrt(k) inside
     reach = np.minimum(np.maximum(brush.stress[src] - tre, 0.0) * brush.r, room)
     return across[None, :] * (place * reach)[:, None]

@@ -30,6 +30,8 @@ from typing import NamedTuple
 
 import numpy as np
 
+from ..core import exact
+from ..core.exact import matmul
 from ..core.frames import dot, norm, stack1
 from .ink import LOAD, TEXTURE, TEXTURE_NAMES
 from .state import INK_FIELDS
@@ -249,7 +251,7 @@ class Cut:
         """Every primitive's contact width (mm) along the unit vector ``across`` (its bounding
         box's extent that way; 0 for those off the paper)."""
         out = np.zeros(m)
-        out[self.prims] = self.extent @ np.abs(np.asarray(across, dtype=float))
+        out[self.prims] = matmul(self.extent, np.abs(np.asarray(across, dtype=float)))
         return out
 
     def sizes(self, m: int):
@@ -334,7 +336,7 @@ def _windows(cuts: list[Cut], ppm: float) -> Windows:
     iy1 = np.minimum(np.ceil(ymax * ppm - 0.5).astype(np.int64) + 1, H)
     h = np.maximum(iy1 - iy0, 0)
     w = np.maximum(ix1 - ix0, 0)
-    sag = 1.0 - np.cos(np.pi / cuts[0].ring.shape[0])
+    sag = 1.0 - exact.cos(np.pi / cuts[0].ring.shape[0])
     U = np.concatenate([c.rows.U[c.prims] for c in cuts])
     V = np.concatenate([c.rows.V[c.prims] for c in cuts])
     semi = np.max(np.hypot(norm(U), norm(V)), axis=1)

@@ -40,6 +40,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from ..core import exact
+from ..core.exact import matmul
 from ..core.frames import angles_from_matrix, clip, cross, rotation_matrix, unit
 from ..core.nurbs import (
     SweepLayout,
@@ -122,7 +124,7 @@ class HairyBrush:
         for name, value in draw_bundles(self.rng, m).items():  # hair bundles (bristles)
             setattr(self, name, value)
         ang = self.rng.random(m) * 2 * np.pi
-        self.lay = np.stack([np.cos(ang), np.sin(ang)], axis=1)
+        self.lay = np.stack(exact.sin_cos(ang)[::-1], axis=1)
 
     @property
     def m(self) -> int:
@@ -132,7 +134,7 @@ class HairyBrush:
     def _rest_world(sarc, B, R):
         local = np.zeros(sarc.shape + (3,))
         local[..., 2] = -sarc
-        return B + local @ R.T
+        return B + matmul(local, R.T)
 
     def hair_area(self) -> float:
         """Number of hair threads, approximated by sum_i pi a_i b_i / 4 (Sec. 5.3, 5.5)."""
@@ -167,10 +169,10 @@ class HairyBrush:
         at[:, n:] = u
         bases = bspline_bases(knots, 3, at)
         ctrl = solve_collocation(bases[3][:, :n], self.cc)
-        centres = np.ascontiguousarray(bases[3][:, n:]) @ ctrl
+        centres = matmul(bases[3][:, n:], ctrl)
         dq, _ = derivative_ctrl(ctrl, knots, 3)
         # the derivative's basis is degree 2 on knots[1:-1]
-        T = unit(np.ascontiguousarray(bases[2][:, n:])[..., 1:-1] @ dq)
+        T = unit(matmul(bases[2][:, n:, 1:-1], dq))
         # initial frame: the bottom control circle's own x axis (cori = shaft direction)
         x0 = self.R[:, 0]
         r0 = x0 - einsum("ij,j->i", T[:, 0], x0)[:, None] * T[:, 0]
@@ -184,7 +186,7 @@ class HairyBrush:
         # into the normal plane at loc, fixes the profiles' angle within the swept frames:
         # (cos, sin) of its angle from N at loc (cos 0, sin 1 where it is about the axis)
         ks = clip(u.searchsorted(self.loc), 0, len(u) - 1)
-        minor = self.eori @ self.R.T
+        minor = matmul(self.eori, self.R.T)
         cs = einsum("ij,ikj->ik", minor, frames[np.arange(m), ks])
         h = np.hypot(cs[:, 0], cs[:, 1])[:, None]
         cs = np.where(h > 1e-9, cs / np.maximum(h, 1e-12), _NO_ANGLE)[:, None, :, None]
@@ -223,7 +225,7 @@ class HairyBrush:
         loc = self.loc[:, None]
         r = self.r
         a2, b2, l2 = (self.a / 2)[:, None], (self.b / 2)[:, None], (self.tiplen / 2)[:, None]
-        up = np.sin(0.5 * np.pi * clip(u / loc, 0.0, 1.0))
+        up = exact.sin(0.5 * np.pi * clip(u / loc, 0.0, 1.0))
         x = clip((u - loc) / (1.0 - loc), 0.0, 1.0)
         down = 1.0 - x * x
         below = u <= loc

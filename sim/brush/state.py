@@ -30,6 +30,8 @@ from typing import NamedTuple
 
 import numpy as np
 
+from ..core.exact import matmul
+
 CONTACT_EPS = 1e-6  # mm: a key point this close to psi is on the paper
 BUNDLES = 20  # hair bundles across a primitive's section (``bristles``)
 KEY = "key point"  # a field of every key point: (m, n, *shape)
@@ -145,6 +147,6 @@ def ink_keys(brush) -> np.ndarray:
     for f in INK:
         v = getattr(brush, f.name)
         if f.brush_frame:
-            v = v @ brush.R.T
+            v = matmul(v, brush.R.T)
         parts.append(v if f.shape else v[..., None])
     return np.concatenate(parts, axis=2)

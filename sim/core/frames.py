@@ -9,7 +9,11 @@ numbers, where the wrappers cost more than the arithmetic: issue 28)."""
 
 from __future__ import annotations
 
+import math
+
 import numpy as np
+
+from .exact import arcsin, arctan2, matmul, sin_cos
 
 _add = np.add.reduce  # np.sum without its Python wrapper (the same sums)
 # the ufunc np.clip calls, without its Python wrappers (the same picks): numpy._core from 2.0,
@@ -33,23 +37,22 @@ def stack1(arrays):
 
 def rotation_matrix(d_deg: float, q_deg: float, r_deg: float) -> np.ndarray:
     """R = Rx(q) Ry(d) Rz(r), angles in degrees (Sec. 4, Fig. 6(a))."""
-    # the three angles' cosines and sines in one call each, as Python floats (the same numbers:
-    # the matrices are built faster from them; issue 28)
-    rad = np.radians([d_deg, q_deg, r_deg])
-    (cy, cx, cz), (sy, sx, sz) = np.cos(rad).tolist(), np.sin(rad).tolist()
+    # the three angles' sines and cosines on Python floats, the same bits on any machine (and
+    # the products in a fixed order, not through BLAS; issue 28.2)
+    (sy, cy), (sx, cx), (sz, cz) = (sin_cos(math.radians(a)) for a in (d_deg, q_deg, r_deg))
     rx = np.array([[1.0, 0.0, 0.0], [0.0, cx, -sx], [0.0, sx, cx]])
     ry = np.array([[cy, 0.0, sy], [0.0, 1.0, 0.0], [-sy, 0.0, cy]])
     rz = np.array([[cz, -sz, 0.0], [sz, cz, 0.0], [0.0, 0.0, 1.0]])
-    return rx @ ry @ rz
+    return matmul(matmul(rx, ry), rz)
 
 
 def angles_from_matrix(R) -> tuple[float, float, float]:
     """(d, q, r) in degrees with rotation_matrix(d, q, r) == R, for |d| < 90 (inverse of the
     above; Blender's Euler mode 'ZYX' with (x, y, z) = (q, d, r) is the same matrix)."""
     R = np.asarray(R, dtype=float)
-    d = np.arcsin(np.clip(R[0, 2], -1.0, 1.0))
-    q = np.arctan2(-R[1, 2], R[2, 2])
-    r = np.arctan2(-R[0, 1], R[0, 0])
+    d = arcsin(float(np.clip(R[0, 2], -1.0, 1.0)))
+    q = arctan2(float(-R[1, 2]), float(R[2, 2]))
+    r = arctan2(float(-R[0, 1]), float(R[0, 0]))
     return tuple(float(v) for v in np.degrees([d, q, r]))
 
 

@@ -21,6 +21,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from .exact import matmul
 from .frames import _NUMPY_2, diff, norm
 
 # The 9-point rational quadratic unit circle (Piegl & Tiller, Ex. 7.2).
@@ -228,11 +229,11 @@ def rotation_minimising_frames(points, tangents, r0):
     v2 = np.subtract(tangents[:, 1:], tl, out=v[1])
     f[1] = _reflection_factor(einsum("mik,mik->mi", v2, v2))
     H = _EYE3 - f[..., None, None] * v[..., :, None] * v[..., None, :]  # H1, H2
-    P = H[1] @ H[0]  # (m, N-1, 3, 3)
+    P = matmul(H[1], H[0])  # (m, N-1, 3, 3)
     # the running products M_i ... M_0 by doubling: log2(N) batched products, not N - 1 steps
     span = 1
     while span < N - 1:
-        P[:, span:] = P[:, span:] @ P[:, :-span]
+        P[:, span:] = matmul(P[:, span:], P[:, :-span])
         span *= 2
     out = np.empty_like(points)
     out[:, 0] = r0
@@ -246,8 +247,8 @@ def rotation_minimising_frames(points, tangents, r0):
 def circle_points(t) -> np.ndarray:
     """The unit rational circle evaluated at parameters t: (N, 2) with exact unit length."""
     B = bspline_basis(CIRCLE_KNOTS, CIRCLE_DEGREE, t)
-    hw = B @ CIRCLE_W
-    return (B * CIRCLE_W) @ CIRCLE_XY / hw[:, None]
+    hw = matmul(B, CIRCLE_W)
+    return matmul((B * CIRCLE_W), CIRCLE_XY) / hw[:, None]
 
 
 @dataclass(frozen=True)
@@ -280,7 +281,7 @@ class SweepLayout:
         self.grid_s = 1.0 - (1.0 - g) ** 1.35
         self.grid_t = np.arange(grid_t) / grid_t  # periodic: t = 1 is t = 0
         # rows of the surface grid as combinations of the stations' sections
-        self.row_from_station = bspline_basis(self.knots_s, 3, self.grid_s) @ self.interp
+        self.row_from_station = matmul(bspline_basis(self.knots_s, 3, self.grid_s), self.interp)
         self.ring = circle_points(self.grid_t)  # (Nt, 2): Cx(t), Cy(t)
 
     @property

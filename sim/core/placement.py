@@ -15,6 +15,7 @@ import math
 
 import numpy as np
 
+from .exact import det3, inv, matmul
 from .frames import angles_from_matrix, rotation_matrix
 
 MM = 1000.0  # millimetres a metre
@@ -36,9 +37,9 @@ def engine_to_paper_local(width_mm: float, height_mm: float) -> np.ndarray:
 def sample_from_matrices(brush_mw, paper_mw, width_mm: float, height_mm: float) -> np.ndarray:
     """One 6-DOF sample from the brush's and the paper's world matrices (4x4)."""
     paper_mw = np.asarray(paper_mw, dtype=float)
-    if not np.isfinite(paper_mw).all() or abs(np.linalg.det(paper_mw[:3, :3])) < 1e-18:
+    if not np.isfinite(paper_mw).all() or abs(det3(paper_mw[:3, :3])) < 1e-18:
         raise PlacementError("The paper is scaled to nothing (or not a number): fix its scale")
-    rel = np.linalg.inv(paper_mw) @ np.asarray(brush_mw, dtype=float)
+    rel = matmul(inv(paper_mw), np.asarray(brush_mw, dtype=float))
     rot = rel[:3, :3]
     scale = np.linalg.norm(rot, axis=0)
     rot = rot / np.where(scale > 0, scale, 1.0)
@@ -58,14 +59,14 @@ def matrix_from_sample(paper_mw, sample, width_mm: float, height_mm: float) -> n
     rel[:3, 3] = (x - width_mm / 2) / MM, (y - height_mm / 2) / MM, z / MM
     pm = np.asarray(paper_mw, dtype=float).copy()
     pm[:3, :3] /= np.linalg.norm(pm[:3, :3], axis=0)
-    return pm @ rel
+    return matmul(pm, rel)
 
 
 def ray_to_paper(engine_to_world: np.ndarray, origin, direction):
     """Where a view ray meets the paper's plane, in engine mm (x, y); None if it misses."""
-    inv = np.linalg.inv(engine_to_world)
-    o = inv @ np.r_[np.asarray(origin, dtype=float), 1.0]
-    d = inv[:3, :3] @ np.asarray(direction, dtype=float)
+    inv_world = inv(engine_to_world)
+    o = matmul(inv_world, np.r_[np.asarray(origin, dtype=float), 1.0])
+    d = matmul(inv_world[:3, :3], np.asarray(direction, dtype=float))
     if abs(d[2]) < 1e-12:
         return None
     t = -o[2] / d[2]
@@ -81,7 +82,7 @@ def primitive_points(nets, to_local: np.ndarray) -> np.ndarray:
     runs fastest, as in Blender's surface point order."""
     w = nets[..., 3:4]
     xyz = nets[..., :3] / w
-    hom = np.concatenate([xyz, np.ones_like(w)], axis=-1) @ to_local.T
+    hom = matmul(np.concatenate([xyz, np.ones_like(w)], axis=-1), to_local.T)
     co = np.concatenate([hom[..., :3], w], axis=-1)  # (m, Nu, Nv, 4)
     m, nu, nv, _ = co.shape
     return np.ascontiguousarray(co.transpose(0, 2, 1, 3).reshape(m, nv * nu, 4))

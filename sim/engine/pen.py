@@ -40,7 +40,7 @@ def contact(samples, hair_mm: float) -> tuple[np.ndarray, np.ndarray]:
     xy = s[:, :2].copy()
     press = np.full(len(s), -1.0)
     for i, row in enumerate(s):
-        axis = rotation_matrix(*row[3:6]) @ np.array([0.0, 0.0, -1.0])
+        axis = -rotation_matrix(*row[3:6])[:, 2]  # R (0, 0, -1), no sum to round
         if axis[2] >= -1e-6:  # the brush lies flat or points up: no contact along its axis
             continue
         reach = row[2] / -axis[2]

@@ -151,7 +151,7 @@ class Simulation:
         if cut is not None:
             b.follow(cut.contact())  # the path the hair bundles are drawn along (bristles)
         v3 = vel[:3]
-        speed = float(np.sqrt(v3.dot(v3)))  # np.linalg.norm(vel[:3]), without its wrapper
+        speed = float(np.sqrt(np.add.reduce(v3 * v3)))  # |vel[:3]|, not through BLAS (issue 28.2)
         b.update_stress(area, height, speed, self.dt)  # Eq. 10-12
         across = np.array([-b.travel[1], b.travel[0]])
         b.sweep = (cut.widths(b.m, across) if cut is not None else np.zeros(b.m)) * speed

@@ -26,6 +26,7 @@ from dataclasses import asdict, dataclass
 
 import numpy as np
 
+from ..core.exact import matmul
 from ..image.filters import (
     _bilinear,
     _dilate,
@@ -69,8 +70,12 @@ def score(stats: TextureStats, real: TextureStats = REAL_WRITING) -> float:
 def density(rgb, paper_rgb=None) -> np.ndarray:
     """Ink density D in [0, 1] of an RGB image (H, W, 3) in [0, 1]: 0 where it shows the paper's
     colour (the brightest colour in the image when not given), 1 for black."""
-    lum = np.asarray(rgb, dtype=np.float64) @ np.array([0.2126, 0.7152, 0.0722])
-    ref = float(np.asarray(paper_rgb) @ [0.2126, 0.7152, 0.0722]) if paper_rgb is not None else None
+    lum = matmul(np.asarray(rgb, dtype=np.float64), np.array([0.2126, 0.7152, 0.0722]))
+    ref = (
+        float(matmul(np.asarray(paper_rgb), [0.2126, 0.7152, 0.0722]))
+        if paper_rgb is not None
+        else None
+    )
     ref = ref if ref is not None else float(np.percentile(lum, 99.5))
     return np.clip(1.0 - lum / max(ref, 1e-6), 0.0, 1.0)
 

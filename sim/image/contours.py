@@ -127,7 +127,7 @@ def area(loop: np.ndarray) -> float:
     """The signed area of a closed polygon (shoelace); positive for the inside on the left in
     x right, y down (an outer outline of ``trace``), negative for a hole."""
     x, y = loop[:, 0], loop[:, 1]
-    return float(0.5 * (np.dot(x, np.roll(y, -1)) - np.dot(y, np.roll(x, -1))))
+    return float(0.5 * (np.add.reduce(x * np.roll(y, -1)) - np.add.reduce(y * np.roll(x, -1))))
 
 
 def simplify(loop: np.ndarray, tol: float) -> np.ndarray:

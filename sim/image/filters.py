@@ -8,6 +8,8 @@ from __future__ import annotations
 
 import numpy as np
 
+from ..core import exact
+
 
 def otsu(values) -> float:
     """Otsu's threshold of values in [0, 1] (256 bins)."""
@@ -76,7 +78,7 @@ def _median3(a):
 
 def _gaussian(a, sigma: float):
     r = int(np.ceil(4 * sigma))
-    k = np.exp(-0.5 * (np.arange(-r, r + 1) / sigma) ** 2)
+    k = exact.exp(-0.5 * (np.arange(-r, r + 1) / sigma) ** 2)
     k /= k.sum()
     pad = np.pad(a, r, mode="edge")
     rows = sum(k[i] * pad[:, i : i + a.shape[1]] for i in range(2 * r + 1))

@@ -14,6 +14,7 @@ from typing import NamedTuple
 
 import numpy as np
 
+from ..core import exact
 from .grain import paper_grain
 
 _RGB = np.dtype((np.void, 12))  # a pixel's three float32 ink densities as one item
@@ -64,7 +65,7 @@ def lay_out(paper, steps, grain_depth: float, full_wet: float) -> list:
     offer = wet_tau * (1.0 - grain_depth * grain).astype(np.float32)
     # Eq. 26-27 (model change, see FULL_WET): where the hair bundle lays ink (Cr not 0)
     # the pixel takes the colour the liquid offered to it can hold
-    held = -np.expm1(-offer / full_wet)
+    held = -exact.expm1(-offer / full_wet)
     held = np.where(skip, 0.0, held).astype(np.float32)
     lay = col * held[:, None]
     out, at, m = [], 0, 0

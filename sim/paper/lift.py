@@ -8,6 +8,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from ..core import exact
 from .grain import paper_grain
 
 # Model addition (not in the paper): the wet film levels. Where the hair left a pixel wet
@@ -70,8 +71,8 @@ def level_rows(paper, start: int, colour, rows, outer):
     moves = np.nonzero(film[by0 - sy0 : by1 - sy0] > 0.0)
     if moves[0].size == 0:
         return None
-    depth_max = -np.log1p(-np.float32(LEVEL_DENSEST))
-    depth = -np.log1p(-ink)  # the pigment a pixel holds (Beer-Lambert: density 1 - e^-p)
+    depth_max = -exact.log1p(-np.float32(LEVEL_DENSEST))
+    depth = -exact.log1p(-ink)  # the pigment a pixel holds (Beer-Lambert: density 1 - e^-p)
     share = box_mean(box_mean(box_mean(box_mean(film, r, 0), r, 1), r, 0), r, 1)
     here = (moves[0] + (by0 - sy0), moves[1])
     level = np.empty((moves[0].size, 3), dtype=np.float32)
@@ -82,7 +83,7 @@ def level_rows(paper, start: int, colour, rows, outer):
         mean = np.divide(mixed[here], share[here], out=p.copy(), where=share[here] > 0.0)
         mean = np.clip(mean, 0.0, depth_max)  # (the box sums' float32 rounding)
         level[:, c] = p + film[here] * (mean - p)
-    new = -np.expm1(-level)
+    new = -exact.expm1(-level)
     return (moves[0] + by0, moves[1] + x0), new
 
 
@@ -119,7 +120,7 @@ SPATTER_SALT = 21 << 40  # keeps these draws apart from the grain's and the text
 
 def _poisson(mean: float, u: float) -> int:
     """The Poisson count of ``mean`` whose cumulative probability first passes ``u``."""
-    k, p = 0, np.exp(-mean)
+    k, p = 0, exact.exp(-mean)
     total = p
     while u > total and k < SPATTER_MAX:
         k += 1
@@ -162,7 +163,7 @@ def spatter(paper, t, colour) -> None:
         else:  # shaken off round the landing, round
             dist = lr / paper.ppm + SPATTER_REACH_MM * (0.1 + 0.5 * b)
             ang = 2.0 * np.pi * c
-            way = np.array([np.sin(ang), np.cos(ang)])
+            way = np.array(exact.sin_cos(ang))
             centre = (ly + way[0] * dist * paper.ppm, lx + way[1] * dist * paper.ppm)
             drops.append((centre, way, size, 1.0 + 0.3 * d))
     for centre, way, size, stretch in drops:

@@ -36,6 +36,7 @@ from typing import NamedTuple
 
 import numpy as np
 
+from ..core import exact
 from ..image.png import to_uint8
 from .grain import paper_grain  # noqa: F401 (the sheet's grain: read from here too)
 from .laying import _RGB, Laying, lay_out
@@ -535,7 +536,7 @@ def _wick(w, ink, draw, passes: int, rate: float = WICK_RATE) -> None:
             w[b] += flux
         # the pigment the liquid carried in: the givers' colour, weighted by what each gave,
         # laid over what the pixel holds as Eq. 26's change lays it (more liquid, more of it)
-        take = WICK_PIGMENT * -np.expm1(-inflow / FULL_WET)
+        take = WICK_PIGMENT * -exact.expm1(-inflow / FULL_WET)
         take /= np.where(inflow > 0.0, inflow, 1.0)
         ink += (1.0 - ink) * (carried * take[..., None])
 

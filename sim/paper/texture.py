@@ -25,6 +25,7 @@ from pathlib import Path
 
 import numpy as np
 
+from ..core import exact
 from .grain import paper_grain
 
 CLOUD_MM = (6.0, 1.6)  # sizes of the pulp's clouds (value noise scales), mm
@@ -87,8 +88,9 @@ def paper_tone(rows: slice, cols: slice, ppm: float, texture: float, seed: int =
     bend = FIBRE_BEND_MM * layers[-1]
     for k in range(FIBRE_WAYS):
         a = turn + np.pi * k / FIBRE_WAYS
-        along = x * np.cos(a) + y * np.sin(a)
-        across = -x * np.sin(a) + y * np.cos(a) + bend
+        sin_a, cos_a = exact.sin_cos(a)
+        along = x * cos_a + y * sin_a
+        across = -x * sin_a + y * cos_a + bend
         n = _value_noise(along / length, across / thick, len(CLOUD_MM) + k, seed)
         fibres += np.clip((np.abs(n) - (1.0 - FIBRE_SHARE)) / FIBRE_SHARE, 0.0, 1.0) * np.sign(n)
     fibres = np.clip(fibres, -1.0, 1.0)

@@ -52,8 +52,8 @@ def _at(line: np.ndarray, back: float) -> tuple[np.ndarray, np.ndarray]:
     q = np.array(
         [np.interp(max(t - back, 0.0), s, line[:, 0]), np.interp(max(t - back, 0.0), s, line[:, 1])]
     )
-    d = line[-1] - q if np.linalg.norm(line[-1] - q) > 1e-9 else line[-1] - line[-2]
-    return p, d / max(float(np.linalg.norm(d)), 1e-9)
+    d = line[-1] - q if np.linalg.norm(line[-1] - q, axis=-1) > 1e-9 else line[-1] - line[-2]
+    return p, d / max(float(np.linalg.norm(d, axis=-1)), 1e-9)
 
 
 def end_moves(line: np.ndarray, r: float, written: np.ndarray, picture: np.ndarray) -> float:
@@ -80,7 +80,7 @@ def _moved(line: np.ndarray, delta: float, keep: float) -> np.ndarray:
     back by -delta px of arc (< 0, at most down to ``keep`` px of arc)."""
     if delta > 0:
         d = line[-1] - line[-2]
-        d = d / max(float(np.linalg.norm(d)), 1e-9)
+        d = d / max(float(np.linalg.norm(d, axis=-1)), 1e-9)
         out = line.copy()
         out[-1] = line[-1] + delta * d
         return out

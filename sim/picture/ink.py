@@ -396,7 +396,7 @@ def _across(bridge: np.ndarray, lab: np.ndarray, a: int, b: int, r: float) -> bo
             return False
         mids.append((float(yy[sel].mean()), float(xx[sel].mean())))
     join = np.array([mids[1][1] - mids[0][1], mids[1][0] - mids[0][0]])
-    join /= max(float(np.linalg.norm(join)), 1e-9)
+    join /= max(float(np.linalg.norm(join, axis=-1)), 1e-9)
     across = np.array([-join[1], join[0]])
     limit = 2.0 * reach
     wide = [_chord(lab, p, y, x, across, limit) for p, (y, x) in zip((a, b), mids, strict=True)]

@@ -8,11 +8,14 @@ from __future__ import annotations
 
 import numpy as np
 
+from ..core import exact
 from ..image import morph as M
 from .strokes import Stroke
 
-FLAT = np.tan(np.radians(30.0))  # a stroke whose chord rises less than this lies flat
-STEEP = np.tan(np.radians(60.0))
+FLAT = exact.sin(np.radians(30.0)) / exact.cos(
+    np.radians(30.0)
+)  # a stroke whose chord rises less than this lies flat
+STEEP = exact.sin(np.radians(60.0)) / exact.cos(np.radians(60.0))
 THICKER = 1.3  # an end this much thicker than the other is where the brush entered
 POINTED = 1.8  # a flat stroke must end this much thinner to be a 撇 (a 横 ends pressed)
 OVERHANG = 0.15  # of a piece of ink's width at either side: a tip reaching over, not a part
@@ -167,7 +170,7 @@ def writing_order(strokes: list, n: int, mask: np.ndarray | None = None) -> list
 
 def _starts_at(s: Stroke, node: int) -> bool:
     c = s.joints[node]
-    return bool(np.linalg.norm(s.pts[0] - c) <= np.linalg.norm(s.pts[-1] - c))
+    return bool(np.linalg.norm(s.pts[0] - c, axis=-1) <= np.linalg.norm(s.pts[-1] - c, axis=-1))
 
 
 def _stands_on(b: Stroke, a: Stroke) -> bool:

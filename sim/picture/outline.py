@@ -7,6 +7,8 @@ from __future__ import annotations
 
 import numpy as np
 
+from ..core import exact
+from ..core.exact import matmul
 from ..image import morph as M
 from ..writing.hanzi import MAX_MEDIAN_POINTS as DATA_MEDIAN_POINTS
 from ..writing.hanzi import MAX_OUTLINE_POINTS as DATA_OUTLINE_POINTS
@@ -122,7 +124,7 @@ def simplify(poly: np.ndarray, eps: float, closed: bool = True) -> np.ndarray:
             continue
         seg = poly[i + 1 : j]
         ab = b - a
-        L = float(np.linalg.norm(ab))
+        L = float(np.linalg.norm(ab, axis=-1))
         if L < 1e-9:
             d = np.linalg.norm(seg - a, axis=1)
         else:
@@ -154,21 +156,21 @@ def _turns(pts: np.ndarray, radius: np.ndarray, dist: np.ndarray | None = None) 
     while i < len(simple) - 1:
         a, v = simple[i - 1], simple[i]
         legs = [(v, simple[i + 1], i + 1)]  # the vertex: the leg out from it
-        way_in = (v - a) / max(float(np.linalg.norm(v - a)), 1e-9)
+        way_in = (v - a) / max(float(np.linalg.norm(v - a, axis=-1)), 1e-9)
         if (
             i + 2 < len(simple)
-            and np.linalg.norm(simple[i + 1] - v) < CHAMFER * r
+            and np.linalg.norm(simple[i + 1] - v, axis=-1) < CHAMFER * r
             and way_in[1] <= FOOT_DOWN  # a hook's foot is found from its vertex (into_corners)
         ):
             legs.append((simple[i + 1], simple[i + 2], i + 2))  # across a chamfer
         best = None
         for v1, b, nxt in legs:
             u, w = v - a, b - v1
-            lu, lw = float(np.linalg.norm(u)), float(np.linalg.norm(w))
+            lu, lw = float(np.linalg.norm(u, axis=-1)), float(np.linalg.norm(w, axis=-1))
             if min(lu, lw) < r:  # a kink of the skeleton, not a turn of the stroke
                 continue
             u, w = u / lu, w / lw
-            turn = float(np.arccos(np.clip(u @ w, -1.0, 1.0)))
+            turn = float(exact.arccos(float(np.clip(matmul(u, w), -1.0, 1.0))))
             if turn > CORNER_TURN and (best is None or turn > best[0]):
                 best = (turn, v1, u, w, nxt)
         if best is None:
@@ -193,7 +195,7 @@ def _meeting(v, v1, u, w, r: float, dist: np.ndarray | None, mid: np.ndarray) ->
         return mid
     t = ((v1 - v)[0] * w[1] - (v1 - v)[1] * w[0]) / cross
     meet = v + t * u
-    gap = float(np.linalg.norm(meet - mid))
+    gap = float(np.linalg.norm(meet - mid, axis=-1))
     if gap > MEET_REACH * r:  # nearly parallel legs: not farther out than a thick shoulder
         meet = mid + (meet - mid) * MEET_REACH * r / gap
         gap = MEET_REACH * r
@@ -214,13 +216,13 @@ def _corner_point(p, u, w, hold: float, dist: np.ndarray, heel: float = CORNER_H
     hook's heel hangs) and the outer bisector (away from both legs) - reached through ink at
     least ``hold`` thick (the distance to the paper)."""
     h, wd = dist.shape
-    out = (u - w) / max(float(np.linalg.norm(u - w)), 1e-9)
-    a0, a1 = np.arctan2(u[1], u[0]), np.arctan2(out[1], out[0])
+    out = (u - w) / max(float(np.linalg.norm(u - w, axis=-1)), 1e-9)
+    a0, a1 = exact.arctan2(float(u[1]), float(u[0])), exact.arctan2(float(out[1]), float(out[0]))
     a1 = a0 + (a1 - a0 + np.pi) % (2 * np.pi) - np.pi
     a0 -= heel * np.sign(a1 - a0)  # a hook's heel hangs a little inside the turn
     best, far = p, 0.0
     for ang in np.linspace(a0, a1, 11):
-        d = np.array([np.cos(ang), np.sin(ang)])
+        d = np.array(exact.sin_cos(ang)[::-1])
         s = 0.0
         while True:
             x, y = np.round(p + (s + 1.0) * d).astype(int)
@@ -239,7 +241,7 @@ def _on_leg(pts, k: int, place, way, r: float, step: int) -> int:
     j = k
     while 0 < j < len(pts) - 1:
         d = pts[j] - place
-        if d @ way >= r and abs(d[0] * way[1] - d[1] * way[0]) <= 0.5 * r:
+        if matmul(d, way) >= r and abs(d[0] * way[1] - d[1] * way[0]) <= 0.5 * r:
             return j
         j += step
     return j
@@ -251,7 +253,7 @@ def _aligned(pts, j: int, c, way, step: int, stop: int) -> int:
     corner pushed out into a 折's shoulder goes on down the leg, not back across the turn."""
     while j != stop:
         d = pts[j] - c
-        if d @ way >= np.cos(CORNER_ALIGN) * max(float(np.linalg.norm(d)), 1e-9):
+        if matmul(d, way) >= exact.cos(CORNER_ALIGN) * max(float(np.linalg.norm(d, axis=-1)), 1e-9):
             return j
         j += step
     return j
@@ -268,7 +270,7 @@ def _inside(pts, j: int, c, dist: np.ndarray, hold: float, k: int) -> int:
     h, w = dist.shape
     step = 1 if k >= j else -1
     while j != k:
-        d = float(np.linalg.norm(c - pts[j]))
+        d = float(np.linalg.norm(c - pts[j], axis=-1))
         t = np.linspace(0.0, 1.0, max(int(d), 1) + 1)[:, None]
         q = np.round(pts[j] + t * (c - pts[j])).astype(int)
         x, y = np.clip(q[:, 0], 0, w - 1), np.clip(q[:, 1], 0, h - 1)
@@ -338,14 +340,14 @@ def into_join(s: Stroke, dist: np.ndarray) -> Stroke:
     in the picture, and the ink in two pieces. (Its start is left alone: the brush lands
     pressed, round, and reaches.)"""
     end = s.pts[-1]
-    if len(s.pts) < 3 or not any(np.linalg.norm(end - c) < 1.0 for c in s.joints.values()):
+    if len(s.pts) < 3 or not any(np.linalg.norm(end - c, axis=-1) < 1.0 for c in s.joints.values()):
         return s
     h, w = dist.shape
     x, y = np.clip(np.round(end).astype(int), 0, (w - 1, h - 1))
     r = float(dist[y, x])
     k = max(int(np.ceil(r / STEP_PX)), 2)
     d = end - s.pts[max(len(s.pts) - 1 - k, 0)]
-    d = d / max(float(np.linalg.norm(d)), 1e-9)
+    d = d / max(float(np.linalg.norm(d, axis=-1)), 1e-9)
     add = []
     for t in np.arange(STEP_PX, JOIN_REACH * r + 1e-9, STEP_PX):
         q = end + t * d
@@ -399,9 +401,11 @@ def _straight_start(pts: np.ndarray, radius: np.ndarray) -> np.ndarray:
     if i < 2 or j >= len(p) - 1 or s[-1] < 3.0 * reach:
         return p
     beyond, inside = p[i] - p[j], p[0] - p[i]
-    cos = beyond @ inside / max(float(np.linalg.norm(beyond) * np.linalg.norm(inside)), 1e-9)
-    if np.arccos(np.clip(cos, -1.0, 1.0)) > BLOT_CURL:
-        u = beyond / max(float(np.linalg.norm(beyond)), 1e-9)
+    cos = matmul(beyond, inside) / max(
+        float(np.linalg.norm(beyond, axis=-1) * np.linalg.norm(inside, axis=-1)), 1e-9
+    )
+    if exact.arccos(float(np.clip(cos, -1.0, 1.0))) > BLOT_CURL:
+        u = beyond / max(float(np.linalg.norm(beyond, axis=-1)), 1e-9)
         p[:i] = p[i] + u * (s[i] - s[:i])[:, None]
     return p
 

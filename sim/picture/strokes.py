@@ -13,6 +13,8 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from ..core import exact
+from ..core.exact import matmul
 from ..image import morph as M
 from .skeleton import Chain, Node, _length, _link, _outward, skeleton_graph
 
@@ -144,7 +146,9 @@ def _dot(chains: list, c: Chain, node: Node, mask: np.ndarray, dist: np.ndarray)
     junction (two of its other chains leave it nearly opposite ways: at a corner where strokes
     start or end, a spur is a stroke's tip, ``_tips``)."""
     ways = [_exit(chains[i], e, node)[1] for i, e in node.chains if chains[i] is not c]
-    if not any(float(u @ v) < CONTINUE_COS for i, u in enumerate(ways) for v in ways[i + 1 :]):
+    if not any(
+        float(matmul(u, v)) < CONTINUE_COS for i, u in enumerate(ways) for v in ways[i + 1 :]
+    ):
         return False
     end = 0 if c.ends[0] >= 0 else 1
     pts = _outward(c, end)
@@ -176,17 +180,19 @@ def _tips(chains: list, nodes: list, loose: dict, partner: dict, mask) -> None:
         for spur in spurs:
             end = 0 if spur.ends[0] == ni else 1
             tip = _outward(spur, end)[-1] - node.centre
-            if np.linalg.norm(tip) < TIP_MIN[0] * node.radius:
+            if np.linalg.norm(tip, axis=-1) < TIP_MIN[0] * node.radius:
                 continue
-            way = tip / float(np.linalg.norm(tip))
+            way = tip / float(np.linalg.norm(tip, axis=-1))
             run = len(_extend(np.array([node.centre, node.centre + tip]), mask, node.radius, 0)[0])
-            entry = way[1] < -TIP_UP and np.linalg.norm(tip) + run >= TIP_MIN[2] * node.radius
-            if np.linalg.norm(tip) < TIP_MIN[1] * node.radius and not entry:
+            entry = (
+                way[1] < -TIP_UP and np.linalg.norm(tip, axis=-1) + run >= TIP_MIN[2] * node.radius
+            )
+            if np.linalg.norm(tip, axis=-1) < TIP_MIN[1] * node.radius and not entry:
                 continue
             for ce in free:
                 out = _exit(chains[ce[0]], ce[1], node)[1]
-                cos = float(out @ way)
-                if cos < -np.cos(TIP_TURN):  # a standing stroke first (口's vertical)
+                cos = float(matmul(out, way))
+                if cos < -exact.cos(TIP_TURN):  # a standing stroke first (口's vertical)
                     cand.append(
                         (cos - TIP_STANDING * (abs(out[1]) > abs(out[0])), id(spur), ce, spur, end)
                     )
@@ -212,7 +218,7 @@ def _overhangs(chains: list, node: Node, spurs: list) -> list:
             continue
         way = _exit(spur, end, node)[1]
         for ci, e in node.chains:
-            if float(_exit(chains[ci], e, node)[1] @ way) < CONTINUE_COS:
+            if float(matmul(_exit(chains[ci], e, node)[1], way)) < CONTINUE_COS:
                 out.append(spur)
                 break
     return out
@@ -226,7 +232,7 @@ def _exit(c: Chain, end: int, node: Node) -> tuple[int, np.ndarray]:
     k = int(far[0]) if far.size else len(pts) - 1
     j = min(k + max(int(2 * node.radius), 6), len(pts) - 1)
     d = pts[j] - pts[k] if j > k else pts[k] - node.centre
-    return k, d / max(float(np.linalg.norm(d)), 1e-9)
+    return k, d / max(float(np.linalg.norm(d, axis=-1)), 1e-9)
 
 
 def _pairs(chains: list, nodes: list) -> dict:
@@ -236,7 +242,7 @@ def _pairs(chains: list, nodes: list) -> dict:
     for node in nodes:
         ways = {ce: _exit(chains[ce[0]], ce[1], node)[1] for ce in node.chains}
         cand = sorted(
-            (float(ways[a] @ ways[b]), a, b)
+            (float(matmul(ways[a], ways[b])), a, b)
             for i, a in enumerate(node.chains)
             for b in node.chains[i + 1 :]
             if a[0] != b[0]
@@ -262,8 +268,10 @@ def _is_corner(u: np.ndarray, v: np.ndarray) -> bool:
     left, the other down: 横折, 横撇) or a hook (both go up, close together: the stroke came
     down and flicks back up at its foot, 竖钩, 斜钩)."""
     left, down = np.array([-1.0, 0.0]), np.array([0.0, 1.0])
-    turn_down = (u @ left > 0.8 and v @ down > 0.6) or (v @ left > 0.8 and u @ down > 0.6)
-    hook = u[1] < -0.3 and v[1] < -0.3 and float(u @ v) > HOOK_COS
+    turn_down = (matmul(u, left) > 0.8 and matmul(v, down) > 0.6) or (
+        matmul(v, left) > 0.8 and matmul(u, down) > 0.6
+    )
+    hook = u[1] < -0.3 and v[1] < -0.3 and float(matmul(u, v)) > HOOK_COS
     return bool(turn_down or hook)
 
 
@@ -275,7 +283,7 @@ def _is_open_l(chains: list, a, b, ways: dict) -> bool:
     are separate strokes."""
     up, right = np.array([0.0, -1.0]), np.array([1.0, 0.0])
     for v, h in ((a, b), (b, a)):
-        if ways[v] @ up > 0.8 and ways[h] @ right > 0.8:
+        if matmul(ways[v], up) > 0.8 and matmul(ways[h], right) > 0.8:
             far_v, far_h = chains[v[0]].ends[1 - v[1]], chains[h[0]].ends[1 - h[1]]
             corner = chains[v[0]].ends[v[1]]
             return far_h < 0 or not _joined(chains, far_v, far_h, {v[0], h[0]}, corner)
@@ -303,7 +311,7 @@ def _joined(chains: list, start: int, goal: int, without: set, avoid: int) -> bo
 
 
 def _line(a: np.ndarray, b: np.ndarray) -> np.ndarray:
-    n = max(int(np.ceil(np.linalg.norm(b - a))), 1)
+    n = max(int(np.ceil(np.linalg.norm(b - a, axis=-1))), 1)
     t = np.linspace(0.0, 1.0, n + 1)[1:-1, None]
     return a + t * (b - a)
 
@@ -381,7 +389,7 @@ def _extend(pts: np.ndarray, mask: np.ndarray, r_end: float, short: float) -> tu
     if len(pts) < 2:
         return np.zeros((0, 2)), 0.0
     d = pts[-1] - pts[max(len(pts) - 10, 0)]
-    d /= max(float(np.linalg.norm(d)), 1e-9)
+    d /= max(float(np.linalg.norm(d, axis=-1)), 1e-9)
     h, w = mask.shape
     last = 0
     for s in range(1, int(3 * r_end) + 6):

@@ -10,6 +10,7 @@ import math
 
 import numpy as np
 
+from ..core.exact import matmul
 from ..core.frames import angles_from_matrix, rotation_matrix
 from ..core.recording import SAMPLE_DECIMALS
 from ..core.recording import quantise as quantise_values
@@ -26,8 +27,8 @@ def transport(tangent, normal) -> np.ndarray:
     part along the normal removed); the surface's x (else y) axis when it is lost."""
     n = np.asarray(normal, dtype=float)
     for t in (np.asarray(tangent, dtype=float), np.array([1.0, 0, 0]), np.array([0, 1.0, 0])):
-        t = t - (t @ n) * n
-        ln = np.linalg.norm(t)
+        t = t - (matmul(t, n)) * n
+        ln = np.linalg.norm(t, axis=-1)
         if ln > 0.3:
             return t / ln
     raise SurfaceError("a surface normal is not a number")  # pragma: no cover - unreachable
@@ -55,11 +56,14 @@ def new_frame(surface: Surface, hit: Hit, prev=None, origin_xy=(0.0, 0.0), first
     n = normal_at(surface, hit)
     if prev is None:
         t = transport(np.array([1.0, 0.0, 0.0]) if first_t is None else first_t, n)
-        c = np.asarray(origin_xy, dtype=float) + [hit.point @ t, hit.point @ np.cross(n, t)]
+        c = np.asarray(origin_xy, dtype=float) + [
+            matmul(hit.point, t),
+            matmul(hit.point, np.cross(n, t)),
+        ]
     else:
         c0, p0, t0, b0, _n0 = frame_parts(prev)
         step = hit.point - p0
-        c = c0 + np.array([step @ t0, step @ b0])
+        c = c0 + np.array([matmul(step, t0), matmul(step, b0)])
         t = transport(t0, n)
     return quantise(np.r_[c, hit.point, t, n])
 
@@ -70,8 +74,8 @@ def local_sample(frame, base_mm, rot) -> np.ndarray:
     c, p, t, b, n = frame_parts(frame)
     F = np.stack([t, b, n], axis=1)
     F = F / np.linalg.norm(F, axis=0)
-    rel = F.T @ (np.asarray(base_mm, dtype=float) - p)
-    d, q, r = angles_from_matrix(F.T @ np.asarray(rot, dtype=float))
+    rel = matmul(F.T, (np.asarray(base_mm, dtype=float) - p))
+    d, q, r = angles_from_matrix(matmul(F.T, np.asarray(rot, dtype=float)))
     return np.array([c[0] + rel[0], c[1] + rel[1], rel[2], d, q, r])
 
 
@@ -82,8 +86,8 @@ def pose_from_sample(frame, sample) -> tuple[np.ndarray, np.ndarray]:
     F = np.stack([t, b, n], axis=1)
     F = F / np.linalg.norm(F, axis=0)
     s = np.asarray(sample, dtype=float)
-    base = p + F @ np.array([s[0] - c[0], s[1] - c[1], s[2]])
-    return base, F @ rotation_matrix(*s[3:6])
+    base = p + matmul(F, np.array([s[0] - c[0], s[1] - c[1], s[2]]))
+    return base, matmul(F, rotation_matrix(*s[3:6]))
 
 
 def axis_hit(surface: Surface, base_mm, rot, cast=None, near=None) -> Hit:
@@ -168,7 +172,7 @@ def chart_xy(frame, point) -> tuple[float, float]:
     """The chart position of a surface point near the frame (the mouse's, while painting)."""
     c, p, t, b, _n = frame_parts(frame)
     d = np.asarray(point, dtype=float) - p
-    return float(c[0] + d @ t), float(c[1] + d @ b)
+    return float(c[0] + matmul(d, t)), float(c[1] + matmul(d, b))
 
 
 def frames_from_dict(d, n_samples: int) -> np.ndarray | None:

@@ -31,6 +31,7 @@ import math
 
 import numpy as np
 
+from ..core.exact import matmul
 from .chart import FRAME_WIDTH, LAY_STEP_MM, quantise, transport
 from .mesh import Surface
 from .query import closest_point, hit_at, normal_at
@@ -58,7 +59,7 @@ def edge_neighbours(tris) -> np.ndarray:
 def _rotate(v, axis, angle: float) -> np.ndarray:
     """v turned by ``angle`` about the unit ``axis`` (Rodrigues)."""
     c, s = math.cos(angle), math.sin(angle)
-    return v * c + np.cross(axis, v) * s + axis * (axis @ v) * (1 - c)
+    return v * c + np.cross(axis, v) * s + axis * (matmul(axis, v)) * (1 - c)
 
 
 def walk(surface: Surface, nbr, tri: int, p, d, t, length: float):
@@ -76,10 +77,10 @@ def walk(surface: Surface, nbr, tri: int, p, d, t, length: float):
                 continue
             a, e = c[k], c[(k + 1) % 3] - c[k]
             m = np.cross(surface.face_normals[tri], e)  # the edge's inward normal in-plane
-            den = d @ m
+            den = matmul(d, m)
             if den >= -1e-15:
                 continue  # running along or away from this edge
-            s = ((a - p) @ m) / den
+            s = (matmul((a - p), m)) / den
             if s >= -1e-12 and (out is None or s < out[0]):
                 out = (max(s, 0.0), k)
         if out is None or out[0] >= left:
@@ -92,9 +93,11 @@ def walk(surface: Surface, nbr, tri: int, p, d, t, length: float):
             return tri, p, d, t  # the mesh's boundary
         n0, n1 = surface.face_normals[tri], surface.face_normals[nxt]
         e = c[(k + 1) % 3] - c[k]
-        e = e / max(np.linalg.norm(e), 1e-300)
-        if n1 @ n1 > 0.5 and n0 @ n0 > 0.5:  # unfold onto the next face about the edge
-            angle = math.atan2(np.cross(n0, n1) @ e, n0 @ n1)
+        e = e / max(np.linalg.norm(e, axis=-1), 1e-300)
+        if (
+            matmul(n1, n1) > 0.5 and matmul(n0, n0) > 0.5
+        ):  # unfold onto the next face about the edge
+            angle = math.atan2(matmul(np.cross(n0, n1), e), matmul(n0, n1))
             d, t = _rotate(d, e, angle), _rotate(t, e, angle)
         came, tri = tri, nxt
     return tri, p, d, t  # pragma: no cover - MAX_CROSSINGS
@@ -149,8 +152,8 @@ class ChartMap:
         fn = self.surface.face_normals[tri]
         way = np.array([math.cos(angle), math.sin(angle)])
         d = way[0] * t0 + way[1] * np.cross(n0, t0)
-        d, t = d - (d @ fn) * fn, t0 - (t0 @ fn) * fn  # onto the face's plane
-        d, t = d / np.linalg.norm(d), t / np.linalg.norm(t)
+        d, t = d - (matmul(d, fn)) * fn, t0 - (matmul(t0, fn)) * fn  # onto the face's plane
+        d, t = d / np.linalg.norm(d, axis=-1), t / np.linalg.norm(t, axis=-1)
         nodes = [np.r_[c0, p, t0, np.cross(n0, t0)]]
         for j in range(1, math.ceil(length / self.step) + 2):
             tri, p, d, t = walk(self.surface, self.nbr, tri, p, d, t, self.step)

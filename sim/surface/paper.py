@@ -11,6 +11,7 @@ from dataclasses import replace
 
 import numpy as np
 
+from ..core.exact import matmul
 from .chart import frame_parts, step_to
 from .mesh import Surface, SurfaceError
 from .query import TriangleGrid
@@ -103,10 +104,10 @@ class SurfacePaper:
         tiles = self.tiles
         cand = tiles.query_box(corners.min(axis=0), corners.max(axis=0))
         d = tiles.xyz[cand] - p
-        ok = (np.abs(d @ n) <= tol) & (tiles.normal(cand) @ n > NORMAL_DOT_MIN)
+        ok = (np.abs(matmul(d, n)) <= tol) & (matmul(tiles.normal(cand), n) > NORMAL_DOT_MIN)
         cand, d = cand[ok], d[ok]
-        col = np.floor((c[0] + d @ t) * ppm).astype(np.int64)
-        row = np.floor((c[1] + d @ b) * ppm).astype(np.int64)
+        col = np.floor((c[0] + matmul(d, t)) * ppm).astype(np.int64)
+        row = np.floor((c[1] + matmul(d, b)) * ppm).astype(np.int64)
         out = []
         for mk in marks:
             tm = self._texture_mark(mk, row, col, cand)

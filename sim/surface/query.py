@@ -9,6 +9,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from ..core.exact import inv, matmul
 from .mesh import Surface
 
 
@@ -35,7 +36,7 @@ def ray_hit(surface: Surface, origin, direction) -> Hit | None:
     s = o - c[:, 0]
     u = np.einsum("ij,ij->i", s, p) * inv
     qv = np.cross(s, e1)
-    v = (qv @ d) * inv
+    v = (matmul(qv, d)) * inv
     t = np.einsum("ij,ij->i", e2, qv) * inv
     eps = 1e-9
     hit = ok & (u >= -eps) & (v >= -eps) & (u + v <= 1 + eps) & (t >= 0)
@@ -183,7 +184,7 @@ def uv_hit(surface: Surface, uv) -> Hit | None:
     if depth[i] < -1e-9:
         return None
     bary = np.array([1.0 - b1[i] - b2[i], b1[i], b2[i]])
-    return Hit(i, bary, bary @ surface.corners[i], 0.0)
+    return Hit(i, bary, matmul(bary, surface.corners[i]), 0.0)
 
 
 def uv_axes(surface: Surface, tri: int) -> tuple[np.ndarray, np.ndarray]:
@@ -192,7 +193,7 @@ def uv_axes(surface: Surface, tri: int) -> tuple[np.ndarray, np.ndarray]:
     t, c = surface.uvs[tri], surface.corners[tri]
     d = np.stack([t[1] - t[0], t[2] - t[0]], axis=1)  # (2, 2): UV edges as columns
     e = np.stack([c[1] - c[0], c[2] - c[0]], axis=1)  # (3, 2): the same edges in 3D
-    j = e @ np.linalg.inv(d)
+    j = matmul(e, inv(d))
     return j[:, 0], j[:, 1]
 
 
@@ -210,6 +211,6 @@ def _barycentric(c: np.ndarray, p: np.ndarray) -> np.ndarray:
 
 def normal_at(surface: Surface, hit: Hit) -> np.ndarray:
     """The smooth (vertex-interpolated) unit normal at a hit."""
-    n = hit.bary @ surface.corner_normals[hit.tri]
-    ln = np.linalg.norm(n)
+    n = matmul(hit.bary, surface.corner_normals[hit.tri])
+    ln = np.linalg.norm(n, axis=-1)
     return n / ln if ln > 1e-12 else surface.face_normals[hit.tri]

@@ -47,7 +47,7 @@ def _rises_back(way_in, way_out) -> bool:
     了), not a 折 into a leg going down nor a 竖折 on to the right. (Added in issue 26.)"""
     d, e = np.asarray(way_in, dtype=float), np.asarray(way_out, dtype=float)
     clockwise = d[0] * e[1] - d[1] * e[0] < 0.0
-    return bool(d[1] < 0.0 and clockwise and e[1] > HOOK_RISE * float(np.linalg.norm(e)))
+    return bool(d[1] < 0.0 and clockwise and e[1] > HOOK_RISE * float(np.linalg.norm(e, axis=-1)))
 
 
 HOOK_FROM_FOOT = 0.5  # share of the way from the median's corner to the foot's end (where the

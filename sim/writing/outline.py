@@ -11,6 +11,7 @@ import re
 
 import numpy as np
 
+from ..core import exact
 from .feet import (
     _body_width,
     _from_the_foot,
@@ -225,7 +226,7 @@ def _to_the_tips(med, polys) -> np.ndarray:
     ends = []
     for (p, q), reach in zip(((m[0], m[1]), (m[-1], m[-2])), TIP_REACH, strict=True):
         d = p - q
-        d = d / max(float(np.linalg.norm(d)), 1e-9)
+        d = d / max(float(np.linalg.norm(d, axis=-1)), 1e-9)
         if distance_to_outline(p[None], polys)[0] <= 0:
             ends.append(p)  # the median already ends outside the outline
             continue
@@ -276,7 +277,7 @@ def _bands(pts, polys) -> tuple[np.ndarray, np.ndarray]:
 
 def _heading_turn(a, b) -> np.ndarray:
     """Unsigned angle (rad) between direction vectors a and b, row by row."""
-    return np.abs(np.arctan2(a[:, 0] * b[:, 1] - a[:, 1] * b[:, 0], np.sum(a * b, axis=1)))
+    return np.abs(exact.arctan2(a[:, 0] * b[:, 1] - a[:, 1] * b[:, 0], np.sum(a * b, axis=1)))
 
 
 def _sharpest(turn, sharp) -> list[int]:
@@ -348,8 +349,8 @@ def _foot(pts, k: int, polys, step: float, fan: float = FOOT_FAN) -> np.ndarray:
     movement."""
     d, turn = _turn_at(pts, k, step)
     away = -1.0 if turn > 0 else 1.0  # against the turn
-    ang = np.arctan2(d[1], d[0]) + away * np.linspace(0.0, fan, 11)
-    dirs = np.stack([np.cos(ang), np.sin(ang)], axis=1)
+    ang = exact.arctan2(d[1], d[0]) + away * np.linspace(0.0, fan, 11)
+    dirs = np.stack(exact.sin_cos(ang)[::-1], axis=1)
     hits = _ray_hits(np.repeat(pts[k][None], len(dirs), axis=0), dirs, polys)
     hits = np.where(np.isfinite(hits), hits, 0.0)
     j = int(np.argmax(hits))
@@ -377,7 +378,9 @@ def _hooks_back(way_in, piece, before, step: float, width, curl: bool = False) -
     win = max(int(round(CORNER_WINDOW / step)), 1)
     d = way_in[-1] - way_in[0]
     e = piece[min(win, len(piece) - 1)] - piece[0]
-    cos = float(d @ e) / max(float(np.linalg.norm(d) * np.linalg.norm(e)), 1e-9)
+    cos = float(np.add.reduce(d * e)) / max(
+        float(np.linalg.norm(d, axis=-1) * np.linalg.norm(e, axis=-1)), 1e-9
+    )
     length = float(np.linalg.norm(np.diff(piece, axis=0), axis=1).sum())
     back = curl or _rises_back(d, e)
     return is_hook(cos, length, float(before[1].max()), narrows(width), back)

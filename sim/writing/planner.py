@@ -11,6 +11,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
+from ..core import exact
 from ..core.recording import quantise
 from .outline import EM, TOP, median_movements
 
@@ -61,7 +62,7 @@ def _timed(dense, width, step_mm: float, slow_corners: float):
     s = np.concatenate([[0.0], np.cumsum(seg)])
     if s[-1] <= 0 or len(dense) < 3:
         return dense[:1], width[:1]
-    heading = np.unwrap(np.arctan2(*np.gradient(dense, axis=0).T[::-1]))
+    heading = np.unwrap(exact.arctan2(*np.gradient(dense, axis=0).T[::-1]))
     win = max(int(round(1.5 / max(s[1] - s[0], 1e-9))), 1)  # +-1.5 mm
     pad = np.pad(heading, win, mode="edge")
     turn = np.abs(pad[2 * win :] - pad[: -2 * win])
@@ -76,7 +77,7 @@ def _timed(dense, width, step_mm: float, slow_corners: float):
 
 def _air(tg, wd, tn, ph, a, b, tang, step_mm, phase=IN_THE_AIR) -> None:
     """Travel from ``a`` to ``b`` (mm), in the air or (``phase`` TURNING) on the tip."""
-    k = max(int(np.linalg.norm(b - a) / (2 * step_mm)), 4)
+    k = max(int(np.linalg.norm(b - a, axis=-1) / (2 * step_mm)), 4)
     t = np.linspace(0.0, 1.0, k)[:, None]
     tg.append(a * (1 - t) + b * t)
     wd.append(np.zeros(k))
@@ -166,7 +167,7 @@ def _lead_along(path, lag, stop: bool = False):
     out = np.stack([np.interp(q, s, path[:, 0]), np.interp(q, s, path[:, 1])], axis=1)
     if len(path) > 1 and s[-1] > 0:
         end_dir = path[-1] - path[-2]
-        end_dir = end_dir / max(float(np.linalg.norm(end_dir)), 1e-9)
+        end_dir = end_dir / max(float(np.linalg.norm(end_dir, axis=-1)), 1e-9)
         past = np.maximum(q - s[-1], 0.0)
         out += past[:, None] * end_dir[None, :]
     return out
@@ -239,7 +240,7 @@ def _turn_ease(path, s) -> np.ndarray:
     if len(path) < 3 or s[-1] <= 0:
         return np.ones(len(path))
     d = np.gradient(path, axis=0)
-    heading = np.unwrap(np.arctan2(d[:, 1], d[:, 0]))
+    heading = np.unwrap(exact.arctan2(d[:, 1], d[:, 0]))
     win = max(int(round(1.5 / max(s[-1] / (len(s) - 1), 1e-9))), 1)
     pad = np.pad(heading, win, mode="edge")
     turn = np.abs(pad[2 * win :] - pad[: -2 * win])

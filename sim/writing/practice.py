@@ -11,6 +11,7 @@ from typing import NamedTuple
 
 import numpy as np
 
+from ..core import exact
 from ..engine.simulation import Simulation
 from .planner import LIFTING, WRITING, Plan, _movements, _smooth, entry_zone, point_zone
 from .response import Response, _coverage
@@ -252,7 +253,7 @@ def _end_probes(sim, pl: Plan, body, own: _Window, whole: np.ndarray) -> _Ends:
             w = max(float(pl.width[i]), 1.0 / ppm)
             out = sign * pl.tangent[i]
             d = np.arange(-END_BACK * w, END_LOOK * w + 1e-9, 1.0 / ppm)
-            c, sn = np.cos(END_FAN), np.sin(END_FAN)
+            sn, c = exact.sin_cos(END_FAN)
             rays = np.stack([c * out[0] - sn * out[1], sn * out[0] + c * out[1]], axis=1)
             pts = pl.target[i] + d[None, :, None] * rays[:, None, :]
             cols.append(np.clip((pts[..., 0] * ppm).astype(int), 0, sim.paper.W - 1))
@@ -314,7 +315,7 @@ def _join_error(sim, ends: _Ends, before) -> tuple[np.ndarray, np.ndarray]:
     new = _coverage(sim, ends.rows, ends.cols) & ~before & (ends.along < first[..., None])
     near = np.where(new, ends.along, ends.along[..., :1]).max(axis=-1)  # (ends, rays)
     # the distance along the ray itself (``along`` is its projection on the way out)
-    cos = np.maximum(np.abs(np.cos(END_FAN)), 1e-6)
+    cos = np.maximum(np.abs(exact.cos(END_FAN)), 1e-6)
     gap = np.where(np.isfinite(first), (first - near) / cos, np.inf)  # touching: one pixel
     ray = gap.argmin(axis=-1)
     gap = gap.min(axis=-1)

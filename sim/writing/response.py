@@ -165,9 +165,9 @@ def _straight_plan(lines, press, step_mm: float) -> Plan:
     tg, wd, tn, ph, strokes = [], [], [], [], []
     for k, ((x0, y0), (x1, y1)) in enumerate(lines):
         a, b = np.array([x0, y0], float), np.array([x1, y1], float)
-        n = max(int(np.ceil(np.linalg.norm(b - a) / step_mm)), 2) + 1
+        n = max(int(np.ceil(np.linalg.norm(b - a, axis=-1) / step_mm)), 2) + 1
         pts = a + np.linspace(0.0, 1.0, n)[:, None] * (b - a)
-        tang = (b - a) / max(float(np.linalg.norm(b - a)), 1e-9)
+        tang = (b - a) / max(float(np.linalg.norm(b - a, axis=-1)), 1e-9)
         if k:
             _air(tg, wd, tn, ph, np.array(lines[k - 1][1], float), a, tang, step_mm)
         n0 = sum(len(t) for t in tg)

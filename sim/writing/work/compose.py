@@ -157,7 +157,7 @@ AIR_PACE = 6.0  # the hand between characters: steps of this many writing steps 
 
 def _travel(a, b, step_mm: float) -> np.ndarray:
     """Samples in the air between two samples (neither included)."""
-    k = max(int(np.linalg.norm(b[:2] - a[:2]) / (AIR_PACE * step_mm)), 4)
+    k = max(int(np.linalg.norm(b[:2] - a[:2], axis=-1) / (AIR_PACE * step_mm)), 4)
     t = np.linspace(0.0, 1.0, k + 2)[1:-1, None]
     return a[None] * (1 - t) + b[None] * t
 

@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from ...core import exact
 from ..outline import EM, TOP
 
 DOT = 0.045  # half-width of a dot, in cells
@@ -17,7 +18,7 @@ LINE = 0.028  # half-width of a bracket's or a dash's line
 
 def _arc(cu, cv, r, a0, a1, n=12):
     t = np.radians(np.linspace(a0, a1, n))
-    return [(cu + r * np.cos(a), cv + r * np.sin(a)) for a in t]
+    return [(cu + r * exact.cos(a), cv + r * exact.sin(a)) for a in t]
 
 
 # mark: (placement, [(median points in the unit cell, half-width), ...]) as written in a row;
@@ -145,8 +146,8 @@ def _capsule(median, r: float, n: int = 10) -> list[np.ndarray]:
     d /= np.maximum(np.linalg.norm(d, axis=1, keepdims=True), 1e-12)
     nrm = np.stack([-d[:, 1], d[:, 0]], axis=1)
     left, right = m + r * nrm, m - r * nrm
-    a_end = np.degrees(np.arctan2(nrm[-1, 1], nrm[-1, 0]))
-    a_start = np.degrees(np.arctan2(-nrm[0, 1], -nrm[0, 0]))
+    a_end = np.degrees(exact.arctan2(nrm[-1, 1], nrm[-1, 0]))
+    a_start = np.degrees(exact.arctan2(-nrm[0, 1], -nrm[0, 0]))
     end_cap = _arc(m[-1, 0], m[-1, 1], r, a_end, a_end - 180, n)[1:-1]
     start_cap = _arc(m[0, 0], m[0, 1], r, a_start, a_start - 180, n)[1:-1]
     return [np.concatenate([left, end_cap, right[::-1], start_cap])]

@@ -15,6 +15,8 @@ from typing import NamedTuple
 
 import numpy as np
 
+from ...core import exact
+from ...core.exact import matmul
 from ..outline import EM, TOP, parse_path
 
 SIZE_SD = 0.025  # relative size, one standard deviation
@@ -68,11 +70,12 @@ def apply(char: dict, v: Variation) -> dict:
     """The character's stroke data varied by ``v``: outlines and medians scaled and turned about
     the em box's centre and shifted; each outline widened (or narrowed) about its own median."""
     th = np.radians(v.slant_deg)
-    rot = np.array([[np.cos(th), -np.sin(th)], [np.sin(th), np.cos(th)]]) * v.scale
+    sin_t, cos_t = exact.sin_cos(th)
+    rot = np.array([[cos_t, -sin_t], [sin_t, cos_t]]) * v.scale
     move = CENTRE + np.asarray(v.shift, dtype=float) * EM
 
     def place(p):
-        return (np.asarray(p, dtype=float) - CENTRE) @ rot.T + move
+        return matmul((np.asarray(p, dtype=float) - CENTRE), rot.T) + move
 
     strokes, medians = [], []
     for path, med in zip(char["strokes"], char["medians"], strict=True):
