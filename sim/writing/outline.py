@@ -234,25 +234,6 @@ def _to_the_tips(med, polys) -> np.ndarray:
     return np.concatenate([ends[0][None], m, ends[1][None]])
 
 
-HEAD_DISC = 1.0  # a head's width at most this many times the largest disc inside the outline
-
-
-def _seated_head(centre, width, polys) -> tuple[np.ndarray, np.ndarray]:
-    """A stroke's first movement (``centre``, ``width`` per point along it, data units) with
-    its width, over its head (the first stretch as long as the stroke is wide there), held to
-    ``HEAD_DISC`` times the largest disc inside the outline on its centre: the pressed belly
-    lands in the head's seat, not a disc as wide as the cut across it, which at a head cut
-    off slanting (a 撇's, a 竖's at a stroke's top edge) pokes out above-left. (Added in
-    issue 26: pressed as wide as the cut, the belly splayed over the head's top edge, a round
-    blob where the font has a crisp slanted head.)"""
-    if len(centre) < 2:
-        return centre, width
-    s = np.concatenate([[0.0], np.cumsum(np.linalg.norm(np.diff(centre, axis=0), axis=1))])
-    head = s < float(np.max(width[: max(len(width) // 3, 1)]))
-    disc = 2.0 * np.maximum(distance_to_outline(centre, polys), 0.0)
-    return centre, np.where(head, np.minimum(width, HEAD_DISC * disc), width)
-
-
 CUT_OVER_DISC = 1.3  # a cut across the median longer than this many times the inscribed disc
 # at its middle (diameter) runs along the stroke, as at a corner or the foot of a hook: there
 # the width is held to this many times the disc's diameter and the median point is the centre
@@ -442,8 +423,7 @@ def median_movements(char: dict, step: float = 4.0) -> list[tuple[list, bool]]:
         if curl is not None:  # a hook off a curve, if the piece after it is one
             curled = _pieces(pts, polys, step, [*edges[:-1], curl, edges[-1]], curl=True)
             pieces = curled if curled[-1][2] else pieces
-        moves = [(centre, width) for centre, width, _ in pieces]
-        out.append(([_seated_head(*moves[0], polys), *moves[1:]], pieces[-1][2]))
+        out.append(([(centre, width) for centre, width, _ in pieces], pieces[-1][2]))
     return out
 
 

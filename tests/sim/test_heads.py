@@ -48,23 +48,3 @@ def test_a_head_is_placed_sideways_as_the_stroke_past_it(response):
         shift = np.sum((moved - plain) * normal, axis=1)
         assert np.allclose(shift[head], 0.6, atol=1e-3)
         assert np.allclose(shift[past:], 0.6, atol=1e-3)
-
-
-def test_a_head_is_no_wider_than_the_disc_it_sits_in():
-    # 六's 撇, 水's 竖钩 and 何's 撇 set off at their outline's slanted top edge: over the head
-    # (the first stretch as long as the stroke is wide there) the planned width is at most the
-    # largest disc inside the outline on the band's centre (before, the cut across the median,
-    # up to 20 data units wider: the belly pressed that wide splayed over the top edge);
-    # further on the width is the cut's, as before
-    from sim.writing.outline import distance_to_outline, median_movements, stroke_polygons
-
-    for char, stroke in (("六", 2), ("水", 0), ("何", 0)):
-        ch = find_char(char)
-        pieces, _ = median_movements(ch, step=4.0)[stroke]
-        centre, width = pieces[0]
-        disc = 2.0 * distance_to_outline(centre, stroke_polygons(ch)[stroke])
-        s = np.concatenate([[0.0], np.cumsum(np.linalg.norm(np.diff(centre, axis=0), axis=1))])
-        head = s < width[: len(width) // 3].max()
-        assert head.sum() >= 5
-        assert np.all(width[head] <= disc[head] + 1e-6)
-        assert np.any(width[~head] > disc[~head] + 2.0)  # the body keeps the cut's width
