@@ -193,6 +193,24 @@ def _entry_ramp(path, width, touch=ENTRY_TOUCH) -> np.ndarray:
     return entry * _turn_ease(path, s)
 
 
+ENTRY_SIDE = 1.0  # share of the sideways placement past the entry the entry is written with
+
+
+def _entry_side(side, path, width) -> np.ndarray:
+    """The sideways placement per body sample of a movement, over its entry (where the belly
+    is still pressing down, ``_entry_ramp``) that of the first sample past it (``ENTRY_SIDE``):
+    practice does not follow the band's centre at a head (the landing's head, which bent it
+    into a claw) but corrects it past the entry, and the belly that lands there sits as far
+    off the base as it does a little further on. Kept at none, the head sat off the stroke
+    to the side the hair lays its ink, a knob beyond the outline (issue 26)."""
+    s = _along(path)
+    entry = s < _ramp_length(s, width)
+    if not entry.any() or entry.all():
+        return side
+    first = int(np.argmin(entry))  # the first sample past the entry
+    return np.where(entry, ENTRY_SIDE * side[first], side)
+
+
 def _along(path) -> np.ndarray:
     """Distance (mm) along ``path`` from its first point, per point."""
     return np.concatenate([[0.0], np.cumsum(np.linalg.norm(np.diff(path, axis=0), axis=1))])
@@ -443,7 +461,10 @@ def _fill(
         if ends is not None:
             path = _ends_moved(path, pl.tangent[run], pl.width[run], ends[r])
         samples[run, :2] = _lead_along(path, response.lag_for(p), r < len(runs) - 1)
-        samples[run, :2] += side[j0:j1, None] * normal[run]
+        placed = side[j0:j1]
+        if not hook[r]:  # a hook has no entry: it sets off pressed from the foot
+            placed = _entry_side(placed, pl.target[run], pl.width[run])
+        samples[run, :2] += placed[:, None] * normal[run]
         samples[run, 2] = hair - p
         nxt = None
         if r < len(runs) - 1:  # into a corner: a 折 lifts slightly, a hook's foot stays pressed

@@ -1,0 +1,50 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
+"""Stroke heads (issue 26, point 2: the tip lands, the belly presses, no knobs at entries).
+No Blender."""
+
+import numpy as np
+
+from sim.core.params import HOVER_MM
+from sim.writing.hanzi import find_char
+from sim.writing.planner import WRITING, _fill, _movements, entry_zone, plan
+from tests.sim.builders import stiff_template
+
+
+def _written(pl, response, stroke, side):
+    """The brush's base (x, y) per body sample of ``stroke`` of plan ``pl`` filled at the
+    planned press with the sideways placement ``side(n)`` (n body samples), and the body."""
+    hair = stiff_template().resolve()[1].hair_length_mm
+    a, b = pl.strokes[stroke]
+    body = np.flatnonzero(pl.phase[a:b] == WRITING) + a
+    samples = np.zeros((len(pl.target), 6))
+    samples[:, :2], samples[:, 2] = pl.target, hair + HOVER_MM
+    brush = (hair + HOVER_MM, hair, 0.5)
+    press = response.press_for(pl.width[body])
+    _fill(samples, pl, response, (a, b), press, side(len(body)), brush)
+    return samples[body, :2], body
+
+
+def test_a_head_is_placed_sideways_as_the_stroke_past_it(response):
+    # 水's 竖钩 and 六's 撇: practice leaves an entry's sideways placement alone (it does not
+    # follow the head's band) and corrects the rest of the stroke; the head is written as far
+    # to the side as the first sample past the entry (before, the head kept none: the belly
+    # landed off the stroke to the side the hair lays its ink, a knob beyond the outline)
+    for char, stroke in (("水", 0), ("六", 2)):
+        pl = plan(find_char(char), 100.0, 0.5)
+        a, b = pl.strokes[stroke]
+        body = np.flatnonzero(pl.phase[a:b] == WRITING) + a
+        zone = entry_zone(pl, body)
+        first = _movements(np.arange(len(body)), body)[0]
+        head = zone & (np.arange(len(body)) <= first[-1])
+        past = int(np.argmin(zone))  # the first sample past the first movement's entry
+        assert head.sum() >= 4 and past > 0
+
+        def practised(n, head=head):  # practice's reading: none at the entry, 0.6 mm past it
+            return np.where(head, 0.0, 0.6)
+
+        plain, _ = _written(pl, response, stroke, np.zeros)
+        moved, _ = _written(pl, response, stroke, practised)
+        normal = np.stack([-pl.tangent[body, 1], pl.tangent[body, 0]], axis=1)
+        shift = np.sum((moved - plain) * normal, axis=1)
+        assert np.allclose(shift[head], 0.6, atol=1e-3)
+        assert np.allclose(shift[past:], 0.6, atol=1e-3)
