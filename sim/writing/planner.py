@@ -462,7 +462,7 @@ def _fill(
             path = _ends_moved(path, pl.tangent[run], pl.width[run], ends[r])
         samples[run, :2] = _lead_along(path, response.lag_for(p), r < len(runs) - 1)
         placed = side[j0:j1]
-        if not hook[r]:  # a hook has no entry: it sets off pressed from the foot
+        if r == 0:  # the head; a leg sets off from the corner (a hook pressed from its foot)
             placed = _entry_side(placed, pl.target[run], pl.width[run])
         samples[run, :2] += placed[:, None] * normal[run]
         samples[run, 2] = hair - p
