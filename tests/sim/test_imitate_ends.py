@@ -71,8 +71,10 @@ def test_the_imitation_lands_on_the_start_and_the_writer_runs_on_to_it(response)
 @pytest.mark.slow
 def test_practising_the_reach_brings_a_bars_ends_to_its_outline(response):
     # written as the writer writes it the bar runs on past its outline at both ends (the
-    # run-up's tip and the round footprint of the lift); with exact_ends it ends where its
-    # outline does, within 2 px at 256 px, and its area agrees as well
+    # run-up's tip and the round footprint of the lift: 6 px); with exact_ends it ends where its
+    # outline does, within 3 px at 256 px, and its area agrees as well (2 or 3 px by the last
+    # bits of the arithmetic: 2 under this machine's own BLAS kernels before sim/core/exact.py,
+    # 3 under older ones and since; the same on every machine now)
     truth = rasterise(BAR, 256)
     xs = np.flatnonzero(truth.any(axis=0))
     off, iou = {}, {}
@@ -83,5 +85,5 @@ def test_practising_the_reach_brings_a_bars_ends_to_its_outline(response):
         off[exact] = (xs[0] - xw[0], xw[-1] - xs[-1])  # px run on past the left and right
         iou[exact] = np.count_nonzero(ink & truth) / np.count_nonzero(ink | truth)
     assert max(off[False]) >= 4
-    assert max(abs(v) for v in off[True]) <= 2
+    assert max(abs(v) for v in off[True]) <= 3
     assert iou[True] >= iou[False] - 0.01
