@@ -214,25 +214,75 @@ def _ray_hits(points, dirs, polys) -> np.ndarray:
 
 TIP_REACH = (0.3, 0.5)  # share of the way from a median's start and end to the outline the
 # path goes on (measured: the end helps, the head - where the brush lands - does not)
+JOIN_GAP = 3.0  # data units: a stroke's outline near its end this near another's joins it
+JOIN_NEAR = 40.0  # data units round a median's end its outline is looked at for a join
+JOIN_INTO = 6.0  # data units a joining end's path goes on into the stroke it joins
+JOIN_WIDTH = 0.45  # share of its movement's own width a joining end keeps to the join ...
+JOIN_SPAN = 1.0  # ... over this many of those widths before its end: it does not let go into
+# a point short of the stroke it runs into
 
 
-def _to_the_tips(med, polys) -> np.ndarray:
+def _join_point(p, d, polys, others) -> np.ndarray | None:
+    """Where a stroke's end joins another stroke: the point its path goes on to, up to
+    ``JOIN_INTO`` inside the stroke it joins; None where it joins none. The end at the median's
+    last point ``p`` (its way out ``d``) joins a stroke of ``others`` that the outline's
+    vertices ahead of ``p`` and within ``JOIN_NEAR`` of it reach into, or come within
+    ``JOIN_GAP`` of: the tail of 好's 横撇 into its 竖钩, 北's 撇 into its 竖弯钩. (A median's
+    last piece need not point at its outline's tip, so the join is looked for round it.) A
+    pointed end that stops at its median leaves a hair of bare paper between two strokes the
+    font joins."""
+    v = np.concatenate([np.asarray(q, dtype=float) for q in polys])
+    off = v - p
+    near = v[(np.hypot(off[:, 0], off[:, 1]) <= JOIN_NEAR) & ((off * d).sum(axis=1) > 0.0)]
+    best = None
+    for o in others if len(near) else ():
+        depth = distance_to_outline(near, o)
+        k = int(np.argmax(depth))
+        if depth[k] < -JOIN_GAP or (best is not None and depth[k] <= best[0]):
+            continue
+        c = near[k]
+        if depth[k] < 1.0:  # touching: a little on, into it
+            c = c + (1.0 - depth[k]) * (c - p) / max(float(np.hypot(*(c - p))), 1e-9)
+        line = p + np.linspace(0.0, 1.0, 33)[:, None] * (c - p)
+        deep = distance_to_outline(line, o) >= min(JOIN_INTO, max(float(depth[k]), 0.5))
+        best = (float(depth[k]), line[int(np.argmax(deep))] if deep.any() else c)
+    return None if best is None else best[1]
+
+
+def _into_the_join(width, centre) -> np.ndarray:
+    """The widths of a movement whose end joins another stroke: at least ``JOIN_WIDTH`` of its
+    own width over its last ``JOIN_SPAN`` own widths (the path there runs on past its outline,
+    where the font gives no width)."""
+    own = _body_width(width)
+    left = np.concatenate([[0.0], np.cumsum(np.linalg.norm(np.diff(centre, axis=0), axis=1))])
+    near = left[-1] - left <= JOIN_SPAN * own
+    return np.where(near, np.maximum(width, JOIN_WIDTH * own), width)
+
+
+def _to_the_tips(med, polys, others=()) -> tuple[np.ndarray, bool]:
     """The median carried on at its ends, along its end directions, ``TIP_REACH`` of the way to
     the outline: a stroke's median stops short of its pointed or squared-off end (the point of a
-    hook or a left-falling stroke), which the brush must still reach."""
+    hook or a left-falling stroke), which the brush must still reach. An end (not the head,
+    where the brush lands) that joins another stroke (``others``: their polygons) goes on into it
+    (``_join_point``); the second value says whether it does."""
     m = np.asarray(med, dtype=float)
     if len(m) < 2:
-        return m
-    ends = []
-    for (p, q), reach in zip(((m[0], m[1]), (m[-1], m[-2])), TIP_REACH, strict=True):
+        return m, False
+    ends, joins = [], False
+    for k, ((p, q), reach) in enumerate(
+        zip(((m[0], m[1]), (m[-1], m[-2])), TIP_REACH, strict=True)
+    ):
         d = p - q
         d = d / max(float(np.linalg.norm(d, axis=-1)), 1e-9)
         if distance_to_outline(p[None], polys)[0] <= 0:
             ends.append(p)  # the median already ends outside the outline
             continue
         hit = float(_ray_hits(p[None], d[None], polys)[0])
-        ends.append(p + (reach * hit if np.isfinite(hit) else 0.0) * d)
-    return np.concatenate([ends[0][None], m, ends[1][None]])
+        hit = hit if np.isfinite(hit) else 0.0
+        join = _join_point(p, d, polys, others) if k == 1 else None
+        joins = joins or join is not None
+        ends.append(p + reach * hit * d if join is None else join)
+    return np.concatenate([ends[0][None], m, ends[1][None]]), joins
 
 
 CUT_OVER_DISC = 1.3  # a cut across the median longer than this many times the inscribed disc
@@ -418,14 +468,19 @@ def median_pieces(char: dict, step: float = 4.0) -> list[list[tuple[np.ndarray, 
 def median_movements(char: dict, step: float = 4.0) -> list[tuple[list, bool]]:
     """``median_pieces`` of every stroke, with whether its last movement is a hook."""
     out = []
-    for med, polys in zip(char["medians"], stroke_polygons(char), strict=True):
-        pts, _ = resample(_to_the_tips(med, polys), step)
+    strokes = stroke_polygons(char)
+    for i, (med, polys) in enumerate(zip(char["medians"], strokes, strict=True)):
+        tipped, joins = _to_the_tips(med, polys, strokes[:i] + strokes[i + 1 :])
+        pts, _ = resample(tipped, step)
         edges = [0, *corners(pts, step), len(pts) - 1]
         pieces = _pieces(pts, polys, step, edges)
         curl = None if len(pieces) > 1 and pieces[-1][2] else _curled_end(pts, step, edges[-2])
         if curl is not None:  # a hook off a curve, if the piece after it is one
             curled = _pieces(pts, polys, step, [*edges[:-1], curl, edges[-1]], curl=True)
             pieces = curled if curled[-1][2] else pieces
+        if joins:
+            centre, width, hook = pieces[-1]
+            pieces[-1] = (centre, _into_the_join(width, centre), hook)
         out.append(([(centre, width) for centre, width, _ in pieces], pieces[-1][2]))
     return out
 

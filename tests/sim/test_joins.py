@@ -9,6 +9,12 @@ import pytest
 from scripts.picture_real import pieces  # pieces of ink, specks left out
 from sim.core.recording import Recording
 from sim.writing.hanzi import find_char
+from sim.writing.outline import (
+    _to_the_tips,
+    distance_to_outline,
+    median_movements,
+    stroke_polygons,
+)
 from sim.writing.response import calibrate
 from sim.writing.writer import coverage_mask, font_mask, write_character
 
@@ -25,12 +31,37 @@ def kaishu_response(template):
     return calibrate(template)
 
 
-@pytest.mark.parametrize("char", ["人", "日", "相"])
+@pytest.mark.parametrize("char", ["人", "日", "相", "北", "好"])
 def test_strokes_that_touch_in_the_outline_touch_in_the_ink(template, kaishu_response, char):
     # 人's 捺 sets off from the 撇's side; 日's 横折 from the top of its left vertical; 相's 木
     # has its right dot set beside the vertical (the join is sideways, not along the dot's way
     # out): as many pieces in the ink as in the font (before the joins were practised, one
-    # more at 512 px)
+    # more at 512 px); 北's 撇 and 好's 横撇 end in a point on the stroke they run into, which
+    # is written after them (the path goes on into it: ``outline._join_point``)
     ch = find_char(char)
     _rec, _resp, sim = write_character(ch, N, template, response=kaishu_response)
     assert pieces(coverage_mask(sim)) == pieces(font_mask(ch, N))
+
+
+@pytest.mark.parametrize(("char", "stroke", "into"), [("好", 3, 4), ("北", 3, 4)])
+def test_an_end_that_joins_a_stroke_goes_on_into_it(char, stroke, into):
+    # the median of 好's 横撇 (北's right 撇) stops short of the 竖钩 (竖弯钩) its outline runs
+    # into: the path's end lies inside that stroke, and its last widths do not let go to nothing
+    ch = find_char(char)
+    polys = stroke_polygons(ch)
+    others = polys[:stroke] + polys[stroke + 1 :]
+    tipped, joins = _to_the_tips(ch["medians"][stroke], polys[stroke], others)
+    assert joins
+    assert distance_to_outline(np.asarray(ch["medians"][stroke][-1:], float), polys[into])[0] < 0
+    assert distance_to_outline(tipped[-1:], polys[into])[0] > 0
+    pieces_ = median_movements(ch)[stroke][0]
+    _, width = pieces_[-1]
+    assert width[-1] >= 0.4 * np.median(width)
+
+
+def test_an_end_that_joins_nothing_is_left_as_it_was():
+    ch = find_char("一")
+    polys = stroke_polygons(ch)
+    tipped, joins = _to_the_tips(ch["medians"][0], polys[0], [])
+    assert not joins
+    assert len(tipped) == len(ch["medians"][0]) + 2
