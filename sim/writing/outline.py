@@ -465,12 +465,16 @@ def median_pieces(char: dict, step: float = 4.0) -> list[list[tuple[np.ndarray, 
     return [pieces for pieces, _ in median_movements(char, step)]
 
 
-def median_movements(char: dict, step: float = 4.0) -> list[tuple[list, bool]]:
-    """``median_pieces`` of every stroke, with whether its last movement is a hook."""
+def median_movements(char: dict, step: float = 4.0, joins: bool = True) -> list[tuple[list, bool]]:
+    """``median_pieces`` of every stroke, with whether its last movement is a hook; with
+    ``joins`` an end that joins another stroke goes on into it (``_to_the_tips``). (Not for a
+    picture's strokes, read as pieces that meet everywhere: its imitation practises its joins,
+    ``practice._join_error``.)"""
     out = []
     strokes = stroke_polygons(char)
     for i, (med, polys) in enumerate(zip(char["medians"], strokes, strict=True)):
-        tipped, joins = _to_the_tips(med, polys, strokes[:i] + strokes[i + 1 :])
+        others = strokes[:i] + strokes[i + 1 :] if joins else []
+        tipped, joined = _to_the_tips(med, polys, others)
         pts, _ = resample(tipped, step)
         edges = [0, *corners(pts, step), len(pts) - 1]
         pieces = _pieces(pts, polys, step, edges)
@@ -478,7 +482,7 @@ def median_movements(char: dict, step: float = 4.0) -> list[tuple[list, bool]]:
         if curl is not None:  # a hook off a curve, if the piece after it is one
             curled = _pieces(pts, polys, step, [*edges[:-1], curl, edges[-1]], curl=True)
             pieces = curled if curled[-1][2] else pieces
-        if joins:
+        if joined:
             centre, width, hook = pieces[-1]
             pieces[-1] = (centre, _into_the_join(width, centre), hook)
         out.append(([(centre, width) for centre, width, _ in pieces], pieces[-1][2]))

@@ -92,6 +92,7 @@ def plan(
     dip_every_mm: float | None = None,
     origin=(0.0, 0.0),
     slow_corners: float = 0.7,
+    joins: bool = True,
 ) -> Plan:
     """The path of the writing: each median resampled every step_mm with the outline's width,
     one movement per piece of the median between its sharp corners (``median_pieces``: a
@@ -99,14 +100,15 @@ def plan(
     movements of a stroke, travel in the air between strokes. Each movement is smoothed on its
     own, so that a corner stays a corner. The brush is dipped before the first stroke and, with
     ``dip_every_mm``, before a stroke that would take it past that much writing since the last
-    dip (without, the writer dips when the brush runs low, ``writer.dips_when_low``)."""
+    dip (without, the writer dips when the brush runs low, ``writer.dips_when_low``). With
+    ``joins`` an end that joins another stroke goes on into it (``outline.median_movements``)."""
     scale = size_mm / EM
     dip_every = np.inf if dip_every_mm is None else dip_every_mm
     tg, wd, tn, ph, dips, strokes, hooks = [], [], [], [], [], [], []
     since_dip, prev = np.inf, None
     fine = max(step_mm / scale / 4.0, 0.25)
     k = max(int(round(3.0 / fine / scale)), 1)  # +-1.5 mm: the cut's jitter smoothed
-    for pieces, hook in median_movements(char, step=fine):
+    for pieces, hook in median_movements(char, step=fine, joins=joins):
         moves = []
         for pts_d, width_d in pieces:
             dense = np.stack(
