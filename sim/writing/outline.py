@@ -259,7 +259,12 @@ def _into_the_join(width, centre) -> np.ndarray:
     return np.where(near, np.maximum(width, JOIN_WIDTH * own), width)
 
 
-def _to_the_tips(med, polys, others=()) -> tuple[np.ndarray, bool]:
+def _to_the_tips(med, polys) -> np.ndarray:
+    """``_tips_and_join`` of a stroke alone: its median carried on to its tips."""
+    return _tips_and_join(med, polys, ())[0]
+
+
+def _tips_and_join(med, polys, others) -> tuple[np.ndarray, bool]:
     """The median carried on at its ends, along its end directions, ``TIP_REACH`` of the way to
     the outline: a stroke's median stops short of its pointed or squared-off end (the point of a
     hook or a left-falling stroke), which the brush must still reach. An end (not the head,
@@ -467,14 +472,14 @@ def median_pieces(char: dict, step: float = 4.0) -> list[list[tuple[np.ndarray, 
 
 def median_movements(char: dict, step: float = 4.0, joins: bool = True) -> list[tuple[list, bool]]:
     """``median_pieces`` of every stroke, with whether its last movement is a hook; with
-    ``joins`` an end that joins another stroke goes on into it (``_to_the_tips``). (Not for a
+    ``joins`` an end that joins another stroke goes on into it (``_tips_and_join``). (Not for a
     picture's strokes, read as pieces that meet everywhere: its imitation practises its joins,
     ``practice._join_error``.)"""
     out = []
     strokes = stroke_polygons(char)
     for i, (med, polys) in enumerate(zip(char["medians"], strokes, strict=True)):
         others = strokes[:i] + strokes[i + 1 :] if joins else []
-        tipped, joined = _to_the_tips(med, polys, others)
+        tipped, joined = _tips_and_join(med, polys, others)
         pts, _ = resample(tipped, step)
         edges = [0, *corners(pts, step), len(pts) - 1]
         pieces = _pieces(pts, polys, step, edges)

@@ -10,7 +10,7 @@ from scripts.picture_real import pieces  # pieces of ink, specks left out
 from sim.core.recording import Recording
 from sim.writing.hanzi import find_char
 from sim.writing.outline import (
-    _to_the_tips,
+    _tips_and_join,
     distance_to_outline,
     median_movements,
     stroke_polygons,
@@ -50,7 +50,7 @@ def test_an_end_that_joins_a_stroke_goes_on_into_it(char, stroke, into):
     ch = find_char(char)
     polys = stroke_polygons(ch)
     others = polys[:stroke] + polys[stroke + 1 :]
-    tipped, joins = _to_the_tips(ch["medians"][stroke], polys[stroke], others)
+    tipped, joins = _tips_and_join(ch["medians"][stroke], polys[stroke], others)
     assert joins
     assert distance_to_outline(np.asarray(ch["medians"][stroke][-1:], float), polys[into])[0] < 0
     assert distance_to_outline(tipped[-1:], polys[into])[0] > 0
@@ -62,6 +62,6 @@ def test_an_end_that_joins_a_stroke_goes_on_into_it(char, stroke, into):
 def test_an_end_that_joins_nothing_is_left_as_it_was():
     ch = find_char("一")
     polys = stroke_polygons(ch)
-    tipped, joins = _to_the_tips(ch["medians"][0], polys[0], [])
+    tipped, joins = _tips_and_join(ch["medians"][0], polys[0], [])
     assert not joins
     assert len(tipped) == len(ch["medians"][0]) + 2
