@@ -11,10 +11,13 @@ median width error and ratio) and one JSON line.
 The characters are not those the reading was tuned on (TUNE); --tune measures those instead.
 
     python scripts/imitate_eval.py [--fonts ukai,cwkai] [--kinds scan,photo] [--chars 国何]
-        [--only 品高] [--read-only] [--out /tmp/picture/eval]
+        [--only 品高] [--read-only] [--overlay] [--out /tmp/picture/eval]
 
 (``--only``: of the cases, those of the characters given, each in the font and kind it has
-among all the characters: one bad case measured again alone.)
+among all the characters: one bad case measured again alone. ``--overlay``: beside each case's
+picture, ``-overlay.png``: the true ink against the ink read (left) and the ink written
+(right), both in their boxes as the IoU sees them: black both, red the truth's alone, blue
+ours alone: a stroke's ink missed or added, or the whole shifted by an end that moved the box.)
 """
 
 from __future__ import annotations
@@ -66,7 +69,7 @@ def cases(chars: str, fonts, kinds, per_char: int) -> list[tuple[str, str, str]]
     return out
 
 
-def evaluate(ch: str, font: str, kind: str, out: Path, read_only: bool, ctx) -> dict:
+def evaluate(ch, font, kind, out: Path, read_only: bool, ctx, overlay: bool = False) -> dict:
     seed = sum(map(ord, ch + font + kind)) % 1000
     _, data, truth = real_style(ch, font, kind, seed)
     path = out / f"{ord(ch):x}-{font}-{kind}.{'png' if KINDS[kind]['jpeg'] is None else 'jpg'}"
@@ -85,6 +88,8 @@ def evaluate(ch: str, font: str, kind: str, out: Path, read_only: bool, ctx) -> 
     from sim.image.png import write_png
 
     write_png(path.with_name(path.stem + "-ink.png"), np.where(ink, 0.0, 1.0))  # measured again
+    if overlay:
+        write_png(path.with_name(path.stem + "-overlay.png"), overlaid(truth, im.ink.mask, ink))
     row["strokes"] = len(im.strokes)
     row["read_iou"] = round(box_iou(im.ink.mask, truth), 4)  # the ink read off the picture
     row["iou"] = round(box_iou(ink, truth), 4)
@@ -96,6 +101,28 @@ def evaluate(ch: str, font: str, kind: str, out: Path, read_only: bool, ctx) -> 
     row["width_err"] = round(err, 3)
     row["width_ratio"] = round(ratio, 3)
     return row
+
+
+OVERLAY_SIDE = 256  # px a side of each of the overlay's squares (the IoU's own square)
+
+
+def overlaid(truth: np.ndarray, read: np.ndarray, written: np.ndarray) -> np.ndarray:
+    """The true ink against the ink read and against the ink written, side by side, each in
+    its box (``box_shape``, as ``box_iou`` compares them): black where both are ink, red the
+    truth's alone, blue ours alone, white paper."""
+    from sim.picture.correct import box_shape
+
+    t = box_shape(truth, OVERLAY_SIDE)
+    halves = []
+    for ours in (read, written):
+        o = box_shape(ours, OVERLAY_SIDE)
+        rgb = np.ones((*t.shape, 3))
+        rgb[t & o] = 0.0
+        rgb[t & ~o] = (1.0, 0.2, 0.2)
+        rgb[~t & o] = (0.2, 0.4, 1.0)
+        halves.append(rgb)
+    gap = np.ones((OVERLAY_SIDE, 8, 3))
+    return np.concatenate([halves[0], gap, halves[1]], axis=1)
 
 
 def _imitated(path, read_only: bool, ctx):
@@ -141,6 +168,7 @@ def main(argv=None) -> int:
     ap.add_argument("--per-char", type=int, default=2, help="kinds each character is shown in")
     ap.add_argument("--only", default="", help="of the cases, only those of these characters")
     ap.add_argument("--read-only", action="store_true", help="the outlines read, not written")
+    ap.add_argument("--overlay", action="store_true", help="write each case's -overlay.png")
     ap.add_argument("--out", default="/tmp/picture/eval", help="folder for the pictures")
     ap.add_argument("--workers", type=int, default=1, help="processes (each case is one)")
     args = ap.parse_args(argv)
@@ -162,7 +190,7 @@ def main(argv=None) -> int:
         ctx = (template, calibrate(template, cache_dir=cache_dir()))
     rows = []
     todo = [
-        (*c, out, args.read_only, ctx)
+        (*c, out, args.read_only, ctx, args.overlay)
         for c in cases(chars, fonts, kinds, args.per_char)
         if not args.only or c[0] in args.only
     ]

@@ -45,3 +45,26 @@ def test_the_previous_version_is_exported_and_a_bad_revision_named(tmp_path):
     with pytest.raises(SystemExit, match="not a revision"):
         with revision.versions(tmp_path / "b", "no-such-revision-xyz"):
             pass
+
+
+def test_the_imitation_overlay_shows_missed_and_added_ink_in_the_ious_boxes():
+    # imitate_eval --overlay (issue 26, point 4): where the imitation loses, in the square the
+    # box IoU compares: ink the writing missed is red, ink it added blue; the same ink elsewhere
+    # on the sheet is all black (the box forgives place and size)
+    from scripts.imitate_eval import OVERLAY_SIDE, overlaid
+
+    truth = np.zeros((200, 200), bool)
+    truth[40:60, 20:180] = True  # a horizontal
+    truth[40:180, 90:110] = True  # a vertical
+    read = np.roll(truth, (7, -5), axis=(0, 1))  # the same ink elsewhere on the sheet
+    written = truth.copy()
+    written[40:60, 130:150] = False  # a piece of the horizontal missed (the box is kept)
+    written[60:70, 20:60] = True  # ink added below the horizontal
+    img = overlaid(truth, read, written)
+    assert img.shape == (OVERLAY_SIDE, 2 * OVERLAY_SIDE + 8, 3)
+    left, right = img[:, :OVERLAY_SIDE], img[:, OVERLAY_SIDE + 8 :]
+    red = (right[..., 0] == 1.0) & (right[..., 2] < 0.5)
+    blue = (right[..., 2] == 1.0) & (right[..., 0] < 0.5)
+    assert not ((left[..., 0] == 1.0) & (left[..., 2] < 0.5)).any()  # nothing missed
+    assert not ((left[..., 2] == 1.0) & (left[..., 0] < 0.5)).any()  # nor added
+    assert red.any() and blue.any()
