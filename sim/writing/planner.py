@@ -270,6 +270,24 @@ def _turn_ease(path, s) -> np.ndarray:
 RUN_UP = 1.0  # the entry's run-up along the stroke (half steps a sample): the tip lands moving
 # on; 0 lands it on the start (where a picture's ink begins: the run-up's tip lays a hairline
 # before it)
+HIDDEN_DOWN = 0.5  # a movement heading down by more than this (sine; 30 degrees below the
+# horizontal: a 竖, a 撇, a dot, a 捺) hides its tip (``_landing``)
+
+
+def _landing(path, run_up: float) -> float:
+    """The run-up a movement's entry comes down with (``_enter_and_leave``; ``path``: its
+    body samples' targets, paper mm, y up). A stroke that sets off down (竖, 撇, 点, 捺:
+    its way from start to end heads down by more than ``HIDDEN_DOWN``) is entered with the tip
+    hidden (藏锋, 逆锋起笔): the brush comes down moving back up the stroke, against its way,
+    so the landing tip trails into the stroke, the belly presses on the start and the body
+    covers the tip. One that sets off along (横, 提) lands moving on, its tip showing at the
+    head as the outline's point does (露锋). (Added in issue 26: landing moving on, every
+    downward head had the tip's hairline standing out behind it, a beak above-left of the
+    outline's round head; entered so, a 横's head flipped the hair over, a horn on its top.)
+    0 (a picture's exact start) stays 0."""
+    chord = path[-1] - path[0]
+    down = -chord[1] / max(float(np.sqrt(chord[0] * chord[0] + chord[1] * chord[1])), 1e-9)
+    return -run_up if down > HIDDEN_DOWN else run_up
 
 
 def _enter_and_leave(
@@ -293,6 +311,7 @@ def _enter_and_leave(
     entry = np.arange(a + 1, body[0])
     t0 = pl.tangent[body[0]]
     f = np.arange(1, len(entry) + 1) / max(len(entry), 1)
+    run_up = _landing(pl.target[body], run_up)
     back = (len(entry) + 1 - np.arange(1, len(entry) + 1)) * 0.5 * step_mm * run_up
     if corner[0] is not None:  # after a sharp turn the tip comes down on the corner, not before it
         back = back * 0.0

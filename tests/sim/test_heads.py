@@ -48,3 +48,34 @@ def test_a_head_is_placed_sideways_as_the_stroke_past_it(response):
         shift = np.sum((moved - plain) * normal, axis=1)
         assert np.allclose(shift[head], 0.6, atol=1e-3)
         assert np.allclose(shift[past:], 0.6, atol=1e-3)
+
+
+def _entry(pl, response, stroke, run_up):
+    """The base's (x, y) over the entry of ``stroke`` of plan ``pl`` (the samples before its
+    first body sample that come down onto it) and the stroke's start and way (unit)."""
+    hair = stiff_template().resolve()[1].hair_length_mm
+    a, b = pl.strokes[stroke]
+    body = np.flatnonzero(pl.phase[a:b] == WRITING) + a
+    samples = np.zeros((len(pl.target), 6))
+    samples[:, :2], samples[:, 2] = pl.target, hair + HOVER_MM
+    press = response.press_for(pl.width[body])
+    brush = (hair + HOVER_MM, hair, 0.5)
+    _fill(samples, pl, response, (a, b), press, np.zeros(len(body)), brush, run_up=run_up)
+    run = _movements(body)[0]
+    way = pl.target[run[-1]] - pl.target[run[0]]
+    return samples[a : body[0], :2], samples[body[0], :2], way / np.linalg.norm(way)
+
+
+def test_a_stroke_that_sets_off_down_hides_its_tip(response):
+    # 十's 竖 and 八's 撇 and 捺 are entered against their way (藏锋): the entry comes down
+    # from inside the stroke, so the landing tip trails into it, not out behind the head as a
+    # beak (before, every head's entry came from behind); 十's 横 lands moving on (露锋: the
+    # font's 横 head is its point); imitating a picture (run-up 0) lands on the start
+    cases = (("十", 1, 1.0), ("八", 0, 1.0), ("八", 1, 1.0), ("十", 0, -1.0))
+    for char, stroke, side in cases:
+        pl = plan(find_char(char), 100.0, 0.5)
+        entry, start, way = _entry(pl, response, stroke, 1.0)
+        ahead = (entry - start) @ way
+        assert len(ahead) >= 4 and np.all(side * ahead[:-1] > 0.1), (char, stroke, ahead)
+        entry, start, _ = _entry(pl, response, stroke, 0.0)
+        assert np.allclose(entry, start, atol=1e-3)
