@@ -285,6 +285,8 @@ def _landing(path, run_up: float) -> float:
     downward head had the tip's hairline standing out behind it, a beak above-left of the
     outline's round head; entered so, a 横's head flipped the hair over, a horn on its top.)
     0 (a picture's exact start) stays 0."""
+    if run_up <= 0.0:
+        return run_up
     chord = path[-1] - path[0]
     down = -chord[1] / max(float(np.sqrt(chord[0] * chord[0] + chord[1] * chord[1])), 1e-9)
     return -run_up if down > HIDDEN_DOWN else run_up
