@@ -516,29 +516,43 @@ def _wick(w, ink, draw, passes: int, rate: float = WICK_RATE) -> None:
     """Capillary wicking (see WICK_MM) of the window's wetness ``w`` (h, w) and ink (h, w, 3),
     in place, over ``passes`` passes at ``rate``; ``draw`` (h, w) in [0, 1] how well each pixel
     draws.
-    Each pass moves liquid down the rows, then along them (each stable on its own)."""
+    Each pass moves liquid down the rows, then along them (each stable on its own). The ink is
+    worked on as rows of 3 w numbers (``rows``), each pixel's liquid repeated for its three
+    colours: long runs of numbers, not three at a time (issue 28: the same products, faster)."""
+    if not (w > 0.0).any():
+        return
     rate = np.float32(rate)
     down = rate * draw[:-1] * draw[1:]  # between a pixel and the one below it, ...
     along = rate * draw[:, :-1] * draw[:, 1:]  # ... and the one beside it
-    for _ in range(passes):
-        if not (w > 0.0).any():
-            return
+    rows = ink.reshape(ink.shape[0], -1)  # a view where the window's rows are whole
+    steps = ((down, np.s_[:-1], np.s_[1:]), (along, np.s_[:, :-1], np.s_[:, 1:]))
+    inks = ((np.s_[:-1], np.s_[1:]), (np.s_[:, :-3], np.s_[:, 3:]))  # the same pixels' colours
+    for k in range(passes):
+        if k and not (w > 0.0).any():
+            break
         inflow = np.zeros_like(w)
-        carried = np.zeros_like(ink)
-        for g, a, b in ((down, np.s_[:-1], np.s_[1:]), (along, np.s_[:, :-1], np.s_[:, 1:])):
+        carried = np.zeros_like(rows)
+        for (g, a, b), (ia, ib) in zip(steps, inks, strict=True):
             flux = g * (w[a] - w[b])  # > 0: from a to b
             to_b, to_a = np.maximum(flux, 0.0), np.maximum(-flux, 0.0)
             inflow[b] += to_b
             inflow[a] += to_a
-            carried[b] += to_b[..., None] * ink[a]
-            carried[a] += to_a[..., None] * ink[b]
+            carried[ib] += _colours(to_b) * rows[ia]
+            carried[ia] += _colours(to_a) * rows[ib]
             w[a] -= flux
             w[b] += flux
         # the pigment the liquid carried in: the givers' colour, weighted by what each gave,
         # laid over what the pixel holds as Eq. 26's change lays it (more liquid, more of it)
         take = WICK_PIGMENT * -exact.expm1(-inflow / FULL_WET)
         take /= np.where(inflow > 0.0, inflow, 1.0)
-        ink += (1.0 - ink) * (carried * take[..., None])
+        rows += (1.0 - rows) * (carried * _colours(take))
+    if not np.may_share_memory(rows, ink):  # (a window of a sheet: rows, a view, already is)
+        ink[...] = rows.reshape(ink.shape)
+
+
+def _colours(a):
+    """(h, w) -> (h, 3 w): every pixel's number three times, once for each of its colours."""
+    return a.repeat(3, axis=1)
 
 
 class PaperHold:
