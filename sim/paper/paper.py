@@ -39,7 +39,7 @@ import numpy as np
 from ..core import exact
 from ..image.png import to_uint8
 from .grain import paper_grain  # noqa: F401 (the sheet's grain: read from here too)
-from .laying import _RGB, Laying, lay_out
+from .laying import _RGB, Laying, lay_out, per_pixel
 from .lift import LEVEL_WET, box_mean, level_px, level_rows, spatter
 from .texture import paper_tone, sheet_draw, sheet_tone
 
@@ -202,7 +202,7 @@ class Paper:
                 set_ = _set_share(lam, np.take(missed.reshape(-1), li), after)
                 top = np.maximum(old, lay)  # wet: the pigments mix, the darker shows
                 stacked = old + lay * (1.0 - old)  # set: 1 - (1 - old)(1 - lay)
-                lay = top + set_[:, None] * (stacked - top)
+                lay = top + per_pixel(stacked - top, set_)
             np.maximum(old, lay, out=old)
             np.put(inkv, fi, old.reshape(-1).view(_RGB))
         w = np.where(laying.dried.reshape(w.shape), w, np.maximum(w - drystep, 0.0))
@@ -294,9 +294,12 @@ class Paper:
             slice(by0, by1), slice(x0, x1), self.ppm, self.grain_seed, TILE, self.wick_fibre
         )
         faint = HALO_PIGMENT * np.minimum(reach * np.float32(1.0 / FULL_WET), 1.0) * draw
-        tint = faint[..., None] * colour
+        tint = np.empty(faint.shape + (3,), dtype=np.float32)  # faint times the colour, ...
+        for c in range(3):  # ... a colour at a time (long runs of numbers; issue 28)
+            np.multiply(faint, colour[c], out=tint[..., c])
         ink = self.ink[by0:by1, x0:x1]
-        darker = np.nonzero((tint > ink).any(axis=2))
+        over = [tint[..., c] > ink[..., c] for c in range(3)]
+        darker = np.nonzero(over[0] | over[1] | over[2])
         if darker[0].size == 0:
             return
         ry0, ry1 = int(darker[0].min()), int(darker[0].max()) + 1
