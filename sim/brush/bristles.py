@@ -49,8 +49,7 @@ from typing import NamedTuple
 import numpy as np
 
 from ..core import exact
-from ..core.frames import clip
-from ..paper.laying import per_pixel
+from ..core.frames import clip, per_pixel
 from . import trailpath
 from .state import BUNDLES, CONTACT_EPS
 

@@ -15,6 +15,7 @@ from typing import NamedTuple
 import numpy as np
 
 from ..core import exact
+from ..core.frames import per_pixel
 from .grain import paper_grain
 
 _RGB = np.dtype((np.void, 12))  # a pixel's three float32 ink densities as one item
@@ -35,14 +36,6 @@ class Laying(NamedTuple):
     bounds: list
     dried: np.ndarray
     follow: tuple | None
-
-
-def per_pixel(col, a) -> np.ndarray:
-    """col * a[:, None] of colours ``col`` (n, 3) and a number a pixel ``a`` (n,): the same
-    products, made as one run of 3 n numbers (a broadcast over the colours goes three numbers
-    at a time; issue 28)."""
-    col = np.ascontiguousarray(col)
-    return (col.reshape(-1) * a.repeat(3)).reshape(col.shape)
 
 
 def lay_out(paper, steps, grain_depth: float, full_wet: float) -> list:

@@ -37,9 +37,10 @@ from typing import NamedTuple
 import numpy as np
 
 from ..core import exact
+from ..core.frames import per_pixel
 from ..image.png import to_uint8
 from .grain import paper_grain  # noqa: F401 (the sheet's grain: read from here too)
-from .laying import _RGB, Laying, lay_out, per_pixel
+from .laying import _RGB, Laying, lay_out
 from .lift import LEVEL_WET, box_mean, level_px, level_rows, spatter
 from .texture import paper_tone, sheet_draw, sheet_tone
 
