@@ -49,7 +49,7 @@ from typing import NamedTuple
 import numpy as np
 
 from ..core import exact
-from ..core.frames import clip
+from ..core.frames import clip, per_pixel
 from . import trailpath
 from .state import BUNDLES, CONTACT_EPS
 
@@ -250,7 +250,7 @@ def lay(marks, st: BristleState, ppm: float) -> list:
             replace(
                 mk,
                 wet=wet * pool,
-                col=mk.col * share.astype(np.float32)[:, None],
+                col=per_pixel(mk.col, share.astype(np.float32)),
                 skip=share <= 0.0,
             )
         )
@@ -302,7 +302,7 @@ def lay_steps(marks_per_step, states, ppm: float) -> list:
     shares = np.split(share.astype(np.float32), cut)
     skips = np.split(share <= 0.0, cut)
     laid = iter(
-        replace(mk, wet=w, col=mk.col * sh[:, None], skip=sk)
+        replace(mk, wet=w, col=per_pixel(mk.col, sh), skip=sk)
         for (_, mk), w, sh, sk in zip(live, wet, shares, skips, strict=True)
     )
     return [[next(laid) if mk.rows.size else mk for mk in marks] for marks in marks_per_step]

@@ -32,7 +32,7 @@ import numpy as np
 
 from ..core import exact
 from ..core.exact import matmul
-from ..core.frames import dot, norm, stack1
+from ..core.frames import dot, norm, per_pixel, stack1
 from .ink import LOAD, TEXTURE, TEXTURE_NAMES
 from .state import INK_FIELDS
 
@@ -689,9 +689,8 @@ def _marks_ink(prims, win, lo, hi, ppm, rows: SurfaceRows) -> WindowsInk:
     cols = ent.cols[ok]
     inkp = rows.ink[prims, rows_k.j0 : rows_k.j1]
     wet, col = _pixel_ink(inkp, rows_k, sc, ent, slab, n_ok, sol.lam[ok], cols, ppm)
-    col *= _cover(rows_k, slab, n_ok, sol.lam[ok], sol.p[ok], sol.q[ok], ppm).astype(np.float32)[
-        :, None
-    ]
+    cover = _cover(rows_k, slab, n_ok, sol.lam[ok], sol.p[ok], sol.q[ok], ppm)
+    col = per_pixel(col, cover.astype(np.float32))
     lateral = np.clip(sol.p[ok], -1.0, 1.0)
     depth = np.sqrt(sol.f2[ok])
     rws = sc.row[ent.entry_scan[ok]]

@@ -221,6 +221,8 @@ class HairyBrush:
         (radius r) at u = 0, the middle control ellipse (a/2, b/2) at u = loc, the tip control
         line (len/2, 0) at u = 1. Between them the brush bulges to its belly (sine) and tapers
         to an ogive tip (1 - x^2), the shape of a real brush head (Fig. 2(a), 5(a))."""
+        if self.m == 1 and 0.0 < float(self.loc[0]) < 1.0:
+            return self._profile_semiaxes_one(np.asarray(u, dtype=float).tolist())
         u = np.asarray(u)[None, :]
         loc = self.loc[:, None]
         r = self.r
@@ -232,6 +234,25 @@ class HairyBrush:
         alpha = np.where(below, r + (a2 - r) * up, l2 + (a2 - l2) * down)
         beta = np.where(below, r + (b2 - r) * up, b2 * down)
         return alpha, beta
+
+    def _profile_semiaxes_one(self, u: list):
+        """``profile_semiaxes`` of the one primitive (0 < loc < 1) on Python floats, station
+        by station: the same operations on the same numbers, without a numpy call each (the
+        brush's step on a dozen numbers; issue 28)."""
+        loc, r = float(self.loc[0]), self.r
+        a2, b2, l2 = float(self.a[0]) / 2, float(self.b[0]) / 2, float(self.tiplen[0]) / 2
+        alpha, beta = [], []
+        for s in u:
+            if s <= loc:
+                up = exact.sin(0.5 * np.pi * _clip01(s / loc))
+                alpha.append(r + (a2 - r) * up)
+                beta.append(r + (b2 - r) * up)
+            else:
+                x = _clip01((s - loc) / (1.0 - loc))
+                down = 1.0 - x * x
+                alpha.append(l2 + (a2 - l2) * down)
+                beta.append(b2 * down)
+        return np.array([alpha]), np.array([beta])
 
     def rows_ink(self, sec: Sections) -> np.ndarray:
         """The ink at the surface rows' axis points V^ (Eq. 21), see ``brush_ink.rows_ink``:
@@ -300,3 +321,9 @@ class HairyBrush:
 
     def restore(self, snap: dict):
         brush_state.restore(self, snap)
+
+
+def _clip01(x: float) -> float:
+    """np.clip(x, 0, 1) of a Python float: the same picks (max, then min, as numpy's clip)."""
+    x = x if x > 0.0 else 0.0
+    return x if x < 1.0 else 1.0

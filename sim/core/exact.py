@@ -409,21 +409,27 @@ _FLOAT32_EXP_RANGE = (-110.0, 90.0)  # beyond: -1 and inf in float32
 def _expm1_float32(x):
     """expm1 of a float32 array: 2**n expm1(r) + (2**n - 1) with x = n ln 2 + r, |r| <= ln 2 / 2,
     expm1(r) by its Taylor sum to r**9 / 9! (relative error under 1e-9, far below float32's
-    rounding) in float64, rounded once to float32."""
-    x = np.clip(x.astype(float), *_FLOAT32_EXP_RANGE)
+    rounding) in float64, rounded once to float32. The sum is made in place and 2**n read
+    from a table (the same numbers as ldexp's; issue 28)."""
+    x = _clip(x.astype(float), *_FLOAT32_EXP_RANGE)
     n = np.rint(x * _INV_LN2)
     r = (x - n * _LN2_HI) - n * _LN2_LO
-    c = _EXPM1_TAYLOR
-    p = r * (
-        1.0
-        + r
-        * (
-            c[0]
-            + r * (c[1] + r * (c[2] + r * (c[3] + r * (c[4] + r * (c[5] + r * (c[6] + r * c[7]))))))
-        )
-    )
-    two_n = np.ldexp(1.0, n.astype(np.int32))
-    return (p * two_n + (two_n - 1.0)).astype(np.float32)[()]
+    p = r * _EXPM1_TAYLOR[-1]
+    for c in _EXPM1_TAYLOR[-2::-1]:  # r (1 + r (c0 + r (c1 + ... r c7)))
+        p += c
+        p *= r
+    p += 1.0
+    p *= r
+    two_n = _POW2.take(n.astype(np.intp) - _POW2_FROM)
+    p *= two_n
+    two_n -= 1.0
+    p += two_n
+    return p.astype(np.float32)[()]
+
+
+_clip = (np._core if np.lib.NumpyVersion(np.__version__) >= "2.0.0" else np.core).umath.clip
+_POW2_FROM = -160  # 2**n for the n of _FLOAT32_EXP_RANGE: ldexp(1, n), exact
+_POW2 = np.ldexp(1.0, np.arange(_POW2_FROM, 131, dtype=np.int32))
 
 
 def arcsin(x):

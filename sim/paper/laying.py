@@ -15,6 +15,7 @@ from typing import NamedTuple
 import numpy as np
 
 from ..core import exact
+from ..core.frames import per_pixel
 from .grain import paper_grain
 
 _RGB = np.dtype((np.void, 12))  # a pixel's three float32 ink densities as one item
@@ -67,7 +68,7 @@ def lay_out(paper, steps, grain_depth: float, full_wet: float) -> list:
     # the pixel takes the colour the liquid offered to it can hold
     held = -exact.expm1(-offer / full_wet)
     held = np.where(skip, 0.0, held).astype(np.float32)
-    lay = col * held[:, None]
+    lay = per_pixel(col, held)
     out, at, m = [], 0, 0
     for marks in steps:
         if not marks:
@@ -112,7 +113,7 @@ def _laying(paper, marks, pixels, full, wet_tau, colours) -> Laying:
             float(wet_tau.mean()),
             float(np.sqrt(n / np.pi)),
         )
-        follow = (tuple(float(c) for c in col.max(axis=0)), here)
+        follow = (tuple(float(np.maximum.reduce(col[:, c])) for c in range(3)), here)
     bounds = [0, loc.size]
     top = int(rank.max())
     if top:

@@ -39,16 +39,18 @@ def level_px(ppm: float) -> int:
 
 def box_mean(a, r: int, axis: int) -> np.ndarray:
     """Mean of ``a`` (2-D) over 2 r + 1 pixels along ``axis`` (zero beyond the ends)."""
-    if axis == 1:
-        return box_mean(a.T, r, 0).T
-    n = a.shape[0]
-    c = np.cumsum(a, axis=0, dtype=np.float32)
+    n = a.shape[axis]
+    c = np.cumsum(a, axis=axis, dtype=np.float32)  # (along the rows as they lie: the same sums)
     out = np.empty_like(c)
     k = min(r, n - 1)
-    out[: n - k] = c[k:]  # the sum up to r ahead, ...
-    out[n - k :] = c[n - 1]  # ... or to the end
+
+    def at(part):  # the part of the pixels along ``axis``
+        return (slice(None), part) if axis == 1 else part
+
+    out[at(slice(0, n - k))] = c[at(slice(k, None))]  # the sum up to r ahead, ...
+    out[at(slice(n - k, None))] = c[at(slice(n - 1, n))]  # ... or to the end
     if n > r + 1:  # less what lies before the window, where there is some
-        out[r + 1 :] -= c[: n - r - 1]
+        out[at(slice(r + 1, None))] -= c[at(slice(0, n - r - 1))]
     return out * np.float32(1.0 / (2 * r + 1))
 
 
@@ -65,14 +67,18 @@ def level_rows(paper, start: int, colour, rows, outer):
     if not film[by0 - sy0 : by1 - sy0].any():
         return None
     ink = np.minimum(paper.ink[sy0:sy1, x0:x1], np.float32(LEVEL_DENSEST))
-    inked = ink.max(axis=2) * np.float32(1.0 / (LEVEL_INKED * max(max(colour), 1e-6)))
+    inked = _darkest(ink) * np.float32(1.0 / (LEVEL_INKED * max(max(colour), 1e-6)))
     film *= np.minimum(inked, 1.0)  # a bundle's gap (Eq. 27's Cr = 0) laid no film
     film = np.where(film >= LEVEL_LEAST, film, np.float32(0.0))
     moves = np.nonzero(film[by0 - sy0 : by1 - sy0] > 0.0)
     if moves[0].size == 0:
         return None
     depth_max = -exact.log1p(-np.float32(LEVEL_DENSEST))
-    depth = -exact.log1p(-ink)  # the pigment a pixel holds (Beer-Lambert: density 1 - e^-p)
+    # the pigment a pixel holds (Beer-Lambert: density 1 - e^-p), where it holds film (elsewhere
+    # the film's zero weighs it out: read as 0, the same sums; issue 28)
+    depth = np.zeros_like(ink)
+    held = film > 0.0
+    depth[held] = -exact.log1p(-ink[held])
     share = box_mean(box_mean(box_mean(box_mean(film, r, 0), r, 1), r, 0), r, 1)
     here = (moves[0] + (by0 - sy0), moves[1])
     level = np.empty((moves[0].size, 3), dtype=np.float32)
@@ -85,6 +91,12 @@ def level_rows(paper, start: int, colour, rows, outer):
         level[:, c] = p + film[here] * (mean - p)
     new = -exact.expm1(-level)
     return (moves[0] + by0, moves[1] + x0), new
+
+
+def _darkest(ink) -> np.ndarray:
+    """ink.max(axis=2) of (h, w, 3) ink, a colour at a time (the same picks, in the same
+    order: long runs of numbers, not three at a time; issue 28)."""
+    return np.maximum(np.maximum(ink[..., 0], ink[..., 1]), ink[..., 2])
 
 
 # Model addition (not in the paper): the droplets a brush throws. A loaded brush that leaves

@@ -1,0 +1,108 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
+"""Issue 28.2: the engine's faster forms give the very numbers of the plain forms they replace,
+bit for bit, on random input (the plain forms written out here as they were)."""
+
+import math
+
+import numpy as np
+
+from sim.brush.primitive import HairyBrush
+from sim.core import exact
+from sim.core.frames import per_pixel
+from sim.core.params import BrushGeometry, QualityParams
+from sim.paper.lift import box_mean
+from sim.paper.paper import FULL_WET, WICK_PIGMENT, WICK_RATE, _wick
+
+RNG = np.random.default_rng(28)
+
+
+def _plain_wick(w, ink, draw, passes, rate=WICK_RATE):
+    """The wicking with its colours broadcast three numbers at a time (before issue 28)."""
+    rate = np.float32(rate)
+    down = rate * draw[:-1] * draw[1:]
+    along = rate * draw[:, :-1] * draw[:, 1:]
+    for _ in range(passes):
+        if not (w > 0.0).any():
+            return
+        inflow = np.zeros_like(w)
+        carried = np.zeros_like(ink)
+        for g, a, b in ((down, np.s_[:-1], np.s_[1:]), (along, np.s_[:, :-1], np.s_[:, 1:])):
+            flux = g * (w[a] - w[b])
+            to_b, to_a = np.maximum(flux, 0.0), np.maximum(-flux, 0.0)
+            inflow[b] += to_b
+            inflow[a] += to_a
+            carried[b] += to_b[..., None] * ink[a]
+            carried[a] += to_a[..., None] * ink[b]
+            w[a] -= flux
+            w[b] += flux
+        take = WICK_PIGMENT * -exact.expm1(-inflow / FULL_WET)
+        take /= np.where(inflow > 0.0, inflow, 1.0)
+        ink += (1.0 - ink) * (carried * take[..., None])
+
+
+def test_wicking_on_rows_of_colours_gives_the_broadcast_numbers():
+    for h, w, passes in ((1, 7, 1), (9, 1, 1), (23, 31, 1), (40, 17, 3)):
+        wet = (RNG.random((h, w)) * 0.6).astype(np.float32)
+        wet[RNG.random((h, w)) < 0.3] = 0.0
+        sheet = RNG.random((h + 4, w + 6, 3)).astype(np.float32)  # a window of a sheet
+        draw = (0.05 + 0.95 * RNG.random((h, w))).astype(np.float32)
+        ink, ref_ink = sheet[2:-2, 3:-3], sheet[2:-2, 3:-3].copy()
+        ref_w = wet.copy()
+        _wick(wet, ink, draw, passes)
+        _plain_wick(ref_w, ref_ink, draw, passes)
+        assert wet.tobytes() == ref_w.tobytes()
+        assert ink.tobytes() == ref_ink.tobytes()
+        assert sheet[:2].any()  # (the sheet around the window is left as it was)
+
+
+def test_expm1_of_float32_gives_ldexps_numbers():
+    x = np.concatenate(
+        [
+            -np.abs(RNG.standard_normal(4000)) * 10.0 ** RNG.uniform(-8, 2, 4000),
+            RNG.uniform(-200.0, 100.0, 2000),
+            [0.0, -0.0, -1e-45, 88.7, 90.0, 91.0, -110.0, -111.0],
+        ]
+    ).astype(np.float32)
+    y = np.clip(x.astype(float), -110.0, 90.0)
+    n = np.rint(y * exact._INV_LN2)
+    r = (y - n * exact._LN2_HI) - n * exact._LN2_LO
+    p = 0.0
+    for c in exact._EXPM1_TAYLOR[::-1]:
+        p = c + r * p
+    p = r * (1.0 + r * p)
+    two_n = np.ldexp(1.0, n.astype(np.int32))
+    with np.errstate(over="ignore"):
+        plain = (p * two_n + (two_n - 1.0)).astype(np.float32)
+        assert exact._expm1_float32(x).tobytes() == plain.tobytes()
+
+
+def test_box_mean_along_the_rows_is_the_transposed_columns_mean():
+    for shape, r in (((5, 30), 2), ((30, 5), 7), ((17, 19), 1), ((3, 3), 4)):
+        a = RNG.random(shape).astype(np.float32)
+        assert box_mean(a, r, 1).tobytes() == np.ascontiguousarray(box_mean(a.T, r, 0).T).tobytes()
+
+
+def test_per_pixel_is_the_broadcast_product():
+    col = RNG.random((1001, 3)).astype(np.float32)
+    a = RNG.random(1001).astype(np.float32)
+    assert per_pixel(col, a).tobytes() == (col * a[:, None]).tobytes()
+    assert per_pixel(col[::2], a[::2]).tobytes() == (col[::2] * a[::2, None]).tobytes()
+
+
+def test_one_primitives_profile_is_the_arrays():
+    brush = HairyBrush(BrushGeometry(), QualityParams(), np.random.default_rng(0))
+    cc = brush.cc[:1].copy()
+    u = np.linspace(0.0, 1.0, 23)
+    for _ in range(50):
+        loc, tip = RNG.uniform(0.05, 0.9), RNG.random()
+        a, b = RNG.uniform(0.2, 3.0, 2)
+        fields = (np.array([loc]), np.array([a]), np.array([b]), np.array([tip]))
+        brush.cc = np.concatenate([cc, cc])  # two primitives: the arrays' form
+        brush.loc, brush.a, brush.b, brush.tiplen = (np.r_[v, v] for v in fields)
+        two = brush.profile_semiaxes(u)
+        brush.cc = cc  # one: Python floats
+        brush.loc, brush.a, brush.b, brush.tiplen = fields
+        one = brush.profile_semiaxes(u)
+        assert two[0][:1].tobytes() == one[0].tobytes()
+        assert two[1][:1].tobytes() == one[1].tobytes()
+    assert math.isclose(float(one[0][0, 0]), brush.r)
