@@ -25,6 +25,12 @@ import math
 
 import numpy as np
 
+# the ufunc np.clip calls, without its Python wrappers (the same picks): numpy._core from 2.0,
+# numpy.core before (1.26 has a numpy._core too, without umath, once something imports it);
+# ``sim.core.frames`` hands it on
+_NUMPY_2 = np.lib.NumpyVersion(np.__version__) >= "2.0.0"
+clip = (np._core if _NUMPY_2 else np.core).umath.clip
+
 
 def _keeps_float32(f):
     """f computed in float64 and rounded back to float32 when every argument is a float32
@@ -411,7 +417,7 @@ def _expm1_float32(x):
     expm1(r) by its Taylor sum to r**9 / 9! (relative error under 1e-9, far below float32's
     rounding) in float64, rounded once to float32. The sum is made in place and 2**n read
     from a table (the same numbers as ldexp's; issue 28)."""
-    x = _clip(x.astype(float), *_FLOAT32_EXP_RANGE)
+    x = clip(x.astype(float), *_FLOAT32_EXP_RANGE)
     n = np.rint(x * _INV_LN2)
     r = (x - n * _LN2_HI) - n * _LN2_LO
     p = r * _EXPM1_TAYLOR[-1]
@@ -427,7 +433,6 @@ def _expm1_float32(x):
     return p.astype(np.float32)[()]
 
 
-_clip = (np._core if np.lib.NumpyVersion(np.__version__) >= "2.0.0" else np.core).umath.clip
 _POW2_FROM = -160  # 2**n for the n of _FLOAT32_EXP_RANGE: ldexp(1, n), exact
 _POW2 = np.ldexp(1.0, np.arange(_POW2_FROM, 131, dtype=np.int32))
 

@@ -13,13 +13,9 @@ import math
 
 import numpy as np
 
-from .exact import arcsin, arctan2, matmul, sin_cos
+from .exact import _NUMPY_2, arcsin, arctan2, clip, matmul, sin_cos  # noqa: F401 (handed on)
 
 _add = np.add.reduce  # np.sum without its Python wrapper (the same sums)
-# the ufunc np.clip calls, without its Python wrappers (the same picks): numpy._core from 2.0,
-# numpy.core before (1.26 has a numpy._core too, without umath, once something imports it)
-_NUMPY_2 = np.lib.NumpyVersion(np.__version__) >= "2.0.0"
-clip = (np._core if _NUMPY_2 else np.core).umath.clip
 
 
 def diff(a, axis: int = -1):

@@ -268,8 +268,8 @@ def _turn_ease(path, s) -> np.ndarray:
 
 
 RUN_UP = 1.0  # the entry's run-up along the stroke (half steps a sample): the tip lands moving
-# on; 0 lands it on the start (where a picture's ink begins: the run-up's tip lays a hairline
-# before it)
+# on (against the stroke where it sets off down, ``_landing``); 0 lands it on the start (where
+# a picture's ink begins: the run-up's tip lays a hairline before it)
 HIDDEN_DOWN = 0.5  # a movement heading down by more than this (sine; 30 degrees below the
 # horizontal: a 竖, a 撇, a dot, a 捺) hides its tip (``_landing``)
 
@@ -296,9 +296,10 @@ def _enter_and_leave(
     samples, pl, body, hover, hair, step_mm, corner=(None, None), run_up=RUN_UP, width_at=None
 ) -> None:
     """The brush comes down moving along the movement's first direction (over ``run_up`` times
-    half a step a sample: with 0, straight down onto the start), the tip touching where
-    the body begins, and lifts off moving on along the last direction (a flick, so that hooks
-    and left-falling strokes end in a point, not a blot from a lift on the spot). ``corner``:
+    half a step a sample: with 0, straight down onto the start; a stroke that sets off down
+    comes down moving back up it, ``_landing``), the tip touching where the body begins, and
+    lifts off moving on along the last direction (a flick, so that hooks and left-falling
+    strokes end in a point, not a blot from a lift on the spot). ``corner``:
     the base's height at the sharp corner the movement begins after / ends at
     (``median_pieces``; None: none). At a 折 the brush lifts only slightly (``ZHE_KEEP``), on
     the corner itself (a flick there overshoots the corner), and presses again (``ENTRY_TOUCH``):
