@@ -501,9 +501,10 @@ def _fill(
         j1 = j0 + len(run)
         touch = 1.0 if hook[r] else ZHE_TOUCH if r else ENTRY_TOUCH  # a hook sets off pressed
         p = press[j0:j1] * _entry_ramp(pl.target[run], pl.width[run], touch)
-        if hook[r]:  # the hook gathers the hair to its point as it flicks out, lifting from
-            # the foot's press on (``HOOK_KEEP``), never pressing again
-            p = np.minimum(p * _gathered(len(run)), hair - at)
+        if hook[r]:  # the hook gathers the hair to its point as it flicks out, setting off
+            # at no more than the foot's press through the turn (``HOOK_KEEP``): not pressed again
+            p = p * _gathered(len(run))
+            p = p * min(1.0, (hair - at) / max(float(p[0]), 1e-6))
         path = pl.target[run]
         if ends is not None:
             path = _ends_moved(path, pl.tangent[run], pl.width[run], ends[r])
