@@ -419,6 +419,14 @@ def _gathered(n: int) -> np.ndarray:
     return 1.0 - (1.0 - HOOK_GATHER) * t * t * (3.0 - 2.0 * t)
 
 
+def _onto_the_dun(pl: Plan, run, leg) -> bool:
+    """Whether the movement ``run`` (body samples) ends at a 折's shoulder the outline made a
+    顿 of (``outline._dun_point``): the next movement, ``leg``, sets off ahead of its end, not
+    back on the corner behind a foot it pressed into (a 竖折's corner, a picture's)."""
+    ahead = pl.target[leg[0]] - pl.target[run[-1]]
+    return float(ahead @ pl.tangent[run[-1]]) >= 0.0
+
+
 def _is_hook(pl: Plan, runs) -> list[bool]:
     """For each movement of a stroke (``runs``: its body samples), whether it leaves a hook's
     foot (``Plan.hooks``, from ``outline.median_movements``: a short last movement that turns
@@ -448,12 +456,13 @@ def _turn_on_the_tip(samples, pl: Plan, span, heights, dun=()) -> None:
     runs = [r for r in _movements(turning) if r.size]
     for c, (run, z) in enumerate(zip(runs, heights, strict=False)):
         samples[run, 2] = z
-        i0, i1 = run[0] - 1, run[-1] + 1
-        while c < len(dun) and dun[c] and pl.phase[i0] == LIFTING:
-            i0 -= 1
-        while pl.phase[i1] == ENTERING:
-            i1 += 1
-        run = np.arange(i0 + 1, i1)
+        if c < len(dun) and dun[c]:
+            i0, i1 = run[0] - 1, run[-1] + 1
+            while pl.phase[i0] == LIFTING:
+                i0 -= 1
+            while pl.phase[i1] == ENTERING:
+                i1 += 1
+            run = np.arange(i0 + 1, i1)
         p0, p1 = samples[run[0] - 1, :2], samples[run[-1] + 1, :2]
         t = (np.arange(1, len(run) + 1) / (len(run) + 1))[:, None]
         samples[run, :2] = p0 * (1.0 - t) + p1 * t
@@ -501,16 +510,14 @@ def _fill(
         j1 = j0 + len(run)
         touch = 1.0 if hook[r] else ZHE_TOUCH if r else ENTRY_TOUCH  # a hook sets off pressed
         p = press[j0:j1] * _entry_ramp(pl.target[run], pl.width[run], touch)
-        if hook[r]:  # the hook gathers the hair to its point as it flicks out, setting off
-            # at no more than the foot's press through the turn (``HOOK_KEEP``): not pressed again
+        if hook[r]:  # the hook gathers the hair to its point as it flicks out
             p = p * _gathered(len(run))
-            p = p * min(1.0, (hair - at) / max(float(p[0]), 1e-6))
         path = pl.target[run]
         if ends is not None:
             path = _ends_moved(path, pl.tangent[run], pl.width[run], ends[r])
         into_hook = r < len(runs) - 1 and hook[r + 1]  # the base stops on a hook's foot; into
-        # a 折 it goes on into the 顿 (``_turn_on_the_tip``)
-        into_zhe = r < len(runs) - 1 and not into_hook
+        # a 折's shoulder it goes on into the 顿 (``_turn_on_the_tip``)
+        into_zhe = r < len(runs) - 1 and not into_hook and _onto_the_dun(pl, run, runs[r + 1])
         samples[run, :2] = _lead_along(path, response.lag_for(p), into_hook, into_zhe)
         placed = side[j0:j1]
         if r == 0:  # the head; a leg sets off from the corner (a hook pressed from its foot)
@@ -523,7 +530,7 @@ def _fill(
         _enter_and_leave(samples, pl, run, hover, hair, step_mm, (at, nxt), run_up, width_at)
         if nxt is not None:
             heights.append(nxt)
-            dun.append(not hook[r + 1])
+            dun.append(into_zhe)
         at = nxt
         j0 = j1
     _turn_on_the_tip(samples, pl, span, heights, dun)
