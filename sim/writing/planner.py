@@ -515,10 +515,10 @@ def _fill(
         path = pl.target[run]
         if ends is not None:
             path = _ends_moved(path, pl.tangent[run], pl.width[run], ends[r])
-        into_hook = r < len(runs) - 1 and hook[r + 1]  # the base stops on a hook's foot; into
-        # a 折's shoulder it goes on into the 顿 (``_turn_on_the_tip``)
-        into_zhe = r < len(runs) - 1 and not into_hook and _onto_the_dun(pl, run, runs[r + 1])
-        samples[run, :2] = _lead_along(path, response.lag_for(p), into_hook, into_zhe)
+        corner = r < len(runs) - 1  # the base stops on a corner's foot (a hook's, a 竖折's);
+        # into a 折's shoulder it goes on into the 顿 (``_turn_on_the_tip``)
+        into_zhe = corner and not hook[r + 1] and _onto_the_dun(pl, run, runs[r + 1])
+        samples[run, :2] = _lead_along(path, response.lag_for(p), corner and not into_zhe, into_zhe)
         placed = side[j0:j1]
         if r == 0:  # the head; a leg sets off from the corner (a hook pressed from its foot)
             placed = _entry_side(placed, pl.target[run], pl.width[run])
