@@ -476,33 +476,35 @@ def baseline_masks(char: dict, n: int) -> dict:
     }
 
 
-SHOULDER_FAN = 0.0  # rad a 折's foot may turn from the way in, away from the turn (a hook's
-# foot: FOOT_FAN; measured on the held-out set: turned toward the turn, down the diagonal, -0.6,
-# it left 口's outer corner bare, IoU 0.916 -> 0.879; FOOT_FAN pressed up into a ball again)
 SHOULDER_OVER = 1.15  # a 折's shoulder is at most this many times the leg's width (the font's
 # is a knob 1.5-2 times it)
 
 
 def _shoulders(pts, polys, step: float, edges, pieces) -> list:
-    """The movements either side of every 折 (a sharp corner not into a hook) made again so
-    that the shoulder is an angular corner about the leg's width plus a little: the movement
-    into the corner goes on into the foot along its way in (``SHOULDER_FAN``, not fanned up
-    into the knob's far side), and both are held to ``SHOULDER_OVER`` times the leg's width
-    (``_body_width``) within two such widths of the corner (the movement into it to its own, if
-    wider). Only a clockwise corner (``_clockwise``: a 横折, a 横撇; a 竖折's stays as it was).
-    (Added in issue 26: the font's shoulder is a round knob up to twice as wide as the leg,
-    and the belly pressed into it, up to the calibration's deepest press, left a ball.)"""
+    """The movements either side of every 折 (a sharp corner not into a hook) made again
+    so that the shoulder is an angular corner about the leg's width plus a little: the movement
+    into the corner ends on the median's corner (no foot: the 顿 goes on from there, pressed,
+    to ``_dun_point``), the leg sets off from the 顿's end (``_from_the_shoulder``), and both
+    are held to ``SHOULDER_OVER`` times the leg's width (``_body_width``) within two such widths
+    of the corner (the movement into it to its own, if wider). Only a clockwise corner
+    (``_clockwise``: a 横折, a 横撇; a 竖折's stays as it was). (Added in issue 26: the font's
+    shoulder is a round knob up to twice as wide as the leg, and the belly pressed into it, up
+    to the calibration's deepest press, left a ball; pressed into a foot along the way in and
+    the leg set off back on the corner, it left a round knob: SHOULDER_FAN 0, turned down the
+    diagonal, -0.6, left 口's outer corner bare, IoU 0.916 -> 0.879, fanned up, FOOT_FAN, it
+    pressed a ball.)"""
     out = list(pieces)
     for k in range(len(pieces) - 1):
         i0, i1 = edges[k], edges[k + 1]
         if pieces[k + 1][2] or not _clockwise(pts, i1, step):
             continue  # a hook's foot, or a 竖折's corner (down, then on to the right)
-        p = np.concatenate([pts[i0 : i1 + 1], _foot(pts, i1, polys, step, SHOULDER_FAN)])
-        centre, width = _bands(p, polys)
+        centre, width = _bands(pts[i0 : i1 + 1], polys)
         if k:
             _past_the_corner(width, step)
         leg_c, leg_w, leg_h = out[k + 1]
         cap = SHOULDER_OVER * _body_width(leg_w)
+        dun = _dun_point(pts, i1, polys, step, _body_width(leg_w))
+        leg_c = _from_the_shoulder(leg_c, dun, DUN_SPAN * cap)
         corner = pts[i1]
         near = np.linalg.norm(centre - corner, axis=1) < 2.0 * cap
         own = SHOULDER_OVER * _body_width(width)
@@ -510,6 +512,54 @@ def _shoulders(pts, polys, step: float, edges, pieces) -> list:
         near = np.linalg.norm(leg_c - corner, axis=1) < 2.0 * cap
         out[k] = (centre, width, out[k][2])
         out[k + 1] = (leg_c, np.where(near, np.minimum(leg_w, cap), leg_w), leg_h)
+    return out
+
+
+DUN_REACH = 0.7  # share of the way from the median's corner to where the belly, half the leg's
+# width round the base, would reach the outline that the 顿 presses to (``_dun_point``)
+DUN_FAN = 0.5  # rad past the way in, away from the turn, the 顿 may aim (from the turn's bisector)
+DUN_SPAN = 1.0  # shoulder widths (SHOULDER_OVER times the leg's) over which a 折's leg, set off
+# from the 顿's end, comes back to its band's centres (``_from_the_shoulder``)
+
+
+def _dun_point(pts, k: int, polys, step: float, leg_width: float) -> np.ndarray:
+    """Where the 顿 at a 折's corner ``k`` presses to: from the median's corner toward the
+    outline's farthest point among the ways from the turn's bisector (the way in and the way
+    out, each a chord of ``CORNER_WINDOW``, added: down and to the right at a 横折) round past
+    the way in by ``DUN_FAN`` (the font's shoulder: a facet down-right, or a knob up-right),
+    ``DUN_REACH`` of the way to where the belly, half the leg's width round the base, would
+    reach the outline. The calligrapher runs the horizontal into the corner, lifts a little and
+    presses on out into the shoulder, and sets the leg off from there: the shoulder is the
+    corner of that pressed move, not a disc pressed on the spot. (Added in issue 26: aimed
+    down the bisector alone, 口's knob up-right of its corner was left bare, held-out IoU
+    0.924 -> 0.901.)"""
+    win = max(int(round(CORNER_WINDOW / step)), 1)
+    d = pts[k] - pts[max(k - win, 0)]
+    e = pts[min(k + win, len(pts) - 1)] - pts[k]
+    way = d / max(float(np.linalg.norm(d)), 1e-9) + e / max(float(np.linalg.norm(e)), 1e-9)
+    a0 = exact.arctan2(way[1], way[0])
+    a1 = exact.arctan2(d[1], d[0])
+    a1 = a0 + np.remainder(a1 - a0 + np.pi, 2.0 * np.pi) - np.pi  # the way in, from the bisector
+    ang = a0 + (a1 - a0 + np.sign(a1 - a0) * DUN_FAN) * np.linspace(0.0, 1.0, 11)
+    dirs = np.stack(exact.sin_cos(ang)[::-1], axis=1)
+    hits = _ray_hits(np.repeat(pts[k][None], len(dirs), axis=0), dirs, polys)
+    hits = np.where(np.isfinite(hits), hits, 0.0)
+    j = int(np.argmax(hits))
+    return pts[k] + DUN_REACH * max(float(hits[j]) - 0.5 * leg_width, 0.0) * dirs[j]
+
+
+def _from_the_shoulder(leg, dun, span: float) -> np.ndarray:
+    """A 折's leg (its centres) set off from ``dun`` (``_dun_point``) instead of the median's
+    corner: its points over its first ``span`` data units on a straight line from there to
+    the leg's point at ``span`` (the band's centres round the corner wander with the font's
+    knob), the rest as they were."""
+    s = np.concatenate([[0.0], np.cumsum(np.linalg.norm(np.diff(leg, axis=0), axis=1))])
+    j = min(int(np.searchsorted(s, span)), len(leg) - 1)
+    if j < 1:
+        return leg
+    t = (np.arange(j) / j)[:, None]
+    out = leg.copy()
+    out[:j] = np.asarray(dun)[None, :] * (1.0 - t) + leg[j][None, :] * t
     return out
 
 

@@ -154,7 +154,10 @@ def plan(
     )
 
 
-def _lead_along(path, lag, stop: bool = False):
+ZHE_LEAD_SPAN = 2.0  # lags over which the base's lead runs out into a 折's corner (``_lead_along``)
+
+
+def _lead_along(path, lag, stop: bool = False, ease: bool = False):
     """Where the brush's base must be so that the ink lands on ``path``: the hair trails the
     base along the way it came, so the base runs ahead of the mark by the lag *along the path*
     (round a curve, not off its tangent). The lead builds up over the first stretch of the
@@ -166,6 +169,11 @@ def _lead_along(path, lag, stop: bool = False):
     q = s + lead
     if stop:  # into a corner: the base stops on the corner, the hair catches up beneath it
         q = np.minimum(q, s[-1])
+    if ease:  # into a 折: the lead runs out over the last ``ZHE_LEAD_SPAN`` lags, the base
+        # slowing to half the ink's pace but going on, to end on the corner (the 顿 sets off
+        # from there, ``_turn_on_the_tip``)
+        span = ZHE_LEAD_SPAN * np.maximum(lag, 1e-6)
+        q = s + lead * np.clip((s[-1] - s) / span, 0.0, 1.0)
     out = np.stack([np.interp(q, s, path[:, 0]), np.interp(q, s, path[:, 1])], axis=1)
     if len(path) > 1 and s[-1] > 0:
         end_dir = path[-1] - path[-2]
@@ -176,11 +184,14 @@ def _lead_along(path, lag, stop: bool = False):
 
 
 ENTRY_TOUCH = 0.15  # share of the press the tip lands with; the belly presses as it goes
-ZHE_TOUCH = 0.4  # ... and the leg after a 折 sets off with, the belly still down from the corner
+ZHE_TOUCH = 1.0  # ... and the leg after a 折 sets off with: the 顿 has pressed it down already
+# (0.4 before issue 26's 顿: pressing again as the leg went down, it left a waist below the
+# shoulder)
 HOOK_KEEP = 0.7  # share of its press the belly keeps through a hook's turn
-ZHE_KEEP = 0.5  # share of its press the belly keeps through a 折's turn: the brush lifts only
-# slightly at the shoulder and presses again (eased to the tip, 0.05 of the hair, before issue
-# 26, the leg began thin: the shoulder's outer corner bare, a round knob inside it)
+ZHE_KEEP = 0.6  # share of its press the belly keeps through a 折's turn: the brush lifts only
+# slightly as the 顿 sets off and presses again as it goes (eased to the tip, 0.05 of the hair,
+# before issue 26, the leg began thin: the shoulder's outer corner bare, a round knob inside it;
+# 0.5 with a leg entered at 0.4)
 TURN_EASE = 0.8  # press taken off at a reversal (a hook), less at a milder turn
 
 
@@ -408,6 +419,14 @@ def _gathered(n: int) -> np.ndarray:
     return 1.0 - (1.0 - HOOK_GATHER) * t * t * (3.0 - 2.0 * t)
 
 
+def _onto_the_dun(pl: Plan, run, leg) -> bool:
+    """Whether the movement ``run`` (body samples) ends at a 折's shoulder the outline made a
+    顿 of (``outline._dun_point``): the next movement, ``leg``, sets off ahead of its end, not
+    back on the corner behind a foot it pressed into (a 竖折's corner, a picture's)."""
+    ahead = pl.target[leg[0]] - pl.target[run[-1]]
+    return float(ahead @ pl.tangent[run[-1]]) >= 0.0
+
+
 def _is_hook(pl: Plan, runs) -> list[bool]:
     """For each movement of a stroke (``runs``: its body samples), whether it leaves a hook's
     foot (``Plan.hooks``, from ``outline.median_movements``: a short last movement that turns
@@ -423,18 +442,30 @@ def _movements(items, body=None) -> list[np.ndarray]:
     return np.split(items, np.flatnonzero(np.diff(body) > 1) + 1)
 
 
-def _turn_on_the_tip(samples, pl: Plan, span, heights) -> None:
+def _turn_on_the_tip(samples, pl: Plan, span, heights, dun=()) -> None:
     """The TURNING samples of samples a..b (``span``): the base goes straight from where the
     lift into the corner ended to where the next entry begins, at the corner's height
     (``heights``, one per corner in order): the belly lifted slightly at a 折 (``ZHE_KEEP``),
-    pressed at a hook's foot (``HOOK_KEEP``)."""
+    pressed at a hook's foot (``HOOK_KEEP``). At a 折 (``dun``: per corner, whether it is one)
+    the lift, the turn and the entry are one move (the 顿): the base goes on evenly from the
+    movement's end to where the leg sets off (the outline's ``_dun_point``), lifting a little
+    and pressing again as it goes, never at rest while pressed. (Issue 26: lifted and entered
+    on the spot, and the turn dragged back across the shoulder, it laid a round knob.)"""
     a, b = span
     turning = np.flatnonzero(pl.phase[a:b] == TURNING) + a
-    for run, z in zip([r for r in _movements(turning) if r.size], heights, strict=False):
+    runs = [r for r in _movements(turning) if r.size]
+    for c, (run, z) in enumerate(zip(runs, heights, strict=False)):
+        samples[run, 2] = z
+        if c < len(dun) and dun[c]:
+            i0, i1 = run[0] - 1, run[-1] + 1
+            while pl.phase[i0] == LIFTING:
+                i0 -= 1
+            while pl.phase[i1] == ENTERING:
+                i1 += 1
+            run = np.arange(i0 + 1, i1)
         p0, p1 = samples[run[0] - 1, :2], samples[run[-1] + 1, :2]
         t = (np.arange(1, len(run) + 1) / (len(run) + 1))[:, None]
         samples[run, :2] = p0 * (1.0 - t) + p1 * t
-        samples[run, 2] = z
 
 
 END_SPAN = 2.0  # stroke widths along a movement over which a moved end's shift fades out
@@ -473,7 +504,7 @@ def _fill(
     j0 = 0
     runs = _movements(body)
     hook = _is_hook(pl, runs)
-    at, heights = None, []  # the base's height at the corner the movement begins after
+    at, heights, dun = None, [], []  # the base's height at the corner the movement begins after
     width_at = _width_at(response)  # the band a press lays (a point's let-go paces by it)
     for r, run in enumerate(runs):
         j1 = j0 + len(run)
@@ -484,7 +515,10 @@ def _fill(
         path = pl.target[run]
         if ends is not None:
             path = _ends_moved(path, pl.tangent[run], pl.width[run], ends[r])
-        samples[run, :2] = _lead_along(path, response.lag_for(p), r < len(runs) - 1)
+        corner = r < len(runs) - 1  # the base stops on a corner's foot (a hook's, a 竖折's);
+        # into a 折's shoulder it goes on into the 顿 (``_turn_on_the_tip``)
+        into_zhe = corner and not hook[r + 1] and _onto_the_dun(pl, run, runs[r + 1])
+        samples[run, :2] = _lead_along(path, response.lag_for(p), corner and not into_zhe, into_zhe)
         placed = side[j0:j1]
         if r == 0:  # the head; a leg sets off from the corner (a hook pressed from its foot)
             placed = _entry_side(placed, pl.target[run], pl.width[run])
@@ -496,8 +530,9 @@ def _fill(
         _enter_and_leave(samples, pl, run, hover, hair, step_mm, (at, nxt), run_up, width_at)
         if nxt is not None:
             heights.append(nxt)
+            dun.append(into_zhe)
         at = nxt
         j0 = j1
-    _turn_on_the_tip(samples, pl, span, heights)
+    _turn_on_the_tip(samples, pl, span, heights, dun)
     samples[a:b] = quantise(samples[a:b])  # as the saved recording will hold them
     return body

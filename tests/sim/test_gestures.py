@@ -129,7 +129,9 @@ def test_a_written_zhe_keeps_its_shoulder_without_a_knob(stiff_ink):
 
     shoulder, straight = window(745.0, 770.0), window(550.0, 800.0)
     missed = np.count_nonzero(every[shoulder] & ~ink[shoulder])
-    assert missed < 0.05 * np.count_nonzero(every[shoulder])
+    # (0.05 before issue 26's 顿: its facet stops a pixel or two short of the outline's
+    # outer point, 19 of 342 px, angular; the knob missed 8 %)
+    assert missed < 0.06 * np.count_nonzero(every[shoulder])
     bulge = outside[shoulder][ink[shoulder]].max()
     assert bulge < outside[straight][ink[straight]].max() + 2.0
 
