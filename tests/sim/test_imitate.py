@@ -24,7 +24,14 @@ from sim.writing.outline import (
     parse_path,
     rasterise,
 )
-from sim.writing.planner import ENTRY_TOUCH, ZHE_TOUCH, _entry_ramp, _is_hook, plan
+from sim.writing.planner import (
+    ENTRY_TOUCH,
+    ZHE_TOUCH,
+    _entry_ramp,
+    _is_hook,
+    _onto_the_dun,
+    plan,
+)
 from sim.writing.response import calibrate
 from sim.writing.strokes import stroke
 from sim.writing.writer import coverage_mask, write_character
@@ -133,8 +140,18 @@ def test_press_follows_the_outline_width(response):
     assert np.any(~hooks & ~opens)
     assert np.all(step[opens] > 0.1)
     # after a sharp turn's cut the tip comes down on the corner itself (issue 16: coming in
-    # from behind the corner, or flicking past it on the way in, leaves ink outside the turn)
-    assert np.all(step[~opens] < 0.05) and np.any(~opens)
+    # from behind the corner, or flicking past it on the way in, leaves ink outside the turn),
+    # but at a 折's shoulder the leg's entry goes on with the 顿, one pressed move out of the
+    # corner (issue 26: lifted and set down on the spot, the belly left a round knob)
+    dun = np.array(
+        [
+            k > 0 and not opens[k] and _onto_the_dun(pl, runs[k - 1], runs[k])
+            for k in range(len(runs))
+        ]
+    )
+    dun &= ~hooks
+    assert np.all(step[~opens & ~dun] < 0.05) and np.any(~opens & ~dun)
+    assert np.all(step[dun] > 0.05) and dun.sum() == 2  # 永's 横折 and 横撇
     # the hook of 永's vertical stroke is two movements (a sharp turn: lift, turn, flick)
     assert len(runs) > len(pl.strokes)
     # the brush is in the air between strokes; it dips before the first stroke and again
