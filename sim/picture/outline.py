@@ -31,11 +31,13 @@ CHAMFER = 4.0  # half-widths: a shorter leg of the simplified skeleton is a cham
 MEET_HOLD = 0.5  # ... whose corner goes out towards where the legs' lines meet while the ink is
 # this share of the median half-width thick
 MEET_REACH = 3.0  # ... and no farther than this many half-widths from the chamfer's middle
-CORNER_HOLD = 0.6  # a corner's vertex goes out as far as the ink is this share of the legs'
+CORNER_HOLD = 0.5  # a corner's vertex goes out as far as the ink is this share of the legs'
 # half-width thick (the skeleton of a thick turn cuts across it, the writer's median goes in;
 # a hook's foot tapers to a heel below the turn, and from 0.85 the brush's foot stopped short
 # of it, the character's lowest ink, and the box shrank: imitate_eval 0.832 -> 0.842, 高 uneven
-# 0.775 -> 0.854, 京 photo 0.755 -> 0.825; 0.7 lost 0.014 of that on the cases it moves)
+# 0.775 -> 0.854, 京 photo 0.755 -> 0.825; 0.7 lost 0.014 of that on the cases it moves;
+# 0.6 -> 0.5 with strokes.HOOK_COS 0.0: imitate_eval 0.835 -> 0.841, 鹤 photo 0.722 -> 0.775,
+# 端 clean 0.780 -> 0.760; 0.4: 0.839, 学 small 0.767 -> 0.721)
 FOOT_DOWN = 0.6  # a turn whose way in goes down this steeply (image y) is a hook's foot
 SHOULDER_HOLD = 0.5  # a 折's corner goes out into its shoulder's pressed bump (顿笔) as far as
 # the ink is this share of the legs' half-width thick (0.7 and 0.85: less of the bump reached;

@@ -21,7 +21,9 @@ from .skeleton import Chain, Node, _length, _link, _outward, skeleton_graph
 CONTINUE_COS = -0.77  # two ways out of a junction continue each other within ~40 degrees
 LOOSE_COS = -0.5  # ... and a short overhang continues a stroke within 60 degrees
 SPUR = 2.0  # a chain from a free end into a junction shorter than this times its half-width
-HOOK_COS = 0.3  # ... and a hook's two ways out lie within ~70 degrees of each other
+HOOK_COS = 0.0  # ... and a hook's two ways out lie within 90 degrees of each other (0.3, ~70:
+# 鸟's foot in 鹤 and 雨's 横折钩 in gkai, ~80, were read as a leg ending at the junction and
+# a hook of its own, the heel between them unwritten)
 HOOK_SPUR = 1.5  # ... but the farthest of a junction's spurs this long (times its half-width)
 OVERHANG_REACH = 1.3  # ... and a spur this long (times its half-width) straight on from a chain
 HOOK_CLEAR = 1.2  # ... and this many times as long as the next is a hook's tip, kept
