@@ -348,6 +348,13 @@ def adjust_ellipse(brush, vel6, dt):
     q = brush.q
     vel = matmul(np.asarray(vel6[:3], dtype=float), brush.R) / V_REF  # brush frame, scaled
     touching = brush.touching
+    if brush.m == 1:  # one primitive: the same arithmetic on Python floats (fewer calls)
+        _adjust_ellipse_one(brush, vel.tolist(), dt, bool(touching[0]))
+        if not touching[0]:
+            brush.loc = clip(brush.loc, 0.05, 0.9)
+            return
+        _relocate(brush, True)
+        return
     eo = brush.eori
     per = dt * REF_RATE
     rot = q.re * brush.gamma * matmul(eo, vel) * per  # Eq. 16
@@ -375,15 +382,57 @@ def adjust_ellipse(brush, vel6, dt):
     tl = brush.tiplen + inc * brush.r  # Sec. 5.4: the tip control line lengthens by inc
     on = np.minimum(tl, 0.5 * brush.a)
     brush.tiplen = on if every else np.where(touching, on, tl * (1.0 - krec))
-    # Eq. 17: loc' = nu loc + (1 - nu) (1/n) sum_j arc(P_1..P_{j+1}) / arc(P_1..P_n)
     if not touching.any():  # no primitive on the paper moves its ellipse (issue 28: skipped)
         brush.loc = clip(brush.loc, 0.05, 0.9)
         return
+    _relocate(brush, every)
+
+
+def _relocate(brush, every: bool):
+    """Eq. 17: loc' = nu loc + (1 - nu) (1/n) sum_j arc(P_1..P_{j+1}) / arc(P_1..P_n), for the
+    primitives on the paper (``every``: all of them)."""
+    q, touching = brush.q, brush.touching
     seg = norm(diff(brush.cc, axis=1))
     cum = seg.cumsum(axis=1)
     ideal = np.add.reduce(cum / np.maximum(cum[:, -1:], 1e-12), axis=1) / brush.n  # np.sum
     new_loc = q.nu * brush.loc + (1.0 - q.nu) * ideal
     brush.loc = clip(new_loc if every else np.where(touching, new_loc, brush.loc), 0.05, 0.9)
+
+
+def _adjust_ellipse_one(brush, vel: list, dt: float, touching: bool):
+    """``adjust_ellipse``'s Eq. 16 and Sec. 5.4 for one primitive on Python floats, ``vel``
+    in the brush frame (scaled): the same operations in the same order as the arrays' (a dot
+    product summed x, y, z; a length as sqrt((x^2 + y^2) + z^2); the picks of np.minimum and
+    np.maximum, ``_min`` and ``_max``)."""
+    q = brush.q
+    e0, e1, e2 = brush.eori[0].tolist()
+    v0, v1, v2 = vel
+    gamma, r = float(brush.gamma[0]), brush.r
+    per = dt * REF_RATE
+    rot = q.re * gamma * (e0 * v0 + e1 * v1 + e2 * v2) * per  # Eq. 16
+    c0, c1, c2 = e1 * v2 - e2 * v1, e2 * v0 - e0 * v2, e0 * v1 - e1 * v0  # eori x vel
+    inc = q.ie * gamma * math.sqrt(c0 * c0 + c1 * c1 + c2 * c2) * per  # Eq. 16
+    if not touching:
+        rot, inc = 0.0, 0.0
+    s, c = exact.sin_cos(rot)
+    ex, ey = e0 * c - e1 * s, e0 * s + e1 * c
+    length = _max(math.sqrt(ex * ex + ey * ey + e2 * e2), 1e-12)
+    brush.eori = np.array([[ex / length, ey / length, e2 / length]])
+    a0, b0, tip = float(brush.a[0]), float(brush.b[0]), float(brush.tiplen[0])
+    area = a0 * b0
+    a = _min(a0 + inc * r, _sqrt(area * MAX_FLATNESS))
+    krec = min(1.0, q.e * REC_RATE * dt)
+    if not touching:
+        a = a + krec * (_sqrt(area) - a)
+    tl = tip + inc * r  # Sec. 5.4: the tip control line lengthens by inc
+    brush.a = np.array([a])
+    brush.b = np.array([area / a])  # pi a b / 4 constant (Sec. 5.3)
+    brush.tiplen = np.array([_min(tl, 0.5 * a) if touching else tl * (1.0 - krec)])
+
+
+def _sqrt(x: float) -> float:
+    """np.sqrt of a float: NaN below zero (math.sqrt raises)."""
+    return math.sqrt(x) if x >= 0.0 else math.nan
 
 
 def split(brush):
