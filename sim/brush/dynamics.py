@@ -62,6 +62,18 @@ def move(brush, pose6, vel6, dt: float):
     R1 = _rotation(d.hex(), qq.hex(), rr.hex())
     lift = B1[2] - B0[2]
     points = brush.cc
+    if brush.m == 1:  # one primitive: the same arithmetic on Python floats (fewer calls)
+        new = _carry_one(brush, B1, R1, vel6, dt, lift)
+        brush.B, brush.R = B1, R1
+        active = _active_point_one(brush, new)
+        if active is None:  # a key point to insert (Eq. 13): as for many primitives
+            insert_active_point(brush, np.array([new]))
+            constrain(brush, vel6)
+            return
+        fb = _fallback_direction(brush, vel6)[0].tolist()
+        brush.cc = np.array([_constrain_one(new, brush.sarc[0].tolist(), fb, first=True)])
+        brush.active = np.array([active])
+        return
     contact = points[..., 2] <= CONTACT_EPS
     contact[:, 0] = False
     local = matmul(points - B0, R0)
@@ -87,6 +99,73 @@ def move(brush, pose6, vel6, dt: float):
     brush.B, brush.R = B1, R1
     insert_active_point(brush, new)
     constrain(brush, vel6)
+
+
+def _carry_one(brush, B1, R1, vel6, dt: float, lift: float) -> list:
+    """``move``'s key points of one primitive before the active point (a list of [x, y, z]),
+    on Python floats: the same operations in the same order as the arrays' (a product with a
+    rotation summed over its index 0, 1, 2, as ``exact.matmul``). Sets ``travel`` as ``move``
+    does."""
+    q = brush.q
+    b0, b1, b2 = brush.B.tolist()
+    (r00, r01, r02), (r10, r11, r12), (r20, r21, r22) = brush.R.tolist()
+    c0, c1, c2 = B1.tolist()
+    (s00, s01, s02), (s10, s11, s12), (s20, s21, s22) = R1.tolist()
+    vxy = np.asarray(vel6[:2], dtype=float)
+    speed = float(np.hypot(*vxy))
+    lx, ly = (-vxy / speed).tolist() if speed > 1e-9 else (0.0, 0.0)
+    if speed > 1.0:
+        brush.travel = vxy / speed
+    krec = min(1.0, q.e * REC_RATE * dt)  # elastic return of free hair (gap, see module doc)
+    gamma = float(brush.gamma[0])
+    dis = q.e * gamma * brush.r * (dt * REF_RATE)
+    rise = gamma * lift if lift > 0 else None  # Eq. 14
+    out = [[c0, c1, c2]]
+    points, sarc = brush.cc[0].tolist(), brush.sarc[0].tolist()
+    for j in range(1, len(points)):
+        px, py, pz = points[j]
+        dx, dy, dz = px - b0, py - b1, pz - b2
+        ux = dx * r00 + dy * r10 + dz * r20
+        uy = dx * r01 + dy * r11 + dz * r21
+        uz = dx * r02 + dy * r12 + dz * r22
+        on = pz <= CONTACT_EPS
+        if not on:  # free hair springs back toward its rest shape (0, 0, -sarc)
+            ux = ux + krec * (0.0 - ux)
+            uy = uy + krec * (0.0 - uy)
+            uz = uz + krec * (-sarc[j] - uz)
+        cx = c0 + (ux * s00 + uy * s01 + uz * s02)
+        cy = c1 + (ux * s10 + uy * s11 + uz * s12)
+        cz = c2 + (ux * s20 + uy * s21 + uz * s22)
+        if on:  # Sec. 5.2.2: held by the paper, sliding a little after the brush, and dragged
+            cx = px + (SLIP * (cx - px) + dis * lx)
+            cy = py + (SLIP * (cy - py) + dis * ly)
+            cz = pz
+        if rise is not None:
+            cz += 0.0 if on else rise
+        out.append([cx, cy, cz])
+    return out
+
+
+def _active_point_one(brush, new: list):
+    """``insert_active_point`` of one primitive where no key point is inserted, on Python
+    floats (the same tests on the same numbers): the active point's index (-1: none), a key
+    point snapped to it laid on the paper in ``new``; None where one would be inserted."""
+    n = len(new)
+    j = next((k for k in range(1, n) if new[k][2] <= CONTACT_EPS), None)
+    if j is None:
+        return -1
+    x0, y0, z0 = new[j - 1]
+    x1, y1, z1 = new[j]
+    lam = _min(_max(z0 / _max(z0 - z1, 1e-12), 0.0), 1.0)  # clip
+    dx, dy, dz = x1 - x0, y1 - y0, z1 - z0
+    seg = math.sqrt(dx * dx + dy * dy + dz * dz)
+    snap = 0.15 * brush.L / (n - 1)
+    near_prev = lam * seg < snap
+    if not near_prev and not (1.0 - lam) * seg < snap and z0 > CONTACT_EPS:
+        return None
+    active = j - 1 if near_prev and z0 > CONTACT_EPS else j
+    new[active][2] = 0.0
+    return active
 
 
 @functools.lru_cache(maxsize=256)
@@ -181,16 +260,7 @@ def constrain(brush, vel6):
     (sliding on the paper); a key point on the paper lies flat at its full arc distance."""
     points = brush.cc
     m, n = brush.m, brush.n
-    shaft = -brush.R[:, 2]
-    vxy = np.asarray(vel6[:2], dtype=float)
-    sp = float(np.hypot(*vxy))
-    if np.hypot(shaft[0], shaft[1]) > 0.05:
-        fb = np.tile(shaft[:2] / np.hypot(shaft[0], shaft[1]), (m, 1))
-    elif sp > 1.0:
-        fb = np.tile(-vxy / sp, (m, 1))
-    else:  # a vertical brush at rest lays its hair back along the way it came
-        fb = np.tile(-brush.travel, (m, 1)) + 0.25 * brush.lay
-        fb /= norm(fb, axis=1, keepdims=True)
+    fb = _fallback_direction(brush, vel6)
     if m == 1:  # one primitive: the same arithmetic on Python floats (fewer calls)
         points[0, 1:] = _constrain_one(points[0].tolist(), brush.sarc[0].tolist(), fb[0].tolist())
         return
@@ -221,13 +291,30 @@ def constrain(brush, vel6):
         prev = p
 
 
-def _constrain_one(points, sarc, fb) -> list:
+def _fallback_direction(brush, vel6) -> np.ndarray:
+    """(m, 2): the way a key point on the paper lies from its predecessor where the hair gives
+    none (``constrain``): the brush's lean, else the way back along its motion."""
+    m = brush.m
+    shaft = -brush.R[:, 2]
+    vxy = np.asarray(vel6[:2], dtype=float)
+    sp = float(np.hypot(*vxy))
+    if np.hypot(shaft[0], shaft[1]) > 0.05:
+        return np.tile(shaft[:2] / np.hypot(shaft[0], shaft[1]), (m, 1))
+    if sp > 1.0:
+        return np.tile(-vxy / sp, (m, 1))
+    # a vertical brush at rest lays its hair back along the way it came
+    fb = np.tile(-brush.travel, (m, 1)) + 0.25 * brush.lay
+    fb /= norm(fb, axis=1, keepdims=True)
+    return fb
+
+
+def _constrain_one(points, sarc, fb, first: bool = False) -> list:
     """``constrain``'s walk for one primitive, on Python floats: the same operations in the
     same order as the arrays' (a length as sqrt((x^2 + y^2) + z^2), numpy's order; the larger
     of two equal numbers the second, as np.maximum picks it: -0 and +0 keep their signs).
-    Returns the key points 2..n."""
+    Returns the key points 2..n (with ``first``, 1..n)."""
     px, py, pz = points[0]
-    out = []
+    out = [points[0]] if first else []
     for j in range(1, len(points)):
         qx, qy, qz = points[j]
         dx, dy, dz = qx - px, qy - py, qz - pz
