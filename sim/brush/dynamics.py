@@ -355,6 +355,13 @@ def update_stress(brush, section_area, section_height, speed, dt):
     Lengths are made dimensionless by the brush's own size (r, L) so that the quality
     parameters in [0, 1] keep their meaning for any brush."""
     q, r, L, n = brush.q, brush.r, brush.L, brush.n
+    if brush.m == 1:  # one primitive: the same arithmetic on Python floats (fewer calls)
+        stress = _stress_one(brush, float(section_area[0]), float(section_height[0]))
+        brush.touching = section_area > 0
+        brush.contact = np.asarray(section_area, dtype=float).copy()
+        brush.stress = np.array([stress])
+        brush.gamma = np.array([(speed / V_REF) * stress * q.sm * q.e])
+        return brush.stress, brush.gamma
     wet_factor = np.minimum(n / np.maximum(brush.wet.sum(axis=1), 1e-9), WET_FACTOR_MAX)
     cone = (section_area / (np.pi * r * r)) * (section_height / L)  # (S*hei/3) / (pi r^2 L/3)
     # Eq. 11: his = hsd + hdd; 1/len is bounded by len >= r/2 (the tip starts as a point)
@@ -375,6 +382,36 @@ def update_stress(brush, section_area, section_height, speed, dt):
     brush.stress = (1.0 - q.e) * wet_factor * cone * his * area  # Eq. 10
     brush.gamma = (speed / V_REF) * brush.stress * q.sm * q.e  # Eq. 12
     return brush.stress, brush.gamma
+
+
+def _stress_one(brush, S: float, hei: float) -> float:
+    """``update_stress``'s Eq. 10-11 for one primitive on Python floats: the same operations
+    in the same order as the arrays' (a product with R summed over its index 0, 1, 2, as
+    ``exact.matmul``; a length as sqrt((x^2 + y^2) + z^2); the sums over the key points by
+    np.add.reduce, numpy's own order)."""
+    q, r, L, n = brush.q, brush.r, brush.L, brush.n
+    wet_factor = _min(n / _max(float(np.add.reduce(brush.wet[0])), 1e-9), WET_FACTOR_MAX)
+    cone = (S / (np.pi * r * r)) * (hei / L)  # (S*hei/3) / (pi r^2 L/3)
+    a, b, tip = float(brush.a[0]), float(brush.b[0]), float(brush.tiplen[0])
+    hsd = (a / b) * (0.5 * r) / _max(tip, 0.5 * r)  # Eq. 11
+    b0, b1, b2 = brush.B.tolist()
+    (r00, r01, r02), (r10, r11, r12), (r20, r21, r22) = brush.R.tolist()
+    disp, seglen, prev = [], [], None
+    for (px, py, pz), s in zip(brush.cc[0].tolist(), brush.sarc[0].tolist(), strict=True):
+        dx, dy, dz = px - b0, py - b1, pz - b2
+        lx = dx * r00 + dy * r10 + dz * r20
+        ly = dx * r01 + dy * r11 + dz * r21
+        lz = dx * r02 + dy * r12 + dz * r22
+        if prev is not None:  # the displacement from the rest shape, and the segment's length
+            oz = lz + s
+            disp.append(math.sqrt(lx * lx + ly * ly + oz * oz))
+            sx, sy, sz = lx - prev[0], ly - prev[1], lz - prev[2]
+            seglen.append(math.sqrt(sx * sx + sy * sy + sz * sz))
+        prev = (lx, ly, lz)
+    weighted = float(np.add.reduce(np.array([d * g for d, g in zip(disp, seglen, strict=True)])))
+    hdd = weighted / _max(float(np.add.reduce(np.array(seglen))), 1e-12) / L
+    area = (np.pi * a * b / 4.0) / (np.pi * r * r)
+    return (1.0 - q.e) * wet_factor * cone * (hsd + hdd) * area  # Eq. 10
 
 
 def lose_wetness(brush, dt):
