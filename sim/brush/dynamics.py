@@ -441,6 +441,10 @@ def lose_wetness(brush, dt):
     if not touching.any():
         return
     act = np.where(brush.active >= 0, brush.active, brush.cc[..., 2].argmin(axis=1))
+    if brush.m == 1:  # one primitive: the same arithmetic on Python floats (fewer calls)
+        shares = _squeeze_shares(brush.n)[act[0]].tolist()
+        brush.wet[0] = _lose_one(brush, shares, dt)  # in place, as below
+        return
     loss = brush.q.ab * brush.gamma[:, None] / _squeeze_shares(brush.n)[act] * (dt * REF_RATE)
     loss = loss * np.minimum(brush.wet / W_SQUEEZE, 1.0)  # the last ink stays (doc)
     on, wet_on = contact_wetness(brush)
@@ -451,6 +455,24 @@ def lose_wetness(brush, dt):
     if not touching.all():  # (a no-op where every primitive is on the paper: skipped)
         loss = np.where(touching[:, None], loss, 0.0)
     np.maximum(brush.wet - loss, 0.0, out=brush.wet)
+
+
+def _lose_one(brush, shares: list, dt: float) -> list:
+    """``lose_wetness`` of one primitive on the paper on Python floats, ``shares`` the active
+    point's row of Eq. 15's table: the same operations in the same order as the arrays' (the
+    sum over the key points by np.add.reduce, numpy's own order)."""
+    ab, gamma = brush.q.ab, float(brush.gamma[0])
+    wet = brush.wet[0].tolist()
+    per = dt * REF_RATE
+    loss = [
+        ab * gamma / sh * per * _min(w / W_SQUEEZE, 1.0) for sh, w in zip(shares, wet, strict=True)
+    ]
+    on, wet_on = contact_wetness(brush)
+    held = [w if o else 0.0 for o, w in zip(on[0].tolist(), wet, strict=True)]
+    total = _max(float(np.add.reduce(np.array(held))), 1e-12)
+    sweep, contact = float(brush.sweep[0]), float(brush.contact[0])
+    spend = (SPEND * sweep + SOAK * contact) * ab * float(wet_on[0]) * dt
+    return [_max(w - (x + spend * h / total), 0.0) for w, x, h in zip(wet, loss, held, strict=True)]
 
 
 @functools.cache
