@@ -393,7 +393,7 @@ def _stress_one(brush, S: float, hei: float) -> float:
     wet_factor = _min(n / _max(float(np.add.reduce(brush.wet[0])), 1e-9), WET_FACTOR_MAX)
     cone = (S / (np.pi * r * r)) * (hei / L)  # (S*hei/3) / (pi r^2 L/3)
     a, b, tip = float(brush.a[0]), float(brush.b[0]), float(brush.tiplen[0])
-    hsd = (a / b) * (0.5 * r) / _max(tip, 0.5 * r)  # Eq. 11
+    hsd = _div(a, b) * (0.5 * r) / _max(tip, 0.5 * r)  # Eq. 11
     b0, b1, b2 = brush.B.tolist()
     (r00, r01, r02), (r10, r11, r12), (r20, r21, r22) = brush.R.tolist()
     disp, seglen, prev = [], [], None
@@ -572,8 +572,14 @@ def _adjust_ellipse_one(brush, vel: list, dt: float, touching: bool):
         a = a + krec * (_sqrt(area) - a)
     tl = tip + inc * r  # Sec. 5.4: the tip control line lengthens by inc
     brush.a = np.array([a])
-    brush.b = np.array([area / a])  # pi a b / 4 constant (Sec. 5.3)
+    brush.b = np.array([_div(area, a)])  # pi a b / 4 constant (Sec. 5.3)
     brush.tiplen = np.array([_min(tl, 0.5 * a) if touching else tl * (1.0 - krec)])
+
+
+def _div(x: float, y: float) -> float:
+    """x / y of floats as numpy divides them: inf or NaN (and numpy's warning) where y is 0
+    (Python raises)."""
+    return x / y if y != 0.0 else float(np.divide(np.float64(x), y))
 
 
 def _sqrt(x: float) -> float:
