@@ -62,6 +62,18 @@ def move(brush, pose6, vel6, dt: float):
     R1 = _rotation(d.hex(), qq.hex(), rr.hex())
     lift = B1[2] - B0[2]
     points = brush.cc
+    if brush.m == 1:  # one primitive: the same arithmetic on Python floats (fewer calls)
+        new = _carry_one(brush, B1, R1, vel6, dt, lift)
+        brush.B, brush.R = B1, R1
+        active = _active_point_one(brush, new)
+        if active is None:  # a key point to insert (Eq. 13): as for many primitives
+            insert_active_point(brush, np.array([new]))
+            constrain(brush, vel6)
+            return
+        fb = _fallback_direction(brush, vel6)[0].tolist()
+        brush.cc = np.array([_constrain_one(new, brush.sarc[0].tolist(), fb, first=True)])
+        brush.active = np.array([active])
+        return
     contact = points[..., 2] <= CONTACT_EPS
     contact[:, 0] = False
     local = matmul(points - B0, R0)
@@ -87,6 +99,73 @@ def move(brush, pose6, vel6, dt: float):
     brush.B, brush.R = B1, R1
     insert_active_point(brush, new)
     constrain(brush, vel6)
+
+
+def _carry_one(brush, B1, R1, vel6, dt: float, lift: float) -> list:
+    """``move``'s key points of one primitive before the active point (a list of [x, y, z]),
+    on Python floats: the same operations in the same order as the arrays' (a product with a
+    rotation summed over its index 0, 1, 2, as ``exact.matmul``). Sets ``travel`` as ``move``
+    does."""
+    q = brush.q
+    b0, b1, b2 = brush.B.tolist()
+    (r00, r01, r02), (r10, r11, r12), (r20, r21, r22) = brush.R.tolist()
+    c0, c1, c2 = B1.tolist()
+    (s00, s01, s02), (s10, s11, s12), (s20, s21, s22) = R1.tolist()
+    vxy = np.asarray(vel6[:2], dtype=float)
+    speed = float(np.hypot(*vxy))
+    lx, ly = (-vxy / speed).tolist() if speed > 1e-9 else (0.0, 0.0)
+    if speed > 1.0:
+        brush.travel = vxy / speed
+    krec = min(1.0, q.e * REC_RATE * dt)  # elastic return of free hair (gap, see module doc)
+    gamma = float(brush.gamma[0])
+    dis = q.e * gamma * brush.r * (dt * REF_RATE)
+    rise = gamma * lift if lift > 0 else None  # Eq. 14
+    out = [[c0, c1, c2]]
+    points, sarc = brush.cc[0].tolist(), brush.sarc[0].tolist()
+    for j in range(1, len(points)):
+        px, py, pz = points[j]
+        dx, dy, dz = px - b0, py - b1, pz - b2
+        ux = dx * r00 + dy * r10 + dz * r20
+        uy = dx * r01 + dy * r11 + dz * r21
+        uz = dx * r02 + dy * r12 + dz * r22
+        on = pz <= CONTACT_EPS
+        if not on:  # free hair springs back toward its rest shape (0, 0, -sarc)
+            ux = ux + krec * (0.0 - ux)
+            uy = uy + krec * (0.0 - uy)
+            uz = uz + krec * (-sarc[j] - uz)
+        cx = c0 + (ux * s00 + uy * s01 + uz * s02)
+        cy = c1 + (ux * s10 + uy * s11 + uz * s12)
+        cz = c2 + (ux * s20 + uy * s21 + uz * s22)
+        if on:  # Sec. 5.2.2: held by the paper, sliding a little after the brush, and dragged
+            cx = px + (SLIP * (cx - px) + dis * lx)
+            cy = py + (SLIP * (cy - py) + dis * ly)
+            cz = pz
+        if rise is not None:
+            cz += 0.0 if on else rise
+        out.append([cx, cy, cz])
+    return out
+
+
+def _active_point_one(brush, new: list):
+    """``insert_active_point`` of one primitive where no key point is inserted, on Python
+    floats (the same tests on the same numbers): the active point's index (-1: none), a key
+    point snapped to it laid on the paper in ``new``; None where one would be inserted."""
+    n = len(new)
+    j = next((k for k in range(1, n) if new[k][2] <= CONTACT_EPS), None)
+    if j is None:
+        return -1
+    x0, y0, z0 = new[j - 1]
+    x1, y1, z1 = new[j]
+    lam = _min(_max(z0 / _max(z0 - z1, 1e-12), 0.0), 1.0)  # clip
+    dx, dy, dz = x1 - x0, y1 - y0, z1 - z0
+    seg = math.sqrt(dx * dx + dy * dy + dz * dz)
+    snap = 0.15 * brush.L / (n - 1)
+    near_prev = lam * seg < snap
+    if not near_prev and not (1.0 - lam) * seg < snap and z0 > CONTACT_EPS:
+        return None
+    active = j - 1 if near_prev and z0 > CONTACT_EPS else j
+    new[active][2] = 0.0
+    return active
 
 
 @functools.lru_cache(maxsize=256)
@@ -181,16 +260,7 @@ def constrain(brush, vel6):
     (sliding on the paper); a key point on the paper lies flat at its full arc distance."""
     points = brush.cc
     m, n = brush.m, brush.n
-    shaft = -brush.R[:, 2]
-    vxy = np.asarray(vel6[:2], dtype=float)
-    sp = float(np.hypot(*vxy))
-    if np.hypot(shaft[0], shaft[1]) > 0.05:
-        fb = np.tile(shaft[:2] / np.hypot(shaft[0], shaft[1]), (m, 1))
-    elif sp > 1.0:
-        fb = np.tile(-vxy / sp, (m, 1))
-    else:  # a vertical brush at rest lays its hair back along the way it came
-        fb = np.tile(-brush.travel, (m, 1)) + 0.25 * brush.lay
-        fb /= norm(fb, axis=1, keepdims=True)
+    fb = _fallback_direction(brush, vel6)
     if m == 1:  # one primitive: the same arithmetic on Python floats (fewer calls)
         points[0, 1:] = _constrain_one(points[0].tolist(), brush.sarc[0].tolist(), fb[0].tolist())
         return
@@ -221,13 +291,30 @@ def constrain(brush, vel6):
         prev = p
 
 
-def _constrain_one(points, sarc, fb) -> list:
+def _fallback_direction(brush, vel6) -> np.ndarray:
+    """(m, 2): the way a key point on the paper lies from its predecessor where the hair gives
+    none (``constrain``): the brush's lean, else the way back along its motion."""
+    m = brush.m
+    shaft = -brush.R[:, 2]
+    vxy = np.asarray(vel6[:2], dtype=float)
+    sp = float(np.hypot(*vxy))
+    if np.hypot(shaft[0], shaft[1]) > 0.05:
+        return np.tile(shaft[:2] / np.hypot(shaft[0], shaft[1]), (m, 1))
+    if sp > 1.0:
+        return np.tile(-vxy / sp, (m, 1))
+    # a vertical brush at rest lays its hair back along the way it came
+    fb = np.tile(-brush.travel, (m, 1)) + 0.25 * brush.lay
+    fb /= norm(fb, axis=1, keepdims=True)
+    return fb
+
+
+def _constrain_one(points, sarc, fb, first: bool = False) -> list:
     """``constrain``'s walk for one primitive, on Python floats: the same operations in the
     same order as the arrays' (a length as sqrt((x^2 + y^2) + z^2), numpy's order; the larger
     of two equal numbers the second, as np.maximum picks it: -0 and +0 keep their signs).
-    Returns the key points 2..n."""
+    Returns the key points 2..n (with ``first``, 1..n)."""
     px, py, pz = points[0]
-    out = []
+    out = [points[0]] if first else []
     for j in range(1, len(points)):
         qx, qy, qz = points[j]
         dx, dy, dz = qx - px, qy - py, qz - pz
@@ -268,6 +355,13 @@ def update_stress(brush, section_area, section_height, speed, dt):
     Lengths are made dimensionless by the brush's own size (r, L) so that the quality
     parameters in [0, 1] keep their meaning for any brush."""
     q, r, L, n = brush.q, brush.r, brush.L, brush.n
+    if brush.m == 1:  # one primitive: the same arithmetic on Python floats (fewer calls)
+        stress = _stress_one(brush, float(section_area[0]), float(section_height[0]))
+        brush.touching = section_area > 0
+        brush.contact = np.asarray(section_area, dtype=float).copy()
+        brush.stress = np.array([stress])
+        brush.gamma = np.array([(speed / V_REF) * stress * q.sm * q.e])
+        return brush.stress, brush.gamma
     wet_factor = np.minimum(n / np.maximum(brush.wet.sum(axis=1), 1e-9), WET_FACTOR_MAX)
     cone = (section_area / (np.pi * r * r)) * (section_height / L)  # (S*hei/3) / (pi r^2 L/3)
     # Eq. 11: his = hsd + hdd; 1/len is bounded by len >= r/2 (the tip starts as a point)
@@ -288,6 +382,36 @@ def update_stress(brush, section_area, section_height, speed, dt):
     brush.stress = (1.0 - q.e) * wet_factor * cone * his * area  # Eq. 10
     brush.gamma = (speed / V_REF) * brush.stress * q.sm * q.e  # Eq. 12
     return brush.stress, brush.gamma
+
+
+def _stress_one(brush, S: float, hei: float) -> float:
+    """``update_stress``'s Eq. 10-11 for one primitive on Python floats: the same operations
+    in the same order as the arrays' (a product with R summed over its index 0, 1, 2, as
+    ``exact.matmul``; a length as sqrt((x^2 + y^2) + z^2); the sums over the key points by
+    np.add.reduce, numpy's own order)."""
+    q, r, L, n = brush.q, brush.r, brush.L, brush.n
+    wet_factor = _min(n / _max(float(np.add.reduce(brush.wet[0])), 1e-9), WET_FACTOR_MAX)
+    cone = (S / (np.pi * r * r)) * (hei / L)  # (S*hei/3) / (pi r^2 L/3)
+    a, b, tip = float(brush.a[0]), float(brush.b[0]), float(brush.tiplen[0])
+    hsd = _div(a, b) * (0.5 * r) / _max(tip, 0.5 * r)  # Eq. 11
+    b0, b1, b2 = brush.B.tolist()
+    (r00, r01, r02), (r10, r11, r12), (r20, r21, r22) = brush.R.tolist()
+    disp, seglen, prev = [], [], None
+    for (px, py, pz), s in zip(brush.cc[0].tolist(), brush.sarc[0].tolist(), strict=True):
+        dx, dy, dz = px - b0, py - b1, pz - b2
+        lx = dx * r00 + dy * r10 + dz * r20
+        ly = dx * r01 + dy * r11 + dz * r21
+        lz = dx * r02 + dy * r12 + dz * r22
+        if prev is not None:  # the displacement from the rest shape, and the segment's length
+            oz = lz + s
+            disp.append(math.sqrt(lx * lx + ly * ly + oz * oz))
+            sx, sy, sz = lx - prev[0], ly - prev[1], lz - prev[2]
+            seglen.append(math.sqrt(sx * sx + sy * sy + sz * sz))
+        prev = (lx, ly, lz)
+    weighted = float(np.add.reduce(np.array([d * g for d, g in zip(disp, seglen, strict=True)])))
+    hdd = weighted / _max(float(np.add.reduce(np.array(seglen))), 1e-12) / L
+    area = (np.pi * a * b / 4.0) / (np.pi * r * r)
+    return (1.0 - q.e) * wet_factor * cone * (hsd + hdd) * area  # Eq. 10
 
 
 def lose_wetness(brush, dt):
@@ -317,6 +441,10 @@ def lose_wetness(brush, dt):
     if not touching.any():
         return
     act = np.where(brush.active >= 0, brush.active, brush.cc[..., 2].argmin(axis=1))
+    if brush.m == 1:  # one primitive: the same arithmetic on Python floats (fewer calls)
+        shares = _squeeze_shares(brush.n)[act[0]].tolist()
+        brush.wet[0] = _lose_one(brush, shares, dt)  # in place, as below
+        return
     loss = brush.q.ab * brush.gamma[:, None] / _squeeze_shares(brush.n)[act] * (dt * REF_RATE)
     loss = loss * np.minimum(brush.wet / W_SQUEEZE, 1.0)  # the last ink stays (doc)
     on, wet_on = contact_wetness(brush)
@@ -327,6 +455,24 @@ def lose_wetness(brush, dt):
     if not touching.all():  # (a no-op where every primitive is on the paper: skipped)
         loss = np.where(touching[:, None], loss, 0.0)
     np.maximum(brush.wet - loss, 0.0, out=brush.wet)
+
+
+def _lose_one(brush, shares: list, dt: float) -> list:
+    """``lose_wetness`` of one primitive on the paper on Python floats, ``shares`` the active
+    point's row of Eq. 15's table: the same operations in the same order as the arrays' (the
+    sum over the key points by np.add.reduce, numpy's own order)."""
+    ab, gamma = brush.q.ab, float(brush.gamma[0])
+    wet = brush.wet[0].tolist()
+    per = dt * REF_RATE
+    loss = [
+        ab * gamma / sh * per * _min(w / W_SQUEEZE, 1.0) for sh, w in zip(shares, wet, strict=True)
+    ]
+    on, wet_on = contact_wetness(brush)
+    held = [w if o else 0.0 for o, w in zip(on[0].tolist(), wet, strict=True)]
+    total = _max(float(np.add.reduce(np.array(held))), 1e-12)
+    sweep, contact = float(brush.sweep[0]), float(brush.contact[0])
+    spend = (SPEND * sweep + SOAK * contact) * ab * float(wet_on[0]) * dt
+    return [_max(w - (x + spend * h / total), 0.0) for w, x, h in zip(wet, loss, held, strict=True)]
 
 
 @functools.cache
@@ -348,6 +494,13 @@ def adjust_ellipse(brush, vel6, dt):
     q = brush.q
     vel = matmul(np.asarray(vel6[:3], dtype=float), brush.R) / V_REF  # brush frame, scaled
     touching = brush.touching
+    if brush.m == 1:  # one primitive: the same arithmetic on Python floats (fewer calls)
+        _adjust_ellipse_one(brush, vel.tolist(), dt, bool(touching[0]))
+        if not touching[0]:
+            brush.loc = clip(brush.loc, 0.05, 0.9)
+            return
+        _relocate(brush, True)
+        return
     eo = brush.eori
     per = dt * REF_RATE
     rot = q.re * brush.gamma * matmul(eo, vel) * per  # Eq. 16
@@ -375,15 +528,63 @@ def adjust_ellipse(brush, vel6, dt):
     tl = brush.tiplen + inc * brush.r  # Sec. 5.4: the tip control line lengthens by inc
     on = np.minimum(tl, 0.5 * brush.a)
     brush.tiplen = on if every else np.where(touching, on, tl * (1.0 - krec))
-    # Eq. 17: loc' = nu loc + (1 - nu) (1/n) sum_j arc(P_1..P_{j+1}) / arc(P_1..P_n)
     if not touching.any():  # no primitive on the paper moves its ellipse (issue 28: skipped)
         brush.loc = clip(brush.loc, 0.05, 0.9)
         return
+    _relocate(brush, every)
+
+
+def _relocate(brush, every: bool):
+    """Eq. 17: loc' = nu loc + (1 - nu) (1/n) sum_j arc(P_1..P_{j+1}) / arc(P_1..P_n), for the
+    primitives on the paper (``every``: all of them)."""
+    q, touching = brush.q, brush.touching
     seg = norm(diff(brush.cc, axis=1))
     cum = seg.cumsum(axis=1)
     ideal = np.add.reduce(cum / np.maximum(cum[:, -1:], 1e-12), axis=1) / brush.n  # np.sum
     new_loc = q.nu * brush.loc + (1.0 - q.nu) * ideal
     brush.loc = clip(new_loc if every else np.where(touching, new_loc, brush.loc), 0.05, 0.9)
+
+
+def _adjust_ellipse_one(brush, vel: list, dt: float, touching: bool):
+    """``adjust_ellipse``'s Eq. 16 and Sec. 5.4 for one primitive on Python floats, ``vel``
+    in the brush frame (scaled): the same operations in the same order as the arrays' (a dot
+    product summed x, y, z; a length as sqrt((x^2 + y^2) + z^2); the picks of np.minimum and
+    np.maximum, ``_min`` and ``_max``)."""
+    q = brush.q
+    e0, e1, e2 = brush.eori[0].tolist()
+    v0, v1, v2 = vel
+    gamma, r = float(brush.gamma[0]), brush.r
+    per = dt * REF_RATE
+    rot = q.re * gamma * (e0 * v0 + e1 * v1 + e2 * v2) * per  # Eq. 16
+    c0, c1, c2 = e1 * v2 - e2 * v1, e2 * v0 - e0 * v2, e0 * v1 - e1 * v0  # eori x vel
+    inc = q.ie * gamma * math.sqrt(c0 * c0 + c1 * c1 + c2 * c2) * per  # Eq. 16
+    if not touching:
+        rot, inc = 0.0, 0.0
+    s, c = exact.sin_cos(rot)
+    ex, ey = e0 * c - e1 * s, e0 * s + e1 * c
+    length = _max(math.sqrt(ex * ex + ey * ey + e2 * e2), 1e-12)
+    brush.eori = np.array([[ex / length, ey / length, e2 / length]])
+    a0, b0, tip = float(brush.a[0]), float(brush.b[0]), float(brush.tiplen[0])
+    area = a0 * b0
+    a = _min(a0 + inc * r, _sqrt(area * MAX_FLATNESS))
+    krec = min(1.0, q.e * REC_RATE * dt)
+    if not touching:
+        a = a + krec * (_sqrt(area) - a)
+    tl = tip + inc * r  # Sec. 5.4: the tip control line lengthens by inc
+    brush.a = np.array([a])
+    brush.b = np.array([_div(area, a)])  # pi a b / 4 constant (Sec. 5.3)
+    brush.tiplen = np.array([_min(tl, 0.5 * a) if touching else tl * (1.0 - krec)])
+
+
+def _div(x: float, y: float) -> float:
+    """x / y of floats as numpy divides them: inf or NaN (and numpy's warning) where y is 0
+    (Python raises)."""
+    return x / y if y != 0.0 else float(np.divide(np.float64(x), y))
+
+
+def _sqrt(x: float) -> float:
+    """np.sqrt of a float: NaN below zero (math.sqrt raises)."""
+    return math.sqrt(x) if x >= 0.0 else math.nan
 
 
 def split(brush):

@@ -46,13 +46,17 @@ from ..core.frames import angles_from_matrix, clip, cross, rotation_matrix, unit
 from ..core.nurbs import (
     SweepLayout,
     averaged_knots,
+    averaged_knots_one,
     bezier_form,
     bspline_bases,
     chord_params,
+    chord_params_one,
     derivative_ctrl,
+    derivative_ctrl_one,
     einsum,
     rotation_minimising_frames,
     solve_collocation,
+    solve_collocation_one,
     surface_control_net,
 )
 from ..core.params import BrushGeometry, InkSpec, QualityParams
@@ -157,20 +161,10 @@ class HairyBrush:
         """Sweep the bottom control circle, middle control ellipse and tip control line along
         the middle control axis (Sec. 2, 3.2) with rotation-minimising frames."""
         lay = self.layout
-        # A_i through P_i,1..n (Sec. 3.2.3), as ``interpolate_cubic``: the basis at the key
-        # points' parameters (the collocation matrix) and at the stations in one recursion
-        # (every parameter's basis is its own: the same numbers as two)
-        params = chord_params(self.cc)
-        knots = averaged_knots(params, 3)
         u = lay.station_u
+        params, bases, ctrl, dq = self._middle_axis(u)
         m, n = params.shape
-        at = np.empty((m, n + len(u)))  # the key points' parameters, then the stations'
-        at[:, :n] = params
-        at[:, n:] = u
-        bases = bspline_bases(knots, 3, at)
-        ctrl = solve_collocation(bases[3][:, :n], self.cc)
         centres = matmul(bases[3][:, n:], ctrl)
-        dq, _ = derivative_ctrl(ctrl, knots, 3)
         # the derivative's basis is degree 2 on knots[1:-1]
         T = unit(matmul(bases[2][:, n:, 1:-1], dq))
         # initial frame: the bottom control circle's own x axis (cori = shaft direction)
@@ -204,6 +198,31 @@ class HairyBrush:
         rows_c, rows_U, rows_V = (at_rows[..., k : k + 3].copy() for k in (0, 3, 6))
         rows_T = unit(at_rows[..., 9:12])  # a new array already
         return Sections(centres, U, V, T, params, rows_c, rows_U, rows_V, rows_T)
+
+    def _middle_axis(self, u):
+        """A_i through P_i,1..n (Sec. 3.2.3), as ``interpolate_cubic``: the key points'
+        parameters, the basis at them (the collocation matrix) and at the stations ``u`` in one
+        recursion (every parameter's basis is its own: the same numbers as two), the control
+        points and those of the derivative. One primitive's parameters, knots and control
+        points are made on Python floats (``chord_params_one`` ...: the same numbers, without
+        a numpy call each; issue 28)."""
+        if self.m == 1:
+            pl = chord_params_one(self.cc[0].tolist())
+            kl = averaged_knots_one(pl, 3)
+            params = np.array([pl])
+            bases = bspline_bases(np.array([kl]), 3, np.array([pl + u.tolist()]))
+            n = len(pl)
+            cl = solve_collocation_one(bases[3][0, :n], self.cc[0])
+            return params, bases, np.array([cl]), np.array([derivative_ctrl_one(cl, kl, 3)])
+        params = chord_params(self.cc)
+        knots = averaged_knots(params, 3)
+        m, n = params.shape
+        at = np.empty((m, n + len(u)))  # the key points' parameters, then the stations'
+        at[:, :n] = params
+        at[:, n:] = u
+        bases = bspline_bases(knots, 3, at)
+        ctrl = solve_collocation(bases[3][:, :n], self.cc)
+        return params, bases, ctrl, derivative_ctrl(ctrl, knots, 3)[0]
 
     def surface_nets(self, sec: Sections | None = None):
         """Every primitive's sweep surface SS(s, t) (Sec. 2, 6) as a homogeneous NURBS control

@@ -17,6 +17,7 @@ the very same control net, and the tests check both against geomdl's own evaluat
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 
 import numpy as np
@@ -103,6 +104,44 @@ def chord_params(points) -> np.ndarray:
     return c / c[..., -1:]
 
 
+def chord_params_one(points: list) -> list:
+    """``chord_params`` of one polyline (a list of [x, y, z]) on Python floats: the same
+    operations in the same order (a length as sqrt((x^2 + y^2) + z^2), numpy's order; the
+    running sum from the first length), without a numpy call each (issue 28)."""
+    c = [0.0]
+    px, py, pz = points[0]
+    for x, y, z in points[1:]:
+        dx, dy, dz = x - px, y - py, z - pz
+        seg = math.sqrt(dx * dx + dy * dy + dz * dz)
+        seg = seg if (seg > 1e-9 or seg != seg) else 1e-9  # np.maximum(seg, 1e-9)
+        c.append(seg if len(c) == 1 else c[-1] + seg)
+        px, py, pz = x, y, z
+    last = c[-1]
+    return [v / last for v in c]
+
+
+def averaged_knots_one(params: list, degree: int = 3) -> list:
+    """``averaged_knots`` of one list of parameters on Python floats (the same sums)."""
+    c = [0.0]
+    for v in params:
+        c.append(v if len(c) == 1 else c[-1] + v)
+    inner = len(params) - degree - 1
+    mid = [(c[1 + degree + j] - c[1 + j]) / degree for j in range(inner)]
+    return [0.0] * (degree + 1) + mid + [1.0] * (degree + 1)
+
+
+def derivative_ctrl_one(ctrl: list, knots: list, degree: int) -> list:
+    """The control points of ``derivative_ctrl`` of one curve (lists of rows) on Python
+    floats (the same operations)."""
+    out = []
+    for i in range(len(ctrl) - 1):
+        den = knots[degree + 1 + i] - knots[1 + i]
+        den = den if den > 0 else 1.0
+        a, b = ctrl[i], ctrl[i + 1]
+        out.append([(degree * (v - w)) / den for v, w in zip(b, a, strict=True)])
+    return out
+
+
 def interpolate_cubic(points, params=None):
     """Global cubic B-spline interpolation of (..., n, dim) points, n >= 4 (Sec. 3.2.3: the
     middle control axis interpolates its key points). Returns (ctrl, knots, params)."""
@@ -127,8 +166,7 @@ def solve_collocation(A, B):
     n = A.shape[-1]
     if A.ndim == 3 and A.shape[0] == 1:  # one system: the same steps on Python floats
         B = np.asarray(B, dtype=float)
-        band = not (_negative_zero(A) or _negative_zero(B))
-        return np.array([_solve_one(A[0].tolist(), B[0].tolist(), band)]).reshape(B.shape)
+        return np.array([solve_collocation_one(A[0], B[0])]).reshape(B.shape)
     M = np.concatenate([A, np.asarray(B, dtype=float)], axis=-1)  # (..., n, n + k)
     for k in range(n - 1):
         f = M[..., k + 1 :, k] / M[..., k, k, None]
@@ -139,6 +177,13 @@ def solve_collocation(A, B):
         if k:
             X[..., :k, :] -= M[..., :k, k, None] * X[..., k, None, :]
     return X
+
+
+def solve_collocation_one(A: np.ndarray, B: np.ndarray) -> list:
+    """``solve_collocation`` of one system, A (n, n) and B (n, k), on Python floats
+    (``_solve_one``): the solution as a list of rows."""
+    band = not (_negative_zero(A) or _negative_zero(B))
+    return _solve_one(A.tolist(), B.tolist(), band)
 
 
 _NEGATIVE_ZERO = 1 << 63  # the bits of -0.0 (float64)
@@ -162,21 +207,14 @@ def _solve_one(A: list, B: list, band: bool = False) -> list:
     step reads it)."""
     n = len(A)
     M = [a + b for a, b in zip(A, B, strict=True)]
+    if band:
+        return _solve_band(M, n)
     cols = range(len(M[0]))
     for k in range(n - 1):
         pivot = M[k]
-        d = pivot[k]
-        if band:
-            nonzero = [c for c in cols[k + 1 :] if pivot[c] != 0.0]
         for i in range(k + 1, n):
             row = M[i]
-            if band and row[k] == 0.0:  # outside the band: nothing to subtract
-                continue
-            f = row[k] / d
-            if band and f - f == 0.0:  # f finite: f * 0.0 is a zero
-                for c in nonzero:
-                    row[c] -= f * pivot[c]
-                continue
+            f = row[k] / pivot[k]
             for c in cols[k:]:
                 row[c] -= f * pivot[c]
     X = [row[n:] for row in M]
@@ -185,8 +223,43 @@ def _solve_one(A: list, B: list, band: bool = False) -> list:
         xk = X[k] = [v / d for v in X[k]]
         for i in range(k):
             mik = M[i][k]
-            if not (band and mik == 0.0):
-                X[i] = [v - mik * w for v, w in zip(X[i], xk, strict=True)]
+            X[i] = [v - mik * w for v, w in zip(X[i], xk, strict=True)]
+    return X
+
+
+def _solve_band(M: list, n: int) -> list:
+    """``_solve_one``'s elimination with ``band``, of the augmented rows M (changed in place):
+    the same operations on the same numbers, in fewer Python steps (the pivot row's nonzero
+    columns listed once it has a row to eliminate, a row of the solution updated in place)."""
+    width = len(M[0])
+    for k in range(n - 1):
+        pivot = M[k]
+        d = pivot[k]
+        nonzero = None
+        for i in range(k + 1, n):
+            row = M[i]
+            rk = row[k]
+            if rk == 0.0:  # outside the band: nothing to subtract
+                continue
+            f = rk / d
+            if f - f == 0.0:  # f finite: f * 0.0 is a zero
+                if nonzero is None:
+                    nonzero = [c for c in range(k + 1, width) if pivot[c] != 0.0]
+                for c in nonzero:
+                    row[c] -= f * pivot[c]
+            else:
+                for c in range(k, width):
+                    row[c] -= f * pivot[c]
+    X = [row[n:] for row in M]
+    for k in range(n - 1, -1, -1):
+        d = M[k][k]
+        xk = X[k] = [v / d for v in X[k]]
+        for i in range(k):
+            mik = M[i][k]
+            if mik != 0.0:
+                xi = X[i]
+                for c in range(len(xk)):
+                    xi[c] -= mik * xk[c]
     return X
 
 
@@ -204,10 +277,16 @@ _EYE3 = np.eye(3)
 einsum = (np._core if _NUMPY_2 else np.core).multiarray.c_einsum
 
 
-def _reflection_factor(c):
-    """2 / c of a reflection's squared vector length c, 0 where the vector is about 0."""
-    big = c > 1e-18
-    return np.where(big, 2.0 / np.where(big, c, 1.0), 0.0)
+def _reflection_factors(c, out) -> None:
+    """2 / c of reflections' squared vector lengths c into ``out`` (zeros), left 0 where the
+    vector is about 0."""
+    np.divide(2.0, c, out=out, where=c > 1e-18)
+
+
+def _products(a, b):
+    """``exact.matmul`` of stacks of matrices (..., n, k) @ (..., k, m), m > 1, without its
+    checks (the same products and sums)."""
+    return np.add.reduce(a[..., :, :, None] * b[..., None, :, :], axis=-2)
 
 
 def rotation_minimising_frames(points, tangents, r0):
@@ -221,19 +300,19 @@ def rotation_minimising_frames(points, tangents, r0):
     # the two reflections' vectors and factors side by side, so that both are built in one
     # go (the same products as one at a time; issue 28)
     v = np.empty((2, m, N - 1, 3))
-    f = np.empty((2, m, N - 1))
+    f = np.zeros((2, m, N - 1))
     v1 = np.subtract(points[:, 1:], points[:, :-1], out=v[0])  # (m, N-1, 3)
-    f[0] = _reflection_factor(einsum("mik,mik->mi", v1, v1))
+    _reflection_factors(einsum("mik,mik->mi", v1, v1), f[0])
     t0 = tangents[:, :-1]
     tl = t0 - (f[0] * einsum("mik,mik->mi", v1, t0))[..., None] * v1
     v2 = np.subtract(tangents[:, 1:], tl, out=v[1])
-    f[1] = _reflection_factor(einsum("mik,mik->mi", v2, v2))
+    _reflection_factors(einsum("mik,mik->mi", v2, v2), f[1])
     H = _EYE3 - f[..., None, None] * v[..., :, None] * v[..., None, :]  # H1, H2
-    P = matmul(H[1], H[0])  # (m, N-1, 3, 3)
+    P = _products(H[1], H[0])  # (m, N-1, 3, 3)
     # the running products M_i ... M_0 by doubling: log2(N) batched products, not N - 1 steps
     span = 1
     while span < N - 1:
-        P[:, span:] = matmul(P[:, span:], P[:, :-span])
+        P[:, span:] = _products(P[:, span:], P[:, :-span])
         span *= 2
     out = np.empty_like(points)
     out[:, 0] = r0

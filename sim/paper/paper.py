@@ -516,6 +516,14 @@ def halo_px(capacity: float, ppm: float) -> int:
     return int(min(round(HALO_MM / max(capacity, 1e-9) * ppm), HALO_MAX_PX))
 
 
+# the pixel pairs of wicking (``_wick``): down the rows, then along them, as (giver a, taker
+# b) of the window and the same pixels' colours in its rows of 3 w numbers
+_WICK_PAIRS = (
+    (np.s_[:-1], np.s_[1:], np.s_[:-1], np.s_[1:]),
+    (np.s_[:, :-1], np.s_[:, 1:], np.s_[:, :-3], np.s_[:, 3:]),
+)
+
+
 def _wick(w, ink, draw, passes: int, rate: float = WICK_RATE) -> None:
     """Capillary wicking (see WICK_MM) of the window's wetness ``w`` (h, w) and ink (h, w, 3),
     in place, over ``passes`` passes at ``rate``; ``draw`` (h, w) in [0, 1] how well each pixel
@@ -529,20 +537,20 @@ def _wick(w, ink, draw, passes: int, rate: float = WICK_RATE) -> None:
     down = rate * draw[:-1] * draw[1:]  # between a pixel and the one below it, ...
     along = rate * draw[:, :-1] * draw[:, 1:]  # ... and the one beside it
     rows = ink.reshape(ink.shape[0], -1)  # a view where the window's rows are whole
-    steps = ((down, np.s_[:-1], np.s_[1:]), (along, np.s_[:, :-1], np.s_[:, 1:]))
-    inks = ((np.s_[:-1], np.s_[1:]), (np.s_[:, :-3], np.s_[:, 3:]))  # the same pixels' colours
     for k in range(passes):
         if k and not (w > 0.0).any():
             break
         inflow = np.zeros_like(w)
         carried = np.zeros_like(rows)
-        for (g, a, b), (ia, ib) in zip(steps, inks, strict=True):
+        for g, (a, b, ia, ib) in zip((down, along), _WICK_PAIRS, strict=True):
             flux = g * (w[a] - w[b])  # > 0: from a to b
             to_b, to_a = np.maximum(flux, 0.0), np.maximum(-flux, 0.0)
             inflow[b] += to_b
             inflow[a] += to_a
-            carried[ib] += _colours(to_b) * rows[ia]
-            carried[ia] += _colours(to_a) * rows[ib]
+            # the same per colour, from the flux repeated for the three colours once
+            flux3 = _colours(flux)
+            carried[ib] += np.maximum(flux3, 0.0) * rows[ia]
+            carried[ia] += np.maximum(-flux3, 0.0) * rows[ib]
             w[a] -= flux
             w[b] += flux
         # the pigment the liquid carried in: the givers' colour, weighted by what each gave,
