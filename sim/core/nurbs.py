@@ -217,14 +217,7 @@ def _solve_one(A: list, B: list, band: bool = False) -> list:
             f = row[k] / pivot[k]
             for c in cols[k:]:
                 row[c] -= f * pivot[c]
-    X = [row[n:] for row in M]
-    for k in range(n - 1, -1, -1):
-        d = M[k][k]
-        xk = X[k] = [v / d for v in X[k]]
-        for i in range(k):
-            mik = M[i][k]
-            X[i] = [v - mik * w for v, w in zip(X[i], xk, strict=True)]
-    return X
+    return _back_substitute(M, n, band=False)
 
 
 def _solve_band(M: list, n: int) -> list:
@@ -250,16 +243,22 @@ def _solve_band(M: list, n: int) -> list:
             else:
                 for c in range(k, width):
                     row[c] -= f * pivot[c]
+    return _back_substitute(M, n, band=True)
+
+
+def _back_substitute(M: list, n: int, band: bool) -> list:
+    """The solution of the eliminated augmented rows M (upper triangular in their first
+    ``n`` columns), from the last row up. With ``band`` a row of the solution that would take
+    zero times another is left as it is (``_solve_one``)."""
     X = [row[n:] for row in M]
     for k in range(n - 1, -1, -1):
         d = M[k][k]
         xk = X[k] = [v / d for v in X[k]]
         for i in range(k):
             mik = M[i][k]
-            if mik != 0.0:
-                xi = X[i]
-                for c in range(len(xk)):
-                    xi[c] -= mik * xk[c]
+            if band and mik == 0.0:
+                continue
+            X[i] = [v - mik * w for v, w in zip(X[i], xk, strict=True)]
     return X
 
 
