@@ -86,7 +86,7 @@ def move(brush, pose6, vel6, dt: float):
     new[:, 0] = B1
     brush.B, brush.R = B1, R1
     insert_active_point(brush, new)
-    constrain(brush, vel6)
+    constrain(brush, vel6, dt)
 
 
 @functools.lru_cache(maxsize=256)
@@ -175,10 +175,19 @@ def insert_active_point(brush, new):
     brush.active = np.where(insert, np.where(drop < pos, pos - 1, pos), active)
 
 
-def constrain(brush, vel6):
+def constrain(brush, vel6, dt: float = 0.0):
     """Hair is inextensible and cannot pass through the paper. Walking from the bottom
     control circle to the tip: a key point too far from its predecessor is pulled after it
-    (sliding on the paper); a key point on the paper lies flat at its full arc distance."""
+    (sliding on the paper); a key point on the paper lies flat at its full arc distance, the
+    way the hair bends from its predecessor.
+
+    Beyond the paper (issue 26.2), the hair that lands: a primitive that did not touch the
+    paper the step before lays its hair on it the way it bends plus the way the base drags
+    it, back along the way the brush moves by the base's travel over the step (``_landing_drag``;
+    along the tilt of a tilted brush, ``fb``): the tip touches and stays while the base goes
+    on. The bend alone of hair that has sprung back nearly straight in the air (hundredths of
+    a millimetre left of the last stroke's flick) laid the landing tip any way at all: ahead
+    of the motion or across it, a thread of hair out of the head (朋's inner 横, 柱's dot)."""
     points = brush.cc
     m, n = brush.m, brush.n
     shaft = -brush.R[:, 2]
@@ -191,8 +200,10 @@ def constrain(brush, vel6):
     else:  # a vertical brush at rest lays its hair back along the way it came
         fb = np.tile(-brush.travel, (m, 1)) + 0.25 * brush.lay
         fb /= norm(fb, axis=1, keepdims=True)
+    drag = _landing_drag(brush, fb, sp * dt)
     if m == 1:  # one primitive: the same arithmetic on Python floats (fewer calls)
-        points[0, 1:] = _constrain_one(points[0].tolist(), brush.sarc[0].tolist(), fb[0].tolist())
+        fb0, drag0 = fb[0].tolist(), drag[0].tolist()
+        points[0, 1:] = _constrain_one(points[0].tolist(), brush.sarc[0].tolist(), fb0, drag0)
         return
     prev = points[:, 0]
     segs = brush.sarc[:, 1:] - brush.sarc[:, :-1]
@@ -208,7 +219,7 @@ def constrain(brush, vel6):
         reach = on_paper & (seg > h)
         if reach.any():  # lies flat on the paper at its full arc distance
             H = np.sqrt(np.maximum(seg * seg - h * h, 0.0))
-            dxy = d[:, :2]
+            dxy = d[:, :2] + drag if drag.any() else d[:, :2]
             nd = norm(dxy)
             dirxy = np.where(nd[:, None] > 1e-9, dxy / np.maximum(nd, 1e-12)[:, None], fb)
             flat = np.zeros((m, 3))
@@ -221,12 +232,20 @@ def constrain(brush, vel6):
         prev = p
 
 
-def _constrain_one(points, sarc, fb) -> list:
+def _landing_drag(brush, fb, travel: float) -> np.ndarray:
+    """(m, 2): the drag (mm) ``constrain`` adds to the bend of the hair of a primitive that
+    lands this step (it did not touch the paper the step before): ``travel`` back along
+    ``fb``; none for hair already on the paper."""
+    return np.where(brush.touching[:, None], 0.0, travel * fb)
+
+
+def _constrain_one(points, sarc, fb, drag=(0.0, 0.0)) -> list:
     """``constrain``'s walk for one primitive, on Python floats: the same operations in the
     same order as the arrays' (a length as sqrt((x^2 + y^2) + z^2), numpy's order; the larger
     of two equal numbers the second, as np.maximum picks it: -0 and +0 keep their signs).
-    Returns the key points 2..n."""
+    Returns the key points 2..n. ``drag``: ``_landing_drag``'s row."""
     px, py, pz = points[0]
+    gx, gy = drag[0], drag[1]
     out = []
     for j in range(1, len(points)):
         qx, qy, qz = points[j]
@@ -239,6 +258,8 @@ def _constrain_one(points, sarc, fb) -> list:
         h = _max(pz, 0.0)
         if on_paper and seg > h:  # lies flat on the paper at its full arc distance
             H = math.sqrt(_max(seg * seg - h * h, 0.0))
+            if gx or gy:  # landing (``_landing_drag``)
+                dx, dy = dx + gx, dy + gy
             nd = math.sqrt(dx * dx + dy * dy)
             if nd > 1e-9:
                 ux, uy = dx / _max(nd, 1e-12), dy / _max(nd, 1e-12)
