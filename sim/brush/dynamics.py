@@ -64,6 +64,7 @@ def move(brush, pose6, vel6, dt: float):
     points = brush.cc
     contact = points[..., 2] <= CONTACT_EPS
     contact[:, 0] = False
+    landing = ~contact.any(axis=1)  # no hair on the paper before this step (``constrain``)
     local = matmul(points - B0, R0)
     rest = np.zeros(local.shape)  # (local is float64: np.zeros_like without its wrapper)
     rest[..., 2] = -brush.sarc
@@ -86,7 +87,7 @@ def move(brush, pose6, vel6, dt: float):
     new[:, 0] = B1
     brush.B, brush.R = B1, R1
     insert_active_point(brush, new)
-    constrain(brush, vel6, dt)
+    constrain(brush, vel6, dt, landing)
 
 
 @functools.lru_cache(maxsize=256)
@@ -175,19 +176,20 @@ def insert_active_point(brush, new):
     brush.active = np.where(insert, np.where(drop < pos, pos - 1, pos), active)
 
 
-def constrain(brush, vel6, dt: float = 0.0):
+def constrain(brush, vel6, dt: float = 0.0, landing=None):
     """Hair is inextensible and cannot pass through the paper. Walking from the bottom
     control circle to the tip: a key point too far from its predecessor is pulled after it
     (sliding on the paper); a key point on the paper lies flat at its full arc distance, the
     way the hair bends from its predecessor.
 
-    Beyond the paper (issue 26.2), the hair that lands: a primitive that did not touch the
-    paper the step before lays its hair on it the way it bends plus the way the base drags
-    it, back along the way the brush moves by the base's travel over the step (``_landing_drag``;
-    along the tilt of a tilted brush, ``fb``): the tip touches and stays while the base goes
-    on. The bend alone of hair that has sprung back nearly straight in the air (hundredths of
-    a millimetre left of the last stroke's flick) laid the landing tip any way at all: ahead
-    of the motion or across it, a thread of hair out of the head (朋's inner 横, 柱's dot)."""
+    Beyond the paper (issue 26.2), the hair that lands: a primitive none of whose hair lay on
+    the paper before this step (``landing``, per primitive; None: none lands) lays its hair
+    on it the way it bends plus the way the base drags it, back along the way the brush moves
+    by the base's travel over the step (dt; along the tilt of a tilted brush, ``fb``): the
+    tip touches and stays while the base goes on (``_landing_drag``). The bend alone of hair
+    that has sprung back nearly straight in the air (hundredths of a millimetre left of the
+    last stroke's flick) laid the landing tip any way at all, ahead of the motion or across
+    it: a thread of hair out of the head (朋's inner 横, 柱's dot)."""
     points = brush.cc
     m, n = brush.m, brush.n
     shaft = -brush.R[:, 2]
@@ -200,7 +202,7 @@ def constrain(brush, vel6, dt: float = 0.0):
     else:  # a vertical brush at rest lays its hair back along the way it came
         fb = np.tile(-brush.travel, (m, 1)) + 0.25 * brush.lay
         fb /= norm(fb, axis=1, keepdims=True)
-    drag = _landing_drag(brush, fb, sp * dt)
+    drag = _landing_drag(fb, sp * dt, np.zeros(m, bool) if landing is None else landing)
     if m == 1:  # one primitive: the same arithmetic on Python floats (fewer calls)
         fb0, drag0 = fb[0].tolist(), drag[0].tolist()
         points[0, 1:] = _constrain_one(points[0].tolist(), brush.sarc[0].tolist(), fb0, drag0)
@@ -232,11 +234,10 @@ def constrain(brush, vel6, dt: float = 0.0):
         prev = p
 
 
-def _landing_drag(brush, fb, travel: float) -> np.ndarray:
-    """(m, 2): the drag (mm) ``constrain`` adds to the bend of the hair of a primitive that
-    lands this step (it did not touch the paper the step before): ``travel`` back along
-    ``fb``; none for hair already on the paper."""
-    return np.where(brush.touching[:, None], 0.0, travel * fb)
+def _landing_drag(fb, travel: float, landing) -> np.ndarray:
+    """(m, 2): the drag (mm) ``constrain`` adds to the bend of the hair of the primitives that
+    land this step (``landing``): ``travel`` back along ``fb``; none for the others."""
+    return np.where(landing[:, None], travel * fb, 0.0)
 
 
 def _constrain_one(points, sarc, fb, drag=(0.0, 0.0)) -> list:
