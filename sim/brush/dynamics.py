@@ -202,10 +202,13 @@ def constrain(brush, vel6, dt: float = 0.0, landing=None):
     else:  # a vertical brush at rest lays its hair back along the way it came
         fb = np.tile(-brush.travel, (m, 1)) + 0.25 * brush.lay
         fb /= norm(fb, axis=1, keepdims=True)
-    drag = _landing_drag(fb, sp * dt, np.zeros(m, bool) if landing is None else landing)
+    lands = landing is not None and bool(landing.any()) and sp * dt > 0.0
+    drag = _landing_drag(fb, sp * dt, landing) if lands else None  # (most steps: none)
     if m == 1:  # one primitive: the same arithmetic on Python floats (fewer calls)
-        fb0, drag0 = fb[0].tolist(), drag[0].tolist()
-        points[0, 1:] = _constrain_one(points[0].tolist(), brush.sarc[0].tolist(), fb0, drag0)
+        drag0 = drag[0].tolist() if lands else (0.0, 0.0)
+        points[0, 1:] = _constrain_one(
+            points[0].tolist(), brush.sarc[0].tolist(), fb[0].tolist(), drag0
+        )
         return
     prev = points[:, 0]
     segs = brush.sarc[:, 1:] - brush.sarc[:, :-1]
@@ -221,7 +224,7 @@ def constrain(brush, vel6, dt: float = 0.0, landing=None):
         reach = on_paper & (seg > h)
         if reach.any():  # lies flat on the paper at its full arc distance
             H = np.sqrt(np.maximum(seg * seg - h * h, 0.0))
-            dxy = d[:, :2] + drag if drag.any() else d[:, :2]
+            dxy = d[:, :2] if drag is None else d[:, :2] + drag
             nd = norm(dxy)
             dirxy = np.where(nd[:, None] > 1e-9, dxy / np.maximum(nd, 1e-12)[:, None], fb)
             flat = np.zeros((m, 3))
