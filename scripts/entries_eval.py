@@ -8,10 +8,12 @@
 sets a constant of sim.writing.planner / writer / outline for an experiment) and keeps its ink
 and image in /tmp/entries_eval/TAG_BRUSH.npz; ``report`` prints per character, for every
 stroke start, the ink more than a pixel outside the outline and the bare outline pixels within
-1.2 stroke widths (the first third's widest) of the median's start; for every dot (a median
-shorter than 3.4 of its widest) the ink's length along the dot's direction over the font's,
-and the ink pixels past the font dot's end. Characters of data/hanzi are read from there, the
-rest from /tmp/chars/package (hanzi-writer-data)."""
+1.2 stroke widths (the first third's widest) of the median's start, and of that ink outside the
+thin protrusions (hair threads, spikes: what an opening of THIN px takes off the ink outside)
+in pixels and pieces; for every dot (a median shorter than 3.4 of its widest) the ink's length
+along the dot's direction over the font's, and the ink pixels past the font dot's end.
+Characters of data/hanzi are read from there, the rest from /tmp/chars/package
+(hanzi-writer-data)."""
 
 from __future__ import annotations
 
@@ -41,6 +43,7 @@ OUT = os.environ.get("ENTRIES_EVAL_OUT", "/tmp/entries_eval")
 SHIPPED = "一中之书人十大天山心日月水永法风"
 N = 512
 DOT = 3.4  # median length over widest below which a stroke is read as a dot
+THIN = 3  # px: ink outside the outline narrower than this is a thin protrusion (a thread)
 
 
 def load(c: str) -> dict:
@@ -87,12 +90,16 @@ def measure(ch: dict, ink: np.ndarray):
     font = np.any([s["mask"] for s in info], axis=0)
     near = ndi.binary_dilation(font, iterations=1)
     yy, xx = np.mgrid[0:N, 0:N] + 0.5
+    outside = ink & ~near
+    thin = outside & ~ndi.binary_opening(outside, np.ones((THIN, THIN), bool))
     starts, dots = [], []
     for k, s in enumerate(info):
         p0 = s["med"][0]
         zone = np.hypot(xx - p0[0], yy - p0[1]) < 1.2 * s["w0"]
         starts.append((int((ink & ~near & zone).sum()), int((s["mask"] & ~ink & zone).sum())))
         starts[-1] += (int((s["mask"] & zone).sum()),)
+        threads = thin & zone
+        starts[-1] += (int(threads.sum()), int(ndi.label(threads)[1]))
         if s["length"] >= DOT * s["w"]:
             continue
         d = s["med"][-1] - p0
@@ -112,20 +119,25 @@ def measure(ch: dict, ink: np.ndarray):
 def report(tags) -> None:
     for tag in tags:
         z = np.load(f"{OUT}/{tag}.npz")
-        out = bare = area = 0
+        out = bare = area = thin = pieces = 0
         lengths, past = [], 0
         print(tag)
         for c in [k for k in z.files if not k.endswith("_img")]:
             starts, dots = measure(load(c), z[c])
-            o, b, a = (sum(s[i] for s in starts) for i in range(3))
+            o, b, a, t, p = (sum(s[i] for s in starts) for i in range(5))
             out, bare, area = out + o, bare + b, area + a
+            thin, pieces = thin + t, pieces + p
             lengths += [d[0] for d in dots]
             past += sum(d[1] for d in dots)
             ds = " ".join(f"{d[0]:.2f}/{d[1]}" for d in dots)
-            print(f"  {c} starts: out {o:5d} bare {b:5d} of {a:6d}  dots (length/font/past): {ds}")
+            print(
+                f"  {c} starts: out {o:5d} (thin {t:4d} in {p:2d}) bare {b:5d} of {a:6d}"
+                f"  dots (length/font/past): {ds}"
+            )
         dl = f"mean {np.mean(lengths):.3f} max {np.max(lengths):.3f}" if lengths else "-"
         print(
-            f"  all starts: out {out} bare {bare} of {area}; dots {len(lengths)}: {dl}, past {past}"
+            f"  all starts: out {out} (thin {thin} in {pieces} pieces) bare {bare} of {area};"
+            f" dots {len(lengths)}: {dl}, past {past}"
         )
 
 

@@ -62,20 +62,24 @@ def move(brush, pose6, vel6, dt: float):
     R1 = _rotation(d.hex(), qq.hex(), rr.hex())
     lift = B1[2] - B0[2]
     points = brush.cc
+    contact = points[..., 2] <= CONTACT_EPS
+    contact[:, 0] = False
+    landing = ~contact.any(axis=1)  # no hair on the paper before this step (``constrain``)
     if brush.m == 1:  # one primitive: the same arithmetic on Python floats (fewer calls)
         new = _carry_one(brush, B1, R1, vel6, dt, lift)
         brush.B, brush.R = B1, R1
         active = _active_point_one(brush, new)
         if active is None:  # a key point to insert (Eq. 13): as for many primitives
             insert_active_point(brush, np.array([new]))
-            constrain(brush, vel6)
+            constrain(brush, vel6, dt, landing)
             return
-        fb = _fallback_direction(brush, vel6)[0].tolist()
-        brush.cc = np.array([_constrain_one(new, brush.sarc[0].tolist(), fb, first=True)])
+        fb = _fallback_direction(brush, vel6)
+        drag = _landing_drag(fb, _speed(vel6) * dt, landing)
+        drag0 = (0.0, 0.0) if drag is None else drag[0].tolist()
+        sarc = brush.sarc[0].tolist()
+        brush.cc = np.array([_constrain_one(new, sarc, fb[0].tolist(), drag0, first=True)])
         brush.active = np.array([active])
         return
-    contact = points[..., 2] <= CONTACT_EPS
-    contact[:, 0] = False
     local = matmul(points - B0, R0)
     rest = np.zeros(local.shape)  # (local is float64: np.zeros_like without its wrapper)
     rest[..., 2] = -brush.sarc
@@ -98,7 +102,7 @@ def move(brush, pose6, vel6, dt: float):
     new[:, 0] = B1
     brush.B, brush.R = B1, R1
     insert_active_point(brush, new)
-    constrain(brush, vel6)
+    constrain(brush, vel6, dt, landing)
 
 
 def _carry_one(brush, B1, R1, vel6, dt: float, lift: float) -> list:
@@ -254,15 +258,29 @@ def insert_active_point(brush, new):
     brush.active = np.where(insert, np.where(drop < pos, pos - 1, pos), active)
 
 
-def constrain(brush, vel6):
+def constrain(brush, vel6, dt: float = 0.0, landing=None):
     """Hair is inextensible and cannot pass through the paper. Walking from the bottom
     control circle to the tip: a key point too far from its predecessor is pulled after it
-    (sliding on the paper); a key point on the paper lies flat at its full arc distance."""
+    (sliding on the paper); a key point on the paper lies flat at its full arc distance, the
+    way the hair bends from its predecessor.
+
+    Beyond the paper (issue 26.2), the hair that lands: a primitive none of whose hair lay on
+    the paper before this step (``landing``, per primitive; None: none lands) lays its hair
+    on it the way it bends plus the way the base drags it, back along the way the brush moves
+    by the base's travel over the step (dt; along the tilt of a tilted brush, ``fb``): the
+    tip touches and stays while the base goes on (``_landing_drag``). The bend alone of hair
+    that has sprung back nearly straight in the air (hundredths of a millimetre left of the
+    last stroke's flick) laid the landing tip any way at all, ahead of the motion or across
+    it: a thread of hair out of the head (朋's inner 横, 柱's dot)."""
     points = brush.cc
     m, n = brush.m, brush.n
     fb = _fallback_direction(brush, vel6)
+    drag = _landing_drag(fb, _speed(vel6) * dt, landing)  # (most steps: None)
     if m == 1:  # one primitive: the same arithmetic on Python floats (fewer calls)
-        points[0, 1:] = _constrain_one(points[0].tolist(), brush.sarc[0].tolist(), fb[0].tolist())
+        drag0 = (0.0, 0.0) if drag is None else drag[0].tolist()
+        points[0, 1:] = _constrain_one(
+            points[0].tolist(), brush.sarc[0].tolist(), fb[0].tolist(), drag0
+        )
         return
     prev = points[:, 0]
     segs = brush.sarc[:, 1:] - brush.sarc[:, :-1]
@@ -278,7 +296,7 @@ def constrain(brush, vel6):
         reach = on_paper & (seg > h)
         if reach.any():  # lies flat on the paper at its full arc distance
             H = np.sqrt(np.maximum(seg * seg - h * h, 0.0))
-            dxy = d[:, :2]
+            dxy = d[:, :2] if drag is None else d[:, :2] + drag
             nd = norm(dxy)
             dirxy = np.where(nd[:, None] > 1e-9, dxy / np.maximum(nd, 1e-12)[:, None], fb)
             flat = np.zeros((m, 3))
@@ -297,7 +315,7 @@ def _fallback_direction(brush, vel6) -> np.ndarray:
     m = brush.m
     shaft = -brush.R[:, 2]
     vxy = np.asarray(vel6[:2], dtype=float)
-    sp = float(np.hypot(*vxy))
+    sp = _speed(vel6)
     if np.hypot(shaft[0], shaft[1]) > 0.05:
         return np.tile(shaft[:2] / np.hypot(shaft[0], shaft[1]), (m, 1))
     if sp > 1.0:
@@ -308,12 +326,28 @@ def _fallback_direction(brush, vel6) -> np.ndarray:
     return fb
 
 
-def _constrain_one(points, sarc, fb, first: bool = False) -> list:
+def _speed(vel6) -> float:
+    """The brush's speed over the paper (mm/s) from its velocity ``vel6``."""
+    vxy = np.asarray(vel6[:2], dtype=float)
+    return float(np.hypot(*vxy))
+
+
+def _landing_drag(fb, travel: float, landing) -> np.ndarray | None:
+    """(m, 2): the drag (mm) ``constrain`` adds to the bend of the hair of the primitives that
+    land this step (``landing``): ``travel`` back along ``fb`` (the fallback direction), none
+    for the others; None when none lands or the base does not travel."""
+    if landing is None or not travel > 0.0 or not bool(np.any(landing)):
+        return None
+    return np.where(np.asarray(landing)[:, None], travel * fb, 0.0)
+
+
+def _constrain_one(points, sarc, fb, drag=(0.0, 0.0), first: bool = False) -> list:
     """``constrain``'s walk for one primitive, on Python floats: the same operations in the
     same order as the arrays' (a length as sqrt((x^2 + y^2) + z^2), numpy's order; the larger
     of two equal numbers the second, as np.maximum picks it: -0 and +0 keep their signs).
-    Returns the key points 2..n (with ``first``, 1..n)."""
+    Returns the key points 2..n (with ``first``, 1..n). ``drag``: ``_landing_drag``'s row."""
     px, py, pz = points[0]
+    gx, gy = drag[0], drag[1]
     out = [points[0]] if first else []
     for j in range(1, len(points)):
         qx, qy, qz = points[j]
@@ -326,6 +360,8 @@ def _constrain_one(points, sarc, fb, first: bool = False) -> list:
         h = _max(pz, 0.0)
         if on_paper and seg > h:  # lies flat on the paper at its full arc distance
             H = math.sqrt(_max(seg * seg - h * h, 0.0))
+            if gx or gy:  # landing (``_landing_drag``)
+                dx, dy = dx + gx, dy + gy
             nd = math.sqrt(dx * dx + dy * dy)
             if nd > 1e-9:
                 ux, uy = dx / _max(nd, 1e-12), dy / _max(nd, 1e-12)

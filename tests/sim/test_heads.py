@@ -79,3 +79,28 @@ def test_a_stroke_that_sets_off_down_hides_its_tip(response):
         assert len(ahead) >= 4 and np.all(side * ahead[:-1] > 0.1), (char, stroke, ahead)
         entry, start, _ = _entry(pl, response, stroke, 0.0)
         assert np.allclose(entry, start, atol=1e-3)
+
+
+def test_landing_hair_lies_back_along_the_way_the_brush_moves():
+    # the brush comes down moving along +x, its hair sprung back nearly straight after the last
+    # stroke's flick (a hundredth of a millimetre to the side at the tip): the tip lands and
+    # lies back along the way the base goes, as friction holds it (before, it lay the way its
+    # hundredth of a bend pointed: a thread of hair out of the side of 朋's inner 横's head);
+    # one primitive (the walk on floats) as two (the arrays' walk)
+    from tests.sim.builders import long_stroke, simulation
+
+    tips = []
+    for m in (1, 2):
+        brush = simulation(long_stroke()[:2], 64, 1.0, primitives=m).brush
+        hair = brush.L
+        brush.place(np.array([20.0, 20.0, hair + 0.3, 0.0, 0.0, 0.0]))
+        brush.touching[:] = False
+        brush.cc[..., 1] += 0.01 * brush.sarc / hair
+        pose = np.array([20.5, 20.0, hair - 1.0, 0.0, 0.0, 0.0])
+        brush.move(pose, np.array([60.0, 0.0, -120.0, 0.0, 0.0, 0.0]), 1.0 / 120.0)
+        tip = brush.cc[:, -1]
+        assert np.all(tip[:, 2] == 0.0)  # on the paper
+        assert np.all(tip[:, 0] < pose[0] - 0.5)  # behind the base
+        assert np.all(np.abs(tip[:, 1] - pose[1]) < 0.05)  # not off to the side
+        tips.append(tip[0])
+    assert tips[0].tobytes() == tips[1].tobytes()
