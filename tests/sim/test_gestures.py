@@ -133,7 +133,10 @@ def test_a_written_zhe_keeps_its_shoulder_without_a_knob(stiff_ink):
     # outer point, 19 of 342 px, angular; the knob missed 8 %)
     assert missed < 0.06 * np.count_nonzero(every[shoulder])
     bulge = outside[shoulder][ink[shoulder]].max()
-    assert bulge < outside[straight][ink[straight]].max() + 2.0
+    # (2.0 before heads17's landing drag: a faint pixel of the bump on the shoulder's top, where
+    # the horizontal's last samples crawl pressed into the 顿, now lies 2.8 px out, a diagonal
+    # pixel further; the round knob of old stood 5 px and more past the outline)
+    assert bulge < outside[straight][ink[straight]].max() + 3.0
 
 
 def test_an_end_curling_into_a_hook_off_a_curve_is_a_hook():
