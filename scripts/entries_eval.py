@@ -33,10 +33,12 @@ from sim.writing.outline import (  # noqa: E402
     EM,
     distance_to_outline,
     fill,
+    median_movements,
     resample,
     stroke_polygons,
     to_image,
 )
+from sim.writing.planner import RUN_UP, _landing  # noqa: E402
 from sim.writing.writer import coverage_mask, write_character  # noqa: E402
 
 OUT = os.environ.get("ENTRIES_EVAL_OUT", "/tmp/entries_eval")
@@ -67,9 +69,12 @@ def write(tag: str, chars: str, brush: str) -> None:
 
 
 def strokes(ch: dict) -> list[dict]:
-    """Per stroke: its median (image px), length, widest, first third's widest, mask."""
+    """Per stroke: its median (image px), length, widest, first third's widest, mask, and
+    whether its head is entered with the tip hidden (``planner._landing`` of its first
+    movement)."""
     out = []
-    for med, polys in zip(ch["medians"], stroke_polygons(ch), strict=True):
+    moves = median_movements(ch)
+    for k, (med, polys) in enumerate(zip(ch["medians"], stroke_polygons(ch), strict=True)):
         med = np.asarray(med, float)
         pts, _ = resample(med, 4.0)
         r = np.maximum(distance_to_outline(pts, polys), 0.0)
@@ -80,6 +85,7 @@ def strokes(ch: dict) -> list[dict]:
                 "w": 2 * r.max() * N / EM,
                 "w0": 2 * r[: max(len(r) // 3, 1)].max() * N / EM,
                 "mask": fill([to_image(p, N) for p in polys], N),
+                "hidden": _landing(moves[k][0][0][0], RUN_UP) < 0.0,
             }
         )
     return out
@@ -99,7 +105,7 @@ def measure(ch: dict, ink: np.ndarray):
         starts.append((int((ink & ~near & zone).sum()), int((s["mask"] & ~ink & zone).sum())))
         starts[-1] += (int((s["mask"] & zone).sum()),)
         threads = thin & zone
-        starts[-1] += (int(threads.sum()), int(ndi.label(threads)[1]))
+        starts[-1] += (int(threads.sum()), int(ndi.label(threads)[1]), s["hidden"])
         if s["length"] >= DOT * s["w"]:
             continue
         d = s["med"][-1] - p0
@@ -121,6 +127,7 @@ def report(tags) -> None:
         z = np.load(f"{OUT}/{tag}.npz")
         out = bare = area = thin = pieces = 0
         lengths, past = [], 0
+        split = np.zeros((2, 5), int)  # per kind of head (tip showing, hidden): out .. pieces
         print(tag)
         for c in [k for k in z.files if not k.endswith("_img")]:
             starts, dots = measure(load(c), z[c])
@@ -129,6 +136,8 @@ def report(tags) -> None:
             thin, pieces = thin + t, pieces + p
             lengths += [d[0] for d in dots]
             past += sum(d[1] for d in dots)
+            for s in starts:
+                split[int(s[5])] += s[:5]
             ds = " ".join(f"{d[0]:.2f}/{d[1]}" for d in dots)
             print(
                 f"  {c} starts: out {o:5d} (thin {t:4d} in {p:2d}) bare {b:5d} of {a:6d}"
@@ -139,6 +148,8 @@ def report(tags) -> None:
             f"  all starts: out {out} (thin {thin} in {pieces} pieces) bare {bare} of {area};"
             f" dots {len(lengths)}: {dl}, past {past}"
         )
+        for kind, (o, b, a, t, p) in zip(("tip showing", "hidden tip"), split, strict=True):
+            print(f"    {kind:11s} heads: out {o} (thin {t} in {p} pieces) bare {b} of {a}")
 
 
 if __name__ == "__main__":

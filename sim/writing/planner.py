@@ -229,11 +229,18 @@ def _along(path) -> np.ndarray:
     return np.concatenate([[0.0], np.cumsum(np.linalg.norm(np.diff(path, axis=0), axis=1))])
 
 
+ENTRY_RAMP = 0.5  # share of the stroke's width (its first third's widest) the belly presses over
+# (issue 26.2: 1.0, a press that grows about as fast as the base moves, took the knob off 秋's
+# top 撇 but thinned every head: bare outline at the starts of ten characters 5711 -> 11057 px,
+# imitation's first four cases -0.043, -0.019, +0.023, -0.011)
+
+
 def _ramp_length(s, width) -> float:
     """How far (mm) into a movement the belly has pressed to the planned press (``_entry_ramp``):
-    half the stroke's width over its first third, at least 0.5 mm, at most a quarter of the
-    movement (``s``: distance along it per sample)."""
-    return float(np.clip(0.5 * np.max(width[: max(len(width) // 3, 1)]), 0.5, 0.25 * s[-1]))
+    ``ENTRY_RAMP`` of the stroke's width over its first third, at least 0.5 mm, at most a
+    quarter of the movement (``s``: distance along it per sample)."""
+    w = np.max(width[: max(len(width) // 3, 1)])
+    return float(np.clip(ENTRY_RAMP * w, 0.5, 0.25 * s[-1]))
 
 
 def entry_zone(pl: Plan, body) -> np.ndarray:
@@ -285,6 +292,23 @@ HIDDEN_DOWN = 0.5  # a movement heading down by more than this (sine; 30 degrees
 # horizontal: a 竖, a 撇, a dot, a 捺) hides its tip (``_landing``)
 
 
+HIDDEN_REACH = 0.5  # share of the half width at its start a hidden-tip head's base reaches up
+# past the median's start into the cap before it turns and presses down (``_reach_the_cap``)
+
+
+def _reach_the_cap(samples, pl, body) -> None:
+    """A hidden-tip head (藏锋, ``_landing``): the base goes on up past the median's start
+    against the stroke's way, into the cap, by ``HIDDEN_REACH`` of the half width there, and
+    turns down from there, coming back onto the planned path over the entry's ramp
+    (``_ramp_length``): the cap is filled by the turn. Landing on the median's start, the tip
+    trailing into the stroke, the cap above it stayed bare (issue 26.2: 村's 竖 about 8 px
+    short at its top)."""
+    s = _along(pl.target[body])
+    t = np.clip(s / max(_ramp_length(s, pl.width[body]), 1e-6), 0.0, 1.0)
+    back = HIDDEN_REACH * 0.5 * float(pl.width[body[0]]) * (1.0 - t * t * (3.0 - 2.0 * t))
+    samples[body, :2] -= back[:, None] * pl.tangent[body[0]]
+
+
 def _landing(path, run_up: float) -> float:
     """The run-up a movement's entry comes down with (``_enter_and_leave``; ``path``: its
     body samples' targets, paper mm, y up). A stroke that sets off down (竖, 撇, 点, 捺:
@@ -326,6 +350,8 @@ def _enter_and_leave(
     t0 = pl.tangent[body[0]]
     f = np.arange(1, len(entry) + 1) / max(len(entry), 1)
     run_up = _landing(pl.target[body], run_up)
+    if run_up < 0.0 and corner[0] is None:
+        _reach_the_cap(samples, pl, body)
     back = (len(entry) + 1 - np.arange(1, len(entry) + 1)) * 0.5 * step_mm * run_up
     if corner[0] is not None:  # after a sharp turn the tip comes down on the corner, not before it
         back = back * 0.0

@@ -104,3 +104,33 @@ def test_landing_hair_lies_back_along_the_way_the_brush_moves():
         assert np.all(np.abs(tip[:, 1] - pose[1]) < 0.05)  # not off to the side
         tips.append(tip[0])
     assert tips[0].tobytes() == tips[1].tobytes()
+
+
+def test_a_hidden_tip_head_turns_in_its_cap(response):
+    # 十's 竖 and 八's 撇 (entered against their way, 藏锋): the base goes on up past the
+    # median's start into the cap before it turns and presses down, and is back on the planned
+    # path past the entry's ramp (before, it turned on the median's start and the tip trailed
+    # into the stroke: the cap above it stayed bare, 村's 竖 about 8 px short at its top);
+    # 十's 横 (tip showing) and a picture's imitation (run-up 0) start on the median
+    hair = stiff_template().resolve()[1].hair_length_mm
+    for char, stroke, run_up, reach in (
+        ("十", 1, 1.0, True),
+        ("八", 0, 1.0, True),
+        ("十", 0, 1.0, False),
+        ("十", 1, 0.0, False),
+    ):
+        pl = plan(find_char(char), 100.0, 0.5)
+        a, b = pl.strokes[stroke]
+        body = np.flatnonzero(pl.phase[a:b] == WRITING) + a
+        samples = np.zeros((len(pl.target), 6))
+        samples[:, :2], samples[:, 2] = pl.target, hair + HOVER_MM
+        press = response.press_for(pl.width[body])
+        brush = (hair + HOVER_MM, hair, 0.5)
+        _fill(samples, pl, response, (a, b), press, np.zeros(len(body)), brush, run_up=run_up)
+        way = pl.tangent[body[0]]
+        back = (pl.target[body[0]] - samples[body[0], :2]) @ way
+        if reach:
+            assert 0.2 * pl.width[body[0]] < back < 0.5 * pl.width[body[0]], (char, stroke)
+            assert np.all(np.diff((samples[body[:8], :2] - samples[body[0], :2]) @ way) > 0.0)
+        else:
+            assert abs(back) < 1e-4, (char, stroke, run_up)
