@@ -25,9 +25,10 @@ EXIT_SAMPLES = 8
 CORNER_SAMPLES = 4  # samples of the lift into a sharp corner and of the entry after it: the
 # brush stays down there (issue 26's 折 and hooks; 8 before, and a shoulder read as a corner
 # since then costs a movement more: with 4 the writing does about the same work as before)
-HEEL_SAMPLES = 1  # ... and of the lift into a hook's heel and of the hook's entry: the base goes
-# on from the foot into the flick (issue 26.2: with 4 and 4, and the base stopped on the foot's
-# end, the pressed belly rested there some 12 samples and pressed again on the spot, a round bulb)
+HEEL_SAMPLES = 1  # ... and of the lift into the heel of a hook flicked up to a point and of its
+# entry, with no turn between: the hook sets off from the heel at once (issue 26.2: 4, 4 and 4,
+# the belly lifted on the heel, went 2 mm back up the vertical and pressed again there, a round
+# bulb below the hook)
 # what the brush does at a sample of a plan (Plan.phase)
 IN_THE_AIR, ENTERING, WRITING, LIFTING, TURNING = 0, 1, 2, 3, 4
 
@@ -200,8 +201,10 @@ ZHE_TOUCH = 1.0  # ... and the leg after a 折 sets off with: the 顿 has presse
 # shoulder)
 HOOK_KEEP = 0.7  # share of its press the belly keeps through the turn of a hook that is not
 # flicked up to a point (``feet.flicks``: 子's 横撇; one that is keeps the heel's, ``_heel``)
-HOOK_HEEL = 1.0  # a hook's heel is pressed at most this share of the stroke's own press before
-# it (``feet._body_width`` of its presses; as ``feet.HOOK_FOOT_OVER`` caps the foot's width)
+HOOK_HEEL = 1.6  # a hook's heel is pressed at most this share of the stroke's own press before
+# it (``feet._body_width`` of its presses): as the foot and the hook's root are planned, from the
+# outline's or a picture's widths, up to a kaishu heel's weight (1.0 and 1.3: the same imitation
+# of 学 and 高, with the base eased into the foot; the font's V foot was left barer)
 ZHE_KEEP = 0.6  # share of its press the belly keeps through a 折's turn: the brush lifts only
 # slightly as the 顿 sets off and presses again as it goes (eased to the tip, 0.05 of the hair,
 # before issue 26, the leg began thin: the shoulder's outer corner bare, a round knob inside it;
@@ -433,20 +436,21 @@ def _gathered(n: int) -> np.ndarray:
     return 1.0 - (1.0 - HOOK_GATHER) * t * t * (3.0 - 2.0 * t)
 
 
-def _heel(p) -> float:
+def _heel(p, root: float) -> float:
     """The press a hook's heel keeps (``p``: the press per body sample of the movement into its
-    foot): the press it ends with, the belly staying pressed through the turn, at most
-    ``HOOK_HEEL`` of its own press (``feet._body_width``). (Issue 26.2: 0.7 of it, and the hook
-    pressed again on the spot as its planned width asked, 8.6 mm against the vertical's 7.1 at
-    小: the round bulb below every 竖钩's hook.)"""
-    return min(float(p[-1]), HOOK_HEEL * _body_width(p))
+    foot; ``root``: the hook's planned press where it sets off): the deeper of the two, the
+    belly staying pressed from the foot into the flick, at most ``HOOK_HEEL`` of the movement's
+    own press (``feet._body_width``). (Issue 26.2: 0.7 of the foot's press, and the hook pressed
+    again on the spot after a rest, 2 mm back up the vertical: the round bulb below every
+    竖钩's hook.)"""
+    return min(max(float(p[-1]), float(root)), HOOK_HEEL * _body_width(p))
 
 
 def _into_the_heel(p, path, width) -> np.ndarray:
     """The press per body sample of a movement into a hook's foot (``p``; ``path``: its
     targets, ``width``: its planned widths) over its last stretch, as long as the movement is
     wide, easing (a smoothstep) to at most the heel's (``HOOK_HEEL`` of its own press): the base
-    slows into the heel, and pressed deeper there the belly splayed into a round bulb beside
+    stops on the heel, and pressed much deeper there the belly splays into a round bulb beside
     and below the font's narrow foot (issue 26.2)."""
     to_end = _along(path)[-1] - _along(path)
     t = np.clip(1.0 - to_end / max(float(np.max(width)), 1e-6), 0.0, 1.0)
@@ -459,16 +463,18 @@ HOOK_ROOT = 0.25  # at most this share of a hook is its root, pressed as the hee
 
 def _flicked(p, heel: float, path, width) -> np.ndarray:
     """A hook's press per body sample (``p``: as planned; ``path``: its targets, ``width``: its
-    planned widths) as it flicks out of a heel pressed ``heel``: never deeper than the heel nor
-    than a sample before, so the belly only lets go from the heel to the tip as the brush moves;
-    gathered to its point (``_gathered``), but no lighter than the font's triangle: the heel's
-    press held over the hook's root (its first half-width, at most ``HOOK_ROOT`` of it), falling
-    evenly from there to none at the tip. The hook leaves the heel as wide as the heel and thins
-    steadily to its point."""
+    planned widths) as it flicks out of a heel pressed ``heel``: gathered to its point
+    (``_gathered``), but no lighter than the font's triangle: the heel's press held over the
+    hook's root (its first half-width, at most ``HOOK_ROOT`` of it), falling evenly from there
+    to none at the tip. The hook leaves the heel as wide as the heel and thins steadily to its
+    point. (Issue 26.2: set off from the heel at its planned press, read across a path that
+    runs along the triangle's lower edge, it fell at once to a thin stick glued to a round
+    heel, feet16's 水 寸 利. Held at most the heel's and never pressed again, as tried first,
+    the imitation of 学 was within 0.001 of this.)"""
     s = _along(path)
     root = min(0.5 * float(width[0]), HOOK_ROOT * float(s[-1]))
     taper = heel * np.clip((s[-1] - s) / max(float(s[-1]) - root, 1e-9), 0.0, 1.0)
-    return np.minimum.accumulate(np.minimum(np.maximum(p * _gathered(len(p)), taper), heel))
+    return np.maximum(p * _gathered(len(p)), taper)
 
 
 def _onto_the_dun(pl: Plan, run, leg) -> bool:
@@ -584,8 +590,7 @@ def _fill(
         corner = r < len(runs) - 1  # the base stops on a corner's foot (a hook's, a 竖折's);
         # into a 折's shoulder it goes on into the 顿 (``_turn_on_the_tip``)
         into_zhe = corner and not hook[r + 1] and _onto_the_dun(pl, run, runs[r + 1])
-        on = into_zhe or (corner and flick[r + 1])  # into a 顿, or a hook's heel: one move on
-        samples[run, :2] = _lead_along(path, response.lag_for(p), corner and not on, on)
+        samples[run, :2] = _lead_along(path, response.lag_for(p), corner and not into_zhe, into_zhe)
         placed = side[j0:j1]
         if r == 0:  # the head; a leg sets off from the corner (a hook pressed from its foot)
             placed = _entry_side(placed, pl.target[run], pl.width[run])
@@ -593,12 +598,13 @@ def _fill(
         samples[run, 2] = hair - p
         nxt = None
         if r < len(runs) - 1:  # into a corner: a 折 lifts slightly, a hook's foot stays pressed
-            heel = _heel(p) if flick[r + 1] else HOOK_KEEP * p[-1] if hook[r + 1] else 0.0
+            keep = HOOK_KEEP * p[-1] if hook[r + 1] else 0.0
+            heel = _heel(p, press[j1]) if flick[r + 1] else keep
             nxt = hair - (heel if hook[r + 1] else ZHE_KEEP * p[-1])
         _enter_and_leave(samples, pl, run, hover, hair, step_mm, (at, nxt), run_up, width_at)
         if nxt is not None:
             heights.append(nxt)
-            dun.append(on)
+            dun.append(into_zhe)
         at = nxt
         j0 = j1
     _turn_on_the_tip(samples, pl, span, heights, dun)

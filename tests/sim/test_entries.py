@@ -230,7 +230,7 @@ def test_a_hook_sets_off_pressed_from_its_foot(response):
     _fill(samples, pl, response, (a, b), press, np.zeros(len(body)), (hair + HOVER_MM, hair, 0.5))
     _, foot, hook = runs
     between = np.arange(foot[-1] + 1, hook[0])
-    kept = _heel(hair - samples[foot, 2])
+    kept = _heel(hair - samples[foot, 2], press[len(runs[0]) + len(foot)])
     assert kept > 0.1 * hair
     assert np.all(hair - samples[between, 2] >= kept - 0.01)  # pressed all through the turn
     # the hook's first sample is pressed as the heel (no landing on the tip) and the press
