@@ -41,6 +41,16 @@ def narrows(width) -> bool:
     return w.size > 1 and float(w[-1]) < HOOK_POINT * float(w.max())
 
 
+def flicks(piece, width) -> bool:
+    """Whether a hook (``piece``: its points, y up; ``width``: its widths along it) is flicked up
+    to a point: it narrows (``narrows``) and its end lies above its start (a 竖钩's, a 弯钩's, a
+    横折钩's, a 卧钩's; not 子's 横撇 read as a hook, nor a picture's 口 read with its bottom as
+    one). Such a hook sets off from the heel (``_from_the_foot``, ``_rooted``; planner's
+    ``_flicked``). (Issue 26.2, after feet16's ``flicks``.)"""
+    p = np.asarray(piece, dtype=float)
+    return narrows(width) and len(p) > 1 and float(p[-1, 1]) > float(p[0, 1])
+
+
 def _rises_back(way_in, way_out) -> bool:
     """Whether a corner from a way in going down turns clockwise (y up) into a way out that
     rises (by more than ``HOOK_RISE``, as a sine): a hook flicked back up off a leg (刀, 力,
@@ -50,20 +60,33 @@ def _rises_back(way_in, way_out) -> bool:
     return bool(d[1] < 0.0 and clockwise and e[1] > HOOK_RISE * float(np.linalg.norm(e, axis=-1)))
 
 
-HOOK_FROM_FOOT = 0.5  # share of the way from the median's corner to the foot's end (where the
-# movement before pressed into) a hook sets off from: the middle of the triangle's base
-# (measured on 永 剑 虎 戈 at 4x: from the corner, a thin band along the triangle's inner edge
-# over a round bulb; from the foot's end, a band along its outer edge, the inner part bare)
+HOOK_FROM_FOOT = 1.0  # share of the way from the median's corner to the foot's end (where the
+# movement before pressed into) a hook flicked up to a point (``flicks``) sets off from: the
+# heel, straight out of it (``_rooted``). (0.5 before issue 26.2, the middle of the triangle's
+# base: the base went back up the vertical from the foot's end, pressed, and the hook's lower
+# edge met the round end of the vertical below it in a notch, a round bulb at 永 小 水 寸 子)
+HOOK_FROM_MIDDLE = 0.5  # ... and any other hook (子's 横撇, a picture's 口 read with its bottom as
+# a hook): the middle of the foot (from its end, the 撇 ran off outside 子's outline)
 
 
-def _from_the_foot(piece, foot) -> np.ndarray:
-    """A hook's points moved to set off ``HOOK_FROM_FOOT`` of the way from the median's corner
-    to ``foot`` (where the movement before ended, pressed into the foot), the shift fading out
-    along the hook to its tip: the hook's ink is the triangle from the whole foot out to the
-    point, as a calligrapher flicks it from the pressed foot. Added in issue 26."""
+def _from_the_foot(piece, foot, share: float = HOOK_FROM_FOOT) -> np.ndarray:
+    """A hook's points moved to set off ``share`` of the way from the median's corner to
+    ``foot`` (where the movement before ended, pressed into the foot), the shift fading out
+    along the hook to its tip: the hook's ink is the triangle from the foot out to the point,
+    as a calligrapher flicks it from the pressed foot. Added in issue 26."""
     s = np.concatenate([[0.0], np.cumsum(np.linalg.norm(np.diff(piece, axis=0), axis=1))])
-    fade = HOOK_FROM_FOOT * (1.0 - s / max(float(s[-1]), 1e-9))
+    fade = share * (1.0 - s / max(float(s[-1]), 1e-9))
     return piece + fade[:, None] * (np.asarray(foot) - piece[0])[None, :]
+
+
+def _rooted(piece, centre, width) -> np.ndarray:
+    """A hook's centres (``centre``: ``piece``, its points set off from the foot, moved to the
+    middle of the outline's cuts) kept on ``piece`` over its root, the first of its own widths
+    (``width``), the move easing in beyond: across the root the cut runs into the leg's band and
+    its middle lies up the leg, and the hook went back up the vertical before it flicked."""
+    s = np.concatenate([[0.0], np.cumsum(np.linalg.norm(np.diff(piece, axis=0), axis=1))])
+    t = np.clip(s / max(float(width[0]), 1e-9), 0.0, 1.0)[:, None]
+    return piece + t * t * (3.0 - 2.0 * t) * (centre - piece)
 
 
 HOOK_FOOT_OVER = 1.3  # a hook's foot is at most this many times the stroke's own width before it
@@ -77,7 +100,7 @@ def _gathered_foot(width, k: int, step: float) -> np.ndarray:
     ``HOOK_FOOT_OVER`` times its own width (``_body_width``) from half such a width before the
     corner on: the calligrapher gathers the brush at the foot, no wider than the stroke, and
     the hook's triangle is the flick's, set off from the foot (``_from_the_foot``; the belly
-    keeps its press through the turn, planner's ``HOOK_KEEP``). (Added in issue 26: planned as
+    keeps its press through the turn, planner's ``_heel``). (Added in issue 26: planned as
     wide as the font's foot, whose cut slants along the hook's triangle, up to twice the
     vertical, the pressed belly left a round bulb beside and below the corner, out past the
     triangle's lower edge. Narrowed from the hook's side only, the band's outer side kept, a

@@ -13,12 +13,16 @@ import numpy as np
 
 from ..core import exact
 from .feet import (
+    HOOK_FROM_FOOT,
+    HOOK_FROM_MIDDLE,
     _body_width,
     _from_the_foot,
     _gathered_foot,
     _held_foot,
     _past_the_corner,
     _rises_back,
+    _rooted,
+    flicks,
     is_hook,
     narrows,
 )
@@ -427,9 +431,12 @@ def _pieces(pts, polys, step: float, edges, curl: bool = False) -> list:
         hook = 0 < k == len(edges) - 2 and _hooks_back(
             way_in, p, pieces[-1], step, _bands(p, polys)[1], curl
         )
+        flick = hook and flicks(p, _bands(p, polys)[1])  # flicked up to a point
         if hook:  # a hook sets off from the foot the movement before pressed into
-            p = _from_the_foot(p, pieces[-1][0][-1])
+            p = _from_the_foot(p, pieces[-1][0][-1], HOOK_FROM_FOOT if flick else HOOK_FROM_MIDDLE)
         centre, width = _bands(p, polys)
+        if flick:  # straight out of the heel
+            centre = _rooted(p, centre, width)
         if k:  # the corner is inked by the foot: the movement's own width
             # from where it leaves the corner's disc on (a hook's too: pressed wider, the
             # belly spilled over the hook's inner edge)

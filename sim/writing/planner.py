@@ -13,6 +13,7 @@ import numpy as np
 
 from ..core import exact
 from ..core.recording import quantise
+from .feet import _body_width, flicks
 from .outline import EM, TOP, median_movements
 
 if TYPE_CHECKING:  # the response is handed in (its module builds on this one)
@@ -24,6 +25,10 @@ EXIT_SAMPLES = 8
 CORNER_SAMPLES = 4  # samples of the lift into a sharp corner and of the entry after it: the
 # brush stays down there (issue 26's 折 and hooks; 8 before, and a shoulder read as a corner
 # since then costs a movement more: with 4 the writing does about the same work as before)
+HEEL_SAMPLES = 1  # ... and of the lift into the heel of a hook flicked up to a point and of its
+# entry, with no turn between: the hook sets off from the heel at once (issue 26.2: 4, 4 and 4,
+# the belly lifted on the heel, went 2 mm back up the vertical and pressed again there, a round
+# bulb below the hook)
 # what the brush does at a sample of a plan (Plan.phase)
 IN_THE_AIR, ENTERING, WRITING, LIFTING, TURNING = 0, 1, 2, 3, 4
 
@@ -130,12 +135,19 @@ def plan(
             since_dip = 0.0
         since_dip += stroke_len
         for j, (p, w, t) in enumerate(moves):
-            if j:  # a sharp turn: ease to the tip, turn on it, press again on the corner
+            last = hook and j == len(moves) - 1
+            flick = hook and flicks(moves[-1][0], moves[-1][1])  # flicked up to a point
+            heel = flick and j and last  # it flicks on from the heel: no turn
+            if j and not heel:  # a sharp turn: ease to the tip, turn on it, press again
                 _air(tg, wd, tn, ph, moves[j - 1][0][-1], p[0], t[0], step_mm, TURNING)
             # at a sharp corner the brush is already down: a shorter lift and entry
             m0 = CORNER_SAMPLES if j else ENTRY_SAMPLES
             m1 = CORNER_SAMPLES if j < len(moves) - 1 else EXIT_SAMPLES
-            if hook and j and j == len(moves) - 1:
+            if heel:  # into and out of the hook's heel
+                m0 = HEEL_SAMPLES
+            if flick and j == len(moves) - 2:
+                m1 = HEEL_SAMPLES
+            if j and last:
                 hooks.append(sum(len(a) for a in tg) + m0)
             tg += [np.tile(p[0], (m0, 1)), p, np.tile(p[-1], (m1, 1))]
             wd += [np.full(m0, w[0]), w, np.full(m1, w[-1])]
@@ -187,7 +199,12 @@ ENTRY_TOUCH = 0.15  # share of the press the tip lands with; the belly presses a
 ZHE_TOUCH = 1.0  # ... and the leg after a 折 sets off with: the 顿 has pressed it down already
 # (0.4 before issue 26's 顿: pressing again as the leg went down, it left a waist below the
 # shoulder)
-HOOK_KEEP = 0.7  # share of its press the belly keeps through a hook's turn
+HOOK_KEEP = 0.7  # share of its press the belly keeps through the turn of a hook that is not
+# flicked up to a point (``feet.flicks``: 子's 横撇; one that is keeps the heel's, ``_heel``)
+HOOK_HEEL = 1.6  # a hook's heel is pressed at most this share of the stroke's own press before
+# it (``feet._body_width`` of its presses): as the foot and the hook's root are planned, from the
+# outline's or a picture's widths, up to a kaishu heel's weight (1.0 and 1.3: the same imitation
+# of 学 and 高, with the base eased into the foot; the font's V foot was left barer)
 ZHE_KEEP = 0.6  # share of its press the belly keeps through a 折's turn: the brush lifts only
 # slightly as the 顿 sets off and presses again as it goes (eased to the tip, 0.05 of the hair,
 # before issue 26, the leg began thin: the shoulder's outer corner bare, a round knob inside it;
@@ -445,6 +462,48 @@ def _gathered(n: int) -> np.ndarray:
     return 1.0 - (1.0 - HOOK_GATHER) * t * t * (3.0 - 2.0 * t)
 
 
+def _heel(p, root: float) -> float:
+    """The press a hook's heel keeps (``p``: the press per body sample of the movement into its
+    foot; ``root``: the hook's planned press where it sets off): the deeper of the two, the
+    belly staying pressed from the foot into the flick, at most ``HOOK_HEEL`` of the movement's
+    own press (``feet._body_width``). (Issue 26.2: 0.7 of the foot's press, and the hook pressed
+    again on the spot after a rest, 2 mm back up the vertical: the round bulb below every
+    竖钩's hook.)"""
+    return min(max(float(p[-1]), float(root)), HOOK_HEEL * _body_width(p))
+
+
+def _into_the_heel(p, path, width) -> np.ndarray:
+    """The press per body sample of a movement into a hook's foot (``p``; ``path``: its
+    targets, ``width``: its planned widths) over its last stretch, as long as the movement is
+    wide, easing (a smoothstep) to at most the heel's (``HOOK_HEEL`` of its own press): the base
+    stops on the heel, and pressed much deeper there the belly splays into a round bulb beside
+    and below the font's narrow foot (issue 26.2)."""
+    to_end = _along(path)[-1] - _along(path)
+    t = np.clip(1.0 - to_end / max(float(np.max(width)), 1e-6), 0.0, 1.0)
+    heel = HOOK_HEEL * _body_width(p)
+    return np.minimum(p, np.max(p) - (np.max(p) - heel) * t * t * (3.0 - 2.0 * t))
+
+
+HOOK_ROOT = 0.25  # at most this share of a hook is its root, pressed as the heel (``_flicked``)
+
+
+def _flicked(p, heel: float, path, width) -> np.ndarray:
+    """A hook's press per body sample (``p``: as planned; ``path``: its targets, ``width``: its
+    planned widths) as it flicks out of a heel pressed ``heel``: gathered to its point
+    (``_gathered``), but no lighter than the font's triangle: the heel's press held over the
+    hook's root (its first half-width, at most ``HOOK_ROOT`` of it), falling evenly from there
+    to none at the tip. The hook leaves the heel as wide as the heel and thins steadily to its
+    point. (Issue 26.2: set off from the heel at its planned press, read across a path that
+    runs along the triangle's lower edge, it fell at once to a thin stick glued to a round
+    heel, feet16's 水 寸 利. Held at most the heel's and never pressed again, as tried first
+    with the base eased into the foot, 学's imitation was the same as without: 0.734 and 0.735;
+    not measured with the base stopping on the heel.)"""
+    s = _along(path)
+    root = min(0.5 * float(width[0]), HOOK_ROOT * float(s[-1]))
+    taper = heel * np.clip((s[-1] - s) / max(float(s[-1]) - root, 1e-9), 0.0, 1.0)
+    return np.maximum(p * _gathered(len(p)), taper)
+
+
 def _onto_the_dun(pl: Plan, run, leg) -> bool:
     """Whether the movement ``run`` (body samples) ends at a 折's shoulder the outline made a
     顿 of (``outline._dun_point``): the next movement, ``leg``, sets off ahead of its end, not
@@ -459,6 +518,14 @@ def _is_hook(pl: Plan, runs) -> list[bool]:
     back on the way in, a 竖钩, a 斜钩, or sets off about square from an end that curls off a
     curve and narrows to a point, a 竖弯钩, a 卧钩; not a 折's turn into a leg)."""
     return [bool(len(run)) and int(run[0]) in pl.hooks for run in runs]
+
+
+def _flicks(pl: Plan, runs, hook) -> list[bool]:
+    """For each movement of a stroke (``runs``; ``hook``: ``_is_hook``'s), whether it is a hook
+    flicked up to a point (``feet.flicks``), which sets off from its heel at once
+    (``HEEL_SAMPLES``, ``_heel``, ``_flicked``); any other hook turns on the tip and presses
+    again (``HOOK_KEEP``) as before issue 26.2."""
+    return [h and flicks(pl.target[run], pl.width[run]) for h, run in zip(hook, runs, strict=True)]
 
 
 def _movements(items, body=None) -> list[np.ndarray]:
@@ -530,14 +597,20 @@ def _fill(
     j0 = 0
     runs = _movements(body)
     hook = _is_hook(pl, runs)
+    flick = _flicks(pl, runs, hook)
     at, heights, dun = None, [], []  # the base's height at the corner the movement begins after
+    heel = 0.0  # the press a hook's heel keeps (``_heel``)
     width_at = _width_at(response)  # the band a press lays (a point's let-go paces by it)
     for r, run in enumerate(runs):
         j1 = j0 + len(run)
         touch = 1.0 if hook[r] else ZHE_TOUCH if r else ENTRY_TOUCH  # a hook sets off pressed
         p = press[j0:j1] * _entry_ramp(pl.target[run], pl.width[run], touch)
-        if hook[r]:  # the hook gathers the hair to its point as it flicks out
+        if flick[r]:  # the hook flicks out of the heel, letting go to its point
+            p = _flicked(p, heel, pl.target[run], pl.width[run])
+        elif hook[r]:  # the hook gathers the hair to its point as it flicks out
             p = p * _gathered(len(run))
+        if r < len(runs) - 1 and flick[r + 1]:  # into a hook's heel, pressed no deeper
+            p = _into_the_heel(p, pl.target[run], pl.width[run])
         path = pl.target[run]
         if ends is not None:
             path = _ends_moved(path, pl.tangent[run], pl.width[run], ends[r])
@@ -552,7 +625,9 @@ def _fill(
         samples[run, 2] = hair - p
         nxt = None
         if r < len(runs) - 1:  # into a corner: a 折 lifts slightly, a hook's foot stays pressed
-            nxt = hair - (HOOK_KEEP if hook[r + 1] else ZHE_KEEP) * p[-1]
+            keep = HOOK_KEEP * p[-1] if hook[r + 1] else 0.0
+            heel = _heel(p, press[j1]) if flick[r + 1] else keep
+            nxt = hair - (heel if hook[r + 1] else ZHE_KEEP * p[-1])
         _enter_and_leave(samples, pl, run, hover, hair, step_mm, (at, nxt), run_up, width_at)
         if nxt is not None:
             heights.append(nxt)

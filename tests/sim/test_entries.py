@@ -206,11 +206,12 @@ def test_a_zhe_lifts_slightly_and_presses_again(response):
 @pytest.mark.slow
 def test_a_hook_sets_off_pressed_from_its_foot(response):
     # 永's 竖钩 turns back by more than HOOK_COS at its foot: the belly stays pressed through
-    # the turn (HOOK_KEEP of its press, not eased to the tip as at a 折) and the hook sets off
-    # pressed, lifting as it goes (before issue 26 it began on the tip and swelled: a blunt
-    # tail apart from a round foot)
+    # the turn (the heel's press, ``_heel``, not eased to the tip as at a 折) and the hook sets
+    # off pressed, lifting as it goes (before issue 26 it began on the tip and swelled: a blunt
+    # tail apart from a round foot; since issue 26.2 the hook sets off at the heel's press,
+    # not pressed again as its planned width asks, tests/sim/test_feet.py)
     from sim.core.params import HOVER_MM
-    from sim.writing.planner import HOOK_KEEP, _fill, _is_hook, _movements
+    from sim.writing.planner import _fill, _heel, _is_hook, _movements
 
     ch = find_char("永")
     pl = plan(ch, 100.0, 0.5)
@@ -229,13 +230,13 @@ def test_a_hook_sets_off_pressed_from_its_foot(response):
     _fill(samples, pl, response, (a, b), press, np.zeros(len(body)), (hair + HOVER_MM, hair, 0.5))
     _, foot, hook = runs
     between = np.arange(foot[-1] + 1, hook[0])
-    kept = HOOK_KEEP * (hair - samples[foot[-1], 2])
+    kept = _heel(hair - samples[foot, 2], press[len(runs[0]) + len(foot)])
     assert kept > 0.1 * hair
     assert np.all(hair - samples[between, 2] >= kept - 0.01)  # pressed all through the turn
-    # the hook's first sample is pressed as planned there (no landing on the tip) and the
-    # press falls from there to the point
+    # the hook's first sample is pressed as the heel (no landing on the tip) and the press
+    # falls from there to the point
     p = hair - samples[hook, 2]
-    assert p[0] > 0.8 * press[len(runs[0]) + len(foot)] and p[-1] < 0.6 * p[: len(p) // 3].max()
+    assert p[0] > 0.8 * kept and p[-1] < 0.6 * p[: len(p) // 3].max()
 
 
 def test_a_movements_entry_is_the_stretch_the_belly_presses_down_over():

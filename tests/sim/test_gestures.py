@@ -49,9 +49,9 @@ def test_a_chamfered_shoulder_is_a_corner_but_a_round_bend_is_not():
 
 
 def test_a_hook_sets_off_from_the_foot_and_narrows_to_its_point():
-    # 永's 竖钩: the hook sets off from the middle of the foot (HOOK_FROM_FOOT of the way from
-    # the median's corner at (478, 24) down to where the leg ended in the foot), planned as
-    # wide as the vertical there, and its width falls to the tip
+    # 永's 竖钩: the hook sets off from the foot (HOOK_FROM_FOOT of the way from the median's
+    # corner at (478, 24) down to where the leg ended in the foot: its end since issue 26.2),
+    # planned as wide as the vertical there, and its width falls to the tip
     from sim.writing.feet import HOOK_FROM_FOOT
 
     (_, _), (leg, leg_w), (hook, hook_w) = median_pieces(find_char("永"))[1]

@@ -1,0 +1,74 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
+"""A hook's foot (issue 26, point 2): the vertical comes down into a short heel and the hook
+flicks straight out of it, letting go as it goes, from the heel's width to its point; no rest,
+no travel back up the vertical and no press again on the spot (before, a round bulb hung
+below every 竖钩's hook). No Blender."""
+
+import numpy as np
+import pytest
+
+from sim.core.params import HOVER_MM
+from sim.writing.feet import _body_width, flicks
+from sim.writing.hanzi import find_char
+from sim.writing.outline import median_movements, median_pieces
+from sim.writing.planner import WRITING, _fill, _is_hook, _movements, plan
+from tests.sim.builders import stiff_template
+
+
+def _hook_written(response, char: str, stroke: int):
+    """One stroke ending in a hook filled at the planned press: (samples, the runs of its body
+    samples, the plan, the hair's length)."""
+    pl = plan(find_char(char), 100.0, 0.5)
+    a, b = pl.strokes[stroke]
+    body = np.flatnonzero(pl.phase[a:b] == WRITING) + a
+    runs = _movements(body)
+    assert _is_hook(pl, runs)[-1]
+    hair = stiff_template().resolve()[1].hair_length_mm
+    samples = np.zeros((len(pl.target), 6))
+    samples[:, :2], samples[:, 2] = pl.target, hair + HOVER_MM
+    press = response.press_for(pl.width[body])
+    _fill(samples, pl, response, (a, b), press, np.zeros(len(body)), (hair + HOVER_MM, hair, 0.5))
+    return samples, runs, pl, hair
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("char, stroke", [("永", 1), ("小", 0)])
+def test_a_hook_flicks_out_of_its_heel_without_a_rest_or_a_press_again(response, char, stroke):
+    # the 竖钩: from the vertical's last body sample to the hook's first the base moves on at
+    # most a quarter of the vertical's width in at most 2 samples, pressed all the while (main:
+    # it lifted on the spot, went some 2 mm back up the vertical and pressed again on the spot,
+    # 12 samples); the hook leaves the heel at the heel's press and thins evenly to its point
+    # (main: pressed again to its planned root, 1.5 times the vertical's press, held, then
+    # falling)
+    samples, runs, pl, hair = _hook_written(response, char, stroke)
+    leg, hook = runs[-2], runs[-1]
+    between = np.arange(leg[-1], hook[0] + 1)
+    assert len(between) <= 4
+    travel = np.linalg.norm(np.diff(samples[between, :2], axis=0), axis=1).sum()
+    assert travel <= 0.25 * _body_width(pl.width[leg])
+    heel = hair - samples[between, 2]
+    assert heel.min() >= 0.9 * heel[0]  # no lift on the heel
+    q = hair - samples[hook, 2]
+    own = _body_width(hair - samples[leg, 2])
+    assert q[0] >= 0.9 * heel[0] and q[0] <= 1.3 * own
+    assert q[-1] < 0.3 * q[0]
+    assert np.max(-np.diff(q)) < 0.15 * q[0]  # no step down
+
+
+@pytest.mark.parametrize("char, stroke", [("永", 1), ("小", 0), ("水", 0), ("寸", 1)])
+def test_a_flicked_hook_sets_off_straight_from_the_heel(char, stroke):
+    # the hook's first point is the foot's end, where the vertical pressed into, and over its
+    # first width it heads for its point, not back up the vertical (main: from the middle of
+    # the foot, its band's centre up the leg, the base drawn back up before the flick)
+    pieces, hook = median_movements(find_char(char))[stroke]
+    (leg, _), (centre, width) = pieces[-2], pieces[-1]
+    assert hook and flicks(centre, width)
+    assert np.linalg.norm(centre[0] - leg[-1]) < 1.0
+    way = centre[-1] - centre[0]
+    k = int(np.searchsorted(np.cumsum(np.linalg.norm(np.diff(centre, axis=0), axis=1)), width[0]))
+    first = centre[k] - centre[0]
+    cos = float(first @ way) / (np.linalg.norm(first) * np.linalg.norm(way))
+    assert cos > 0.95
+    # but 子's 横撇, read as a hook (it turns back on its way in), leaves its corner going
+    # down: it is not flicked up to a point and sets off from the middle of the foot as before
+    assert not flicks(*median_pieces(find_char("子"))[0][-1])
