@@ -142,3 +142,68 @@ def _past_the_corner(width, step: float) -> None:
     (in place): its first half-width is held to the width there."""
     off = min(int(np.ceil(0.5 * width[0] / step)), len(width) - 1)
     width[:off] = np.minimum(width[:off], width[off])
+
+
+def _along(path) -> np.ndarray:
+    """Distance (mm) along ``path`` from its first point, per point."""
+    return np.concatenate([[0.0], np.cumsum(np.linalg.norm(np.diff(path, axis=0), axis=1))])
+
+
+# The press of a hook that flicks out of its heel (sim.writing.planner writes it).
+HOOK_HEEL = 1.6  # a hook's heel is pressed at most this share of the stroke's own press before
+# it (``feet._body_width`` of its presses): as the foot and the hook's root are planned, from the
+# outline's or a picture's widths, up to a kaishu heel's weight (1.0 and 1.3: the same imitation
+# of 学 and 高, with the base eased into the foot; the font's V foot was left barer)
+HOOK_GATHER = 0.85  # share of the planned press a hook has left at its tip: the belly lets go
+# faster than the outline narrows, so the splayed hair of the pressed foot gathers to a point
+
+
+def _gathered(n: int) -> np.ndarray:
+    """The press along a hook's ``n`` body samples as a share of the planned press: 1 where it
+    sets off from the foot, easing (a smoothstep) to ``HOOK_GATHER`` at its tip. (Added in issue
+    26: written at the planned press, the hair splayed in the foot spread the hook's last
+    stretch about as wide as half the vertical, a blunt tail, not a point.)"""
+    t = np.linspace(0.0, 1.0, max(n, 1))
+    return 1.0 - (1.0 - HOOK_GATHER) * t * t * (3.0 - 2.0 * t)
+
+
+def _heel(p, root: float) -> float:
+    """The press a hook's heel keeps (``p``: the press per body sample of the movement into its
+    foot; ``root``: the hook's planned press where it sets off): the deeper of the two, the
+    belly staying pressed from the foot into the flick, at most ``HOOK_HEEL`` of the movement's
+    own press (``feet._body_width``). (Issue 26.2: 0.7 of the foot's press, and the hook pressed
+    again on the spot after a rest, 2 mm back up the vertical: the round bulb below every
+    竖钩's hook.)"""
+    return min(max(float(p[-1]), float(root)), HOOK_HEEL * _body_width(p))
+
+
+def _into_the_heel(p, path, width) -> np.ndarray:
+    """The press per body sample of a movement into a hook's foot (``p``; ``path``: its
+    targets, ``width``: its planned widths) over its last stretch, as long as the movement is
+    wide, easing (a smoothstep) to at most the heel's (``HOOK_HEEL`` of its own press): the base
+    stops on the heel, and pressed much deeper there the belly splays into a round bulb beside
+    and below the font's narrow foot (issue 26.2)."""
+    to_end = _along(path)[-1] - _along(path)
+    t = np.clip(1.0 - to_end / max(float(np.max(width)), 1e-6), 0.0, 1.0)
+    heel = HOOK_HEEL * _body_width(p)
+    return np.minimum(p, np.max(p) - (np.max(p) - heel) * t * t * (3.0 - 2.0 * t))
+
+
+HOOK_ROOT = 0.25  # at most this share of a hook is its root, pressed as the heel (``_flicked``)
+
+
+def _flicked(p, heel: float, path, width) -> np.ndarray:
+    """A hook's press per body sample (``p``: as planned; ``path``: its targets, ``width``: its
+    planned widths) as it flicks out of a heel pressed ``heel``: gathered to its point
+    (``_gathered``), but no lighter than the font's triangle: the heel's press held over the
+    hook's root (its first half-width, at most ``HOOK_ROOT`` of it), falling evenly from there
+    to none at the tip. The hook leaves the heel as wide as the heel and thins steadily to its
+    point. (Issue 26.2: set off from the heel at its planned press, read across a path that
+    runs along the triangle's lower edge, it fell at once to a thin stick glued to a round
+    heel, feet16's 水 寸 利. Held at most the heel's and never pressed again, as tried first
+    with the base eased into the foot, 学's imitation was the same as without: 0.734 and 0.735;
+    not measured with the base stopping on the heel.)"""
+    s = _along(path)
+    root = min(0.5 * float(width[0]), HOOK_ROOT * float(s[-1]))
+    taper = heel * np.clip((s[-1] - s) / max(float(s[-1]) - root, 1e-9), 0.0, 1.0)
+    return np.maximum(p * _gathered(len(p)), taper)

@@ -13,7 +13,14 @@ import numpy as np
 
 from ..core import exact
 from ..core.recording import quantise
-from .feet import _body_width, flicks
+from .feet import (
+    _along,
+    _flicked,
+    _gathered,
+    _heel,
+    _into_the_heel,
+    flicks,
+)
 from .outline import EM, TOP, median_movements
 
 if TYPE_CHECKING:  # the response is handed in (its module builds on this one)
@@ -201,10 +208,6 @@ ZHE_TOUCH = 1.0  # ... and the leg after a 折 sets off with: the 顿 has presse
 # shoulder)
 HOOK_KEEP = 0.7  # share of its press the belly keeps through the turn of a hook that is not
 # flicked up to a point (``feet.flicks``: 子's 横撇; one that is keeps the heel's, ``_heel``)
-HOOK_HEEL = 1.6  # a hook's heel is pressed at most this share of the stroke's own press before
-# it (``feet._body_width`` of its presses): as the foot and the hook's root are planned, from the
-# outline's or a picture's widths, up to a kaishu heel's weight (1.0 and 1.3: the same imitation
-# of 学 and 高, with the base eased into the foot; the font's V foot was left barer)
 ZHE_KEEP = 0.6  # share of its press the belly keeps through a 折's turn: the brush lifts only
 # slightly as the 顿 sets off and presses again as it goes (eased to the tip, 0.05 of the hair,
 # before issue 26, the leg began thin: the shoulder's outer corner bare, a round knob inside it;
@@ -239,11 +242,6 @@ def _entry_side(side, path, width) -> np.ndarray:
         return side
     first = int(np.argmin(entry))  # the first sample past the entry
     return np.where(entry, ENTRY_SIDE * side[first], side)
-
-
-def _along(path) -> np.ndarray:
-    """Distance (mm) along ``path`` from its first point, per point."""
-    return np.concatenate([[0.0], np.cumsum(np.linalg.norm(np.diff(path, axis=0), axis=1))])
 
 
 ENTRY_RAMP = 0.5  # share of the stroke's width (its first third's widest) the belly presses over
@@ -309,8 +307,10 @@ HIDDEN_DOWN = 0.5  # a movement heading down by more than this (sine; 30 degrees
 # horizontal: a 竖, a 撇, a dot, a 捺) hides its tip (``_landing``)
 
 
-HIDDEN_REACH = 0.5  # share of the half width at its start a hidden-tip head's base reaches up
-# past the median's start into the cap before it turns and presses down (``_reach_the_cap``)
+HIDDEN_REACH = 0.8  # share of the half width at its start a hidden-tip head's base reaches up
+# past the median's start into the cap before it turns and presses down (``_reach_the_cap``;
+# 0.5 left 子's 竖钩 head short of the 横撇 that ends on it in 好: ink in one piece more than the
+# font, tests/sim/test_joins.py)
 
 
 def _reach_the_cap(samples, pl, body) -> None:
@@ -447,61 +447,6 @@ def _point_reach(path, width) -> float:
     run = float(np.linalg.norm(np.diff(path[top:], axis=0), axis=1).sum())
     rate = (w_max - w) / max(run, 1e-9)
     return float(np.clip(w / max(rate, 1e-6), 0.5 * w, 2.0 * w))
-
-
-HOOK_GATHER = 0.85  # share of the planned press a hook has left at its tip: the belly lets go
-# faster than the outline narrows, so the splayed hair of the pressed foot gathers to a point
-
-
-def _gathered(n: int) -> np.ndarray:
-    """The press along a hook's ``n`` body samples as a share of the planned press: 1 where it
-    sets off from the foot, easing (a smoothstep) to ``HOOK_GATHER`` at its tip. (Added in issue
-    26: written at the planned press, the hair splayed in the foot spread the hook's last
-    stretch about as wide as half the vertical, a blunt tail, not a point.)"""
-    t = np.linspace(0.0, 1.0, max(n, 1))
-    return 1.0 - (1.0 - HOOK_GATHER) * t * t * (3.0 - 2.0 * t)
-
-
-def _heel(p, root: float) -> float:
-    """The press a hook's heel keeps (``p``: the press per body sample of the movement into its
-    foot; ``root``: the hook's planned press where it sets off): the deeper of the two, the
-    belly staying pressed from the foot into the flick, at most ``HOOK_HEEL`` of the movement's
-    own press (``feet._body_width``). (Issue 26.2: 0.7 of the foot's press, and the hook pressed
-    again on the spot after a rest, 2 mm back up the vertical: the round bulb below every
-    竖钩's hook.)"""
-    return min(max(float(p[-1]), float(root)), HOOK_HEEL * _body_width(p))
-
-
-def _into_the_heel(p, path, width) -> np.ndarray:
-    """The press per body sample of a movement into a hook's foot (``p``; ``path``: its
-    targets, ``width``: its planned widths) over its last stretch, as long as the movement is
-    wide, easing (a smoothstep) to at most the heel's (``HOOK_HEEL`` of its own press): the base
-    stops on the heel, and pressed much deeper there the belly splays into a round bulb beside
-    and below the font's narrow foot (issue 26.2)."""
-    to_end = _along(path)[-1] - _along(path)
-    t = np.clip(1.0 - to_end / max(float(np.max(width)), 1e-6), 0.0, 1.0)
-    heel = HOOK_HEEL * _body_width(p)
-    return np.minimum(p, np.max(p) - (np.max(p) - heel) * t * t * (3.0 - 2.0 * t))
-
-
-HOOK_ROOT = 0.25  # at most this share of a hook is its root, pressed as the heel (``_flicked``)
-
-
-def _flicked(p, heel: float, path, width) -> np.ndarray:
-    """A hook's press per body sample (``p``: as planned; ``path``: its targets, ``width``: its
-    planned widths) as it flicks out of a heel pressed ``heel``: gathered to its point
-    (``_gathered``), but no lighter than the font's triangle: the heel's press held over the
-    hook's root (its first half-width, at most ``HOOK_ROOT`` of it), falling evenly from there
-    to none at the tip. The hook leaves the heel as wide as the heel and thins steadily to its
-    point. (Issue 26.2: set off from the heel at its planned press, read across a path that
-    runs along the triangle's lower edge, it fell at once to a thin stick glued to a round
-    heel, feet16's 水 寸 利. Held at most the heel's and never pressed again, as tried first
-    with the base eased into the foot, 学's imitation was the same as without: 0.734 and 0.735;
-    not measured with the base stopping on the heel.)"""
-    s = _along(path)
-    root = min(0.5 * float(width[0]), HOOK_ROOT * float(s[-1]))
-    taper = heel * np.clip((s[-1] - s) / max(float(s[-1]) - root, 1e-9), 0.0, 1.0)
-    return np.maximum(p * _gathered(len(p)), taper)
 
 
 def _onto_the_dun(pl: Plan, run, leg) -> bool:

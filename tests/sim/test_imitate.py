@@ -118,7 +118,12 @@ def test_press_follows_the_outline_width(response):
     runs = np.split(idx, np.flatnonzero(np.diff(idx) > 1) + 1)
     ease = np.concatenate([_entry_ramp(pl.target[r], pl.width[r]) for r in runs])
     want = response.press_for(pl.width[body]) * ease
-    assert np.corrcoef(want, press)[0, 1] > 0.95  # presses where thick, eases where thin
+    # presses where thick, eases where thin; a hook that flicks to a point is pressed from its
+    # heel and lets go evenly to its point (feet17, tests/sim/test_feet.py), not by the widths
+    # read along the triangle's lower edge
+    hook = np.concatenate([np.full(len(r), int(r[0]) in pl.hooks) for r in runs])
+    assert 0 < np.count_nonzero(hook) < 0.2 * hook.size
+    assert np.corrcoef(want[~hook], press[~hook])[0, 1] > 0.95
     # the tip lands moving along the stroke and the belly presses as it goes: every movement
     # but a hook starts at a fraction of its planned press, and the sample before it is
     # already moving; a hook sets off pressed from its foot (issue 26)
