@@ -6,21 +6,14 @@ import numpy as np
 
 from sim.core.params import HOVER_MM
 from sim.writing.hanzi import find_char
-from sim.writing.planner import WRITING, _fill, _movements, entry_zone, plan
+from sim.writing.planner import RUN_UP, WRITING, _fill, _movements, entry_zone, plan
 from tests.sim.builders import stiff_template
 
 
 def _written(pl, response, stroke, side):
     """The brush's base (x, y) per body sample of ``stroke`` of plan ``pl`` filled at the
     planned press with the sideways placement ``side(n)`` (n body samples), and the body."""
-    hair = stiff_template().resolve()[1].hair_length_mm
-    a, b = pl.strokes[stroke]
-    body = np.flatnonzero(pl.phase[a:b] == WRITING) + a
-    samples = np.zeros((len(pl.target), 6))
-    samples[:, :2], samples[:, 2] = pl.target, hair + HOVER_MM
-    brush = (hair + HOVER_MM, hair, 0.5)
-    press = response.press_for(pl.width[body])
-    _fill(samples, pl, response, (a, b), press, side(len(body)), brush)
+    samples, body = _filled(pl, response, stroke, side=side)
     return samples[body, :2], body
 
 
@@ -50,9 +43,10 @@ def test_a_head_is_placed_sideways_as_the_stroke_past_it(response):
         assert np.allclose(shift[past:], 0.6, atol=1e-3)
 
 
-def _entry(pl, response, stroke, run_up):
-    """The base's (x, y) over the entry of ``stroke`` of plan ``pl`` (the samples before its
-    first body sample that come down onto it) and the stroke's start and way (unit)."""
+def _filled(pl, response, stroke, run_up=RUN_UP, side=np.zeros):
+    """The samples of plan ``pl`` with ``stroke`` filled in by the planner (``_fill``, the
+    stiff brush's hair, presses from ``response``, the entries' ``run_up``, the sideways
+    placement ``side(n)`` of its n body samples) and that stroke's body samples."""
     hair = stiff_template().resolve()[1].hair_length_mm
     a, b = pl.strokes[stroke]
     body = np.flatnonzero(pl.phase[a:b] == WRITING) + a
@@ -60,9 +54,17 @@ def _entry(pl, response, stroke, run_up):
     samples[:, :2], samples[:, 2] = pl.target, hair + HOVER_MM
     press = response.press_for(pl.width[body])
     brush = (hair + HOVER_MM, hair, 0.5)
-    _fill(samples, pl, response, (a, b), press, np.zeros(len(body)), brush, run_up=run_up)
+    _fill(samples, pl, response, (a, b), press, side(len(body)), brush, run_up=run_up)
+    return samples, body
+
+
+def _entry(pl, response, stroke, run_up):
+    """The base's (x, y) over the entry of ``stroke`` of plan ``pl`` (the samples before its
+    first body sample that come down onto it) and the stroke's start and way (unit)."""
+    samples, body = _filled(pl, response, stroke, run_up)
     run = _movements(body)[0]
     way = pl.target[run[-1]] - pl.target[run[0]]
+    a = pl.strokes[stroke][0]
     return samples[a : body[0], :2], samples[body[0], :2], way / np.linalg.norm(way)
 
 
@@ -112,7 +114,6 @@ def test_a_hidden_tip_head_turns_in_its_cap(response):
     # path past the entry's ramp (before, it turned on the median's start and the tip trailed
     # into the stroke: the cap above it stayed bare, 村's 竖 about 8 px short at its top);
     # 十's 横 (tip showing) and a picture's imitation (run-up 0) start on the median
-    hair = stiff_template().resolve()[1].hair_length_mm
     for char, stroke, run_up, reach in (
         ("十", 1, 1.0, True),
         ("八", 0, 1.0, True),
@@ -120,13 +121,7 @@ def test_a_hidden_tip_head_turns_in_its_cap(response):
         ("十", 1, 0.0, False),
     ):
         pl = plan(find_char(char), 100.0, 0.5)
-        a, b = pl.strokes[stroke]
-        body = np.flatnonzero(pl.phase[a:b] == WRITING) + a
-        samples = np.zeros((len(pl.target), 6))
-        samples[:, :2], samples[:, 2] = pl.target, hair + HOVER_MM
-        press = response.press_for(pl.width[body])
-        brush = (hair + HOVER_MM, hair, 0.5)
-        _fill(samples, pl, response, (a, b), press, np.zeros(len(body)), brush, run_up=run_up)
+        samples, body = _filled(pl, response, stroke, run_up)
         way = pl.tangent[body[0]]
         back = (pl.target[body[0]] - samples[body[0], :2]) @ way
         if reach:
