@@ -141,9 +141,9 @@ def plan(
             dips.append(n)
             since_dip = 0.0
         since_dip += stroke_len
+        flick = hook and flicks(moves[-1][0], moves[-1][1])  # a hook flicked up to a point
         for j, (p, w, t) in enumerate(moves):
             last = hook and j == len(moves) - 1
-            flick = hook and flicks(moves[-1][0], moves[-1][1])  # flicked up to a point
             heel = flick and j and last  # it flicks on from the heel: no turn
             if j and not heel:  # a sharp turn: ease to the tip, turn on it, press again
                 _air(tg, wd, tn, ph, moves[j - 1][0][-1], p[0], t[0], step_mm, TURNING)
