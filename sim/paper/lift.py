@@ -82,13 +82,18 @@ def level_rows(paper, start: int, colour, rows, outer):
     share = box_mean(box_mean(box_mean(box_mean(film, r, 0), r, 1), r, 0), r, 1)
     here = (moves[0] + (by0 - sy0), moves[1])
     level = np.empty((moves[0].size, 3), dtype=np.float32)
-    for c in range(3):
+    # grey ink (the three colours the same number at every pixel, as black ink lays them):
+    # one colour's sums are the others' (issue 28)
+    grey = np.array_equal(ink[..., 0], ink[..., 1]) and np.array_equal(ink[..., 0], ink[..., 2])
+    for c in range(1 if grey else 3):
         mixed = film * depth[..., c]
         mixed = box_mean(box_mean(box_mean(box_mean(mixed, r, 0), r, 1), r, 0), r, 1)
         p = depth[..., c][here]
         mean = np.divide(mixed[here], share[here], out=p.copy(), where=share[here] > 0.0)
         mean = np.clip(mean, 0.0, depth_max)  # (the box sums' float32 rounding)
         level[:, c] = p + film[here] * (mean - p)
+    if grey:
+        level[:, 1:] = level[:, :1]
     new = -exact.expm1(-level)
     return (moves[0] + by0, moves[1] + x0), new
 

@@ -522,45 +522,66 @@ def halo_px(capacity: float, ppm: float) -> int:
     return int(min(round(HALO_MM / max(capacity, 1e-9) * ppm), HALO_MAX_PX))
 
 
-# the pixel pairs of wicking (``_wick``): down the rows, then along them, as (giver a, taker
-# b) of the window and the same pixels' colours in its rows of 3 w numbers
-_WICK_PAIRS = (
-    (np.s_[:-1], np.s_[1:], np.s_[:-1], np.s_[1:]),
-    (np.s_[:, :-1], np.s_[:, 1:], np.s_[:, :-3], np.s_[:, 3:]),
-)
+def _wick_pairs(colours: int) -> tuple:
+    """The pixel pairs of wicking (``_wick``): down the rows, then along them, as (giver a,
+    taker b) of the window and the same pixels' colours in its rows of ``colours`` w
+    numbers."""
+    return (
+        (np.s_[:-1], np.s_[1:], np.s_[:-1], np.s_[1:]),
+        (np.s_[:, :-1], np.s_[:, 1:], np.s_[:, :-colours], np.s_[:, colours:]),
+    )
 
 
 def _wick(w, ink, draw, passes: int, rate: float = WICK_RATE) -> None:
     """Capillary wicking (see WICK_MM) of the window's wetness ``w`` (h, w) and ink (h, w, 3),
     in place, over ``passes`` passes at ``rate``; ``draw`` (h, w) in [0, 1] how well each pixel
     draws.
-    Each pass moves liquid down the rows, then along them (each stable on its own). The ink is
-    worked on as rows of 3 w numbers (``rows``), each pixel's liquid repeated for its three
-    colours: long runs of numbers, not three at a time (issue 28: the same products, faster)."""
+    Each pass moves liquid down the rows, then along them (each stable on its own). Grey ink
+    (every pixel's three colours the same number, as black ink lays them) is worked on as one
+    colour and the three set from it: each colour's numbers are made by the same operations
+    from the same numbers (issue 28)."""
     if not (w > 0.0).any():
         return
+    if not _grey(ink):
+        _wick_colours(w, ink, draw, passes, rate)
+        return
+    one = ink[..., :1].copy()
+    _wick_colours(w, one, draw, passes, rate)
+    ink[...] = one
+
+
+def _grey(ink) -> bool:
+    """Whether every pixel of ``ink`` (h, w, 3) holds the same number in its three colours."""
+    return np.array_equal(ink[..., 0], ink[..., 1]) and np.array_equal(ink[..., 0], ink[..., 2])
+
+
+def _wick_colours(w, ink, draw, passes: int, rate: float) -> None:
+    """``_wick`` of ink (h, w, colours). The ink is worked on as rows of colours w numbers
+    (``rows``), each pixel's liquid repeated for its colours: long runs of numbers, not three
+    at a time (issue 28: the same products, faster)."""
     rate = np.float32(rate)
     down = rate * draw[:-1] * draw[1:]  # between a pixel and the one below it, ...
     along = rate * draw[:, :-1] * draw[:, 1:]  # ... and the one beside it
     rows = ink.reshape(ink.shape[0], -1)  # a view where the window's rows are whole
+    colours = ink.shape[-1]
     for k in range(passes):
         if k and not (w > 0.0).any():
             break
         inflow = np.zeros_like(w)
         carried = np.zeros_like(rows)
-        for g, (a, b, ia, ib) in zip((down, along), _WICK_PAIRS, strict=True):
+        for g, (a, b, ia, ib) in zip((down, along), _wick_pairs(colours), strict=True):
             flux = g * (w[a] - w[b])  # > 0: from a to b
             to_b, to_a = np.maximum(flux, 0.0), np.maximum(-flux, 0.0)
             inflow[b] += to_b
             inflow[a] += to_a
-            # the same per colour, what each pixel gave repeated for its three colours
-            carried[ib] += _colours(to_b) * rows[ia]
-            carried[ia] += _colours(to_a) * rows[ib]
+            # the same per colour, what each pixel gave repeated for its colours
+            carried[ib] += _colours(to_b, colours) * rows[ia]
+            carried[ia] += _colours(to_a, colours) * rows[ib]
             w[a] -= flux
             w[b] += flux
         # the pigment the liquid carried in: the givers' colour, weighted by what each gave,
         # laid over what the pixel holds as Eq. 26's change lays it (more liquid, more of it)
-        rows += (1.0 - rows) * (carried * _colours(_wick_take(inflow)))
+        rows += (1.0 - rows) * (carried * _colours(_wick_take(inflow), colours))
     if not np.may_share_memory(rows, ink):  # (a window of a sheet: rows, a view, already is)
         ink[...] = rows.reshape(ink.shape)
 
@@ -578,9 +599,9 @@ def _wick_take(inflow):
     return out
 
 
-def _colours(a):
-    """(h, w) -> (h, 3 w): every pixel's number three times, once for each of its colours."""
-    return a.repeat(3, axis=1)
+def _colours(a, colours: int = 3):
+    """(h, w) -> (h, colours w): every pixel's number once for each of its colours."""
+    return a if colours == 1 else a.repeat(colours, axis=1)
 
 
 class PaperHold:
