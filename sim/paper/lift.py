@@ -84,18 +84,25 @@ def level_rows(paper, start: int, colour, rows, outer):
     level = np.empty((moves[0].size, 3), dtype=np.float32)
     # grey ink (the three colours the same number at every pixel, as black ink lays them):
     # one colour's sums are the others' (issue 28)
-    grey = np.array_equal(ink[..., 0], ink[..., 1]) and np.array_equal(ink[..., 0], ink[..., 2])
-    for c in range(1 if grey else 3):
+    one = grey(ink)
+    for c in range(1 if one else 3):
         mixed = film * depth[..., c]
         mixed = box_mean(box_mean(box_mean(box_mean(mixed, r, 0), r, 1), r, 0), r, 1)
         p = depth[..., c][here]
         mean = np.divide(mixed[here], share[here], out=p.copy(), where=share[here] > 0.0)
         mean = np.clip(mean, 0.0, depth_max)  # (the box sums' float32 rounding)
         level[:, c] = p + film[here] * (mean - p)
-    if grey:
+    if one:
         level[:, 1:] = level[:, :1]
     new = -exact.expm1(-level)
     return (moves[0] + by0, moves[1] + x0), new
+
+
+def grey(ink) -> bool:
+    """Whether every pixel of ``ink`` (h, w, 3) holds the same number in its three colours (as
+    black ink lays them): then each colour's numbers are the others', made by the same
+    operations from the same numbers, and one colour's work is enough (issue 28)."""
+    return np.array_equal(ink[..., 0], ink[..., 1]) and np.array_equal(ink[..., 0], ink[..., 2])
 
 
 def _darkest(ink) -> np.ndarray:

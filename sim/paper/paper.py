@@ -41,7 +41,7 @@ from ..core.frames import per_pixel
 from ..image.png import to_uint8
 from .grain import paper_grain  # noqa: F401 (the sheet's grain: read from here too)
 from .laying import _RGB, Laying, lay_out
-from .lift import LEVEL_WET, box_mean, level_px, level_rows, spatter
+from .lift import LEVEL_WET, box_mean, grey, level_px, level_rows, spatter
 from .texture import paper_tone, sheet_draw, sheet_tone
 
 DRY_RATE = 1.0  # capacity units per second at dry = 1
@@ -542,17 +542,12 @@ def _wick(w, ink, draw, passes: int, rate: float = WICK_RATE) -> None:
     from the same numbers (issue 28)."""
     if not (w > 0.0).any():
         return
-    if not _grey(ink):
+    if not grey(ink):
         _wick_colours(w, ink, draw, passes, rate)
         return
     one = ink[..., :1].copy()
     _wick_colours(w, one, draw, passes, rate)
     ink[...] = one
-
-
-def _grey(ink) -> bool:
-    """Whether every pixel of ``ink`` (h, w, 3) holds the same number in its three colours."""
-    return np.array_equal(ink[..., 0], ink[..., 1]) and np.array_equal(ink[..., 0], ink[..., 2])
 
 
 def _wick_colours(w, ink, draw, passes: int, rate: float) -> None:
