@@ -132,8 +132,9 @@ def _by_rounds(loc, full, wet_tau, lay, rank, visits) -> tuple:
     bounds, over). Taking the visits in turn a pixel keeps the darkest colour it is offered
     (Eq. 26-27, FULL_WET), so its later visits' colours are one: their maximum, which
     ``Paper.take`` lays after the first visit's (the same numbers: a maximum is one of its
-    arguments, in any order); its wetness (Eq. 24) still takes each visit in turn, as the
-    first ``bounds[k + 1] - bounds[k]`` pixels of round k (issue 28)."""
+    arguments, in any order, for densities, which are never NaN nor -0); its wetness (Eq.
+    24) still takes each visit in turn, as the first ``bounds[k + 1] - bounds[k]`` pixels of
+    round k (issue 28)."""
     counts = np.bincount(rank)  # pixels visited more than k times, k = 0, 1, ...
     bounds = np.r_[0, np.cumsum(counts)]
     first = rank == 0

@@ -41,7 +41,7 @@ from ..core.frames import per_pixel
 from ..image.png import to_uint8
 from .grain import paper_grain  # noqa: F401 (the sheet's grain: read from here too)
 from .laying import _RGB, Laying, lay_out
-from .lift import LEVEL_WET, box_mean, grey, level_px, level_rows, spatter
+from .lift import LEVEL_WET, box_mean, level_px, level_rows, same_colours, spatter
 from .texture import paper_tone, sheet_draw, sheet_tone
 
 DRY_RATE = 1.0  # capacity units per second at dry = 1
@@ -536,18 +536,21 @@ def _wick(w, ink, draw, passes: int, rate: float = WICK_RATE) -> None:
     """Capillary wicking (see WICK_MM) of the window's wetness ``w`` (h, w) and ink (h, w, 3),
     in place, over ``passes`` passes at ``rate``; ``draw`` (h, w) in [0, 1] how well each pixel
     draws.
-    Each pass moves liquid down the rows, then along them (each stable on its own). Grey ink
-    (every pixel's three colours the same number, as black ink lays them) is worked on as one
-    colour and the three set from it: each colour's numbers are made by the same operations
-    from the same numbers (issue 28)."""
+    Each pass moves liquid down the rows, then along them (each stable on its own). Of ink
+    whose colours hold the same numbers (black ink all three, the default ink two:
+    ``lift.same_colours``) only the colours that differ are worked on, the others set from
+    them: each colour's numbers are made by the same operations from the same numbers
+    (issue 28)."""
     if not (w > 0.0).any():
         return
-    if not grey(ink):
+    same = same_colours(ink)
+    if same == [0, 1, 2]:
         _wick_colours(w, ink, draw, passes, rate)
         return
-    one = ink[..., :1].copy()
-    _wick_colours(w, one, draw, passes, rate)
-    ink[...] = one
+    keep = sorted(set(same))
+    part = np.ascontiguousarray(ink[..., keep])
+    _wick_colours(w, part, draw, passes, rate)
+    ink[...] = part[..., [keep.index(c) for c in same]]
 
 
 def _wick_colours(w, ink, draw, passes: int, rate: float) -> None:
