@@ -23,10 +23,14 @@ _RGB = np.dtype((np.void, 12))  # a pixel's three float32 ink densities as one i
 
 class Laying(NamedTuple):
     """One step's marks as the paper will take them (``lay_out``, ``Paper.take``): the
-    window, every mark pixel's index in it and in the paper, the liquid offered (Eq. 24's
-    wet_tau) and the colour it can hold (Eq. 26-27), in the order the pixels take them (round
-    by round: ``bounds``), which pixels of the window a mark covers, and the step's darkest
-    colour and middle (``Paper._follow``; None without a halo)."""
+    window; the pixels the marks cover, each once, by their index in it (``loc``) and in the
+    paper (``full``); the liquid offered at each visit (Eq. 24's wet_tau), round by round (a
+    pixel's k-th visit in round k, ``wet_tau[bounds[k]:bounds[k + 1]]``: the pixels are
+    ordered by their visits, most first, so round k's are the first ``bounds[k + 1] -
+    bounds[k]`` of ``loc``); the colour each can hold (Eq. 26-27) at its first visit
+    (``lay``) and the darkest of its later visits' (``over``, for the pixels visited more
+    than once; None: none is); which pixels of the window a mark covers; and the step's
+    darkest colour and middle (``Paper._follow``; None without a halo)."""
 
     window: tuple
     loc: np.ndarray
@@ -36,6 +40,7 @@ class Laying(NamedTuple):
     bounds: list
     dried: np.ndarray
     follow: tuple | None
+    over: np.ndarray | None = None
 
 
 def lay_out(paper, steps, grain_depth: float, full_wet: float) -> list:
@@ -114,14 +119,43 @@ def _laying(paper, marks, pixels, full, wet_tau, colours) -> Laying:
             float(np.sqrt(n / np.pi)),
         )
         follow = (tuple(float(np.maximum.reduce(col[:, c])) for c in range(3)), here)
-    bounds = [0, loc.size]
-    top = int(rank.max())
-    if top:
-        perm = np.argsort(rank, kind="stable")
-        bounds = np.r_[0, np.cumsum(np.bincount(rank, minlength=top + 1))].tolist()
-        loc, full, wet_tau = loc[perm], full[perm], wet_tau[perm]
-        lay = np.take(lay.reshape(-1).view(_RGB), perm).view(np.float32).reshape(-1, 3)
-    return Laying(window, loc, full, wet_tau, lay, bounds, visits > 0, follow)
+    if not rank.max():  # each pixel visited once: one round, in the marks' order
+        return Laying(window, loc, full, wet_tau, lay, [0, loc.size], visits > 0, follow)
+    loc, full, wet_tau, lay, bounds, over = _by_rounds(loc, full, wet_tau, lay, rank, visits)
+    return Laying(window, loc, full, wet_tau, lay, bounds, visits > 0, follow, over)
+
+
+def _by_rounds(loc, full, wet_tau, lay, rank, visits) -> tuple:
+    """A step's mark pixels (window ``loc``, paper ``full``, wet_tau, ``lay``: in the marks'
+    order, with their visit ``rank``) as ``Laying`` takes them round by round: the pixels
+    each once, most visited first, (loc, full, wet_tau of every round, the first visit's lay,
+    bounds, over). Taking the visits in turn a pixel keeps the darkest colour it is offered
+    (Eq. 26-27, FULL_WET), so its later visits' colours are one: their maximum, which
+    ``Paper.take`` lays after the first visit's (the same numbers: a maximum is one of its
+    arguments, in any order, for densities, which are never NaN nor -0); its wetness (Eq.
+    24) still takes each visit in turn, as the first ``bounds[k + 1] - bounds[k]`` pixels of
+    round k (issue 28)."""
+    counts = np.bincount(rank)  # pixels visited more than k times, k = 0, 1, ...
+    bounds = np.r_[0, np.cumsum(counts)]
+    first = rank == 0
+    once = loc[first]
+    order = np.argsort(counts.size - visits[once], kind="stable")  # most visits first
+    once = once[order]
+    pos = np.empty(visits.size, dtype=np.intp)
+    np.put(pos, once, np.arange(order.size))
+    # where each visit goes: its round, then its pixel's place (np.put: the same items, faster
+    # than an assignment through an index array)
+    at = np.take(bounds, rank) + np.take(pos, loc)
+    tau = np.empty_like(wet_tau)
+    np.put(tau, at, wet_tau)
+    laid = np.empty(at.size, dtype=_RGB)
+    np.put(laid, at, lay.reshape(-1).view(_RGB))
+    laid = laid.view(np.float32).reshape(-1, 3)
+    over = laid[bounds[1] : bounds[2]].copy()
+    for k in range(2, counts.size):  # the later visits' darkest, round by round
+        head = over[: counts[k]]
+        np.maximum(head, laid[bounds[k] : bounds[k + 1]], out=head)
+    return once, full[first][order], tau, laid[: bounds[1]], bounds.tolist(), over
 
 
 def _pixel_sums(marks) -> tuple[int, int]:
@@ -141,7 +175,8 @@ def _visit_ranks(locs, size: int) -> tuple[np.ndarray, np.ndarray]:
     rank = np.empty(sum(li.size for li in locs), dtype=np.uint16)
     at = 0
     for li in locs:
-        rank[at : at + li.size] = visits[li]
-        visits[li] += 1  # a mark covers each of its pixels once
+        before = np.take(visits, li)
+        rank[at : at + li.size] = before
+        np.put(visits, li, before + 1)  # a mark covers each of its pixels once
         at += li.size
     return rank, visits

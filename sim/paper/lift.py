@@ -82,15 +82,31 @@ def level_rows(paper, start: int, colour, rows, outer):
     share = box_mean(box_mean(box_mean(box_mean(film, r, 0), r, 1), r, 0), r, 1)
     here = (moves[0] + (by0 - sy0), moves[1])
     level = np.empty((moves[0].size, 3), dtype=np.float32)
-    for c in range(3):
+    # a colour that holds the same numbers as an earlier one has its sums (issue 28)
+    same = same_colours(ink)
+    for c in sorted(set(same)):
         mixed = film * depth[..., c]
         mixed = box_mean(box_mean(box_mean(box_mean(mixed, r, 0), r, 1), r, 0), r, 1)
         p = depth[..., c][here]
         mean = np.divide(mixed[here], share[here], out=p.copy(), where=share[here] > 0.0)
         mean = np.clip(mean, 0.0, depth_max)  # (the box sums' float32 rounding)
         level[:, c] = p + film[here] * (mean - p)
+    level = level[:, same]
     new = -exact.expm1(-level)
     return (moves[0] + by0, moves[1] + x0), new
+
+
+def same_colours(ink) -> list:
+    """For each colour of ``ink`` (h, w, 3), the first colour that holds the same number as it
+    at every pixel (itself when none does): [0, 0, 0] for black ink, [0, 0, 2] for the default
+    ink (its red and green one), [0, 1, 2] when all differ. Each colour's numbers are then those
+    of its first, made by the same operations from the same numbers: the work of the colours
+    that differ is enough (issue 28)."""
+    same = [0]
+    for c in (1, 2):
+        first = (k for k in range(c) if same[k] == k and np.array_equal(ink[..., k], ink[..., c]))
+        same.append(next(first, c))
+    return same
 
 
 def _darkest(ink) -> np.ndarray:

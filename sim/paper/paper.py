@@ -41,7 +41,7 @@ from ..core.frames import per_pixel
 from ..image.png import to_uint8
 from .grain import paper_grain  # noqa: F401 (the sheet's grain: read from here too)
 from .laying import _RGB, Laying, lay_out
-from .lift import LEVEL_WET, box_mean, level_px, level_rows, spatter
+from .lift import LEVEL_WET, box_mean, level_px, level_rows, same_colours, spatter
 from .texture import paper_tone, sheet_draw, sheet_tone
 
 DRY_RATE = 1.0  # capacity units per second at dry = 1
@@ -181,31 +181,7 @@ class Paper:
         if laying.follow is not None:
             self.dt = float(dt)
             self._follow(step, laying.window, *laying.follow)
-        loc, full, wet_tau, lays, bounds = laying[1:6]
-        wf = w.reshape(-1)
-        inkv = self.ink.reshape(-1).view(_RGB)  # one 12-byte element per pixel
-        ab = np.float32(q.ab)
-        for k in range(len(bounds) - 1):
-            sel = slice(bounds[k], bounds[k + 1])
-            li, fi = loc[sel], full[sel]
-            lam = np.take(wf, li)
-            # Eq. 24: wet' = ab * wet_lambda + (1 - ab) * wet_tau - dry (once per step)
-            new = ab * lam + (1 - ab) * wet_tau[sel]
-            new = np.maximum(new - np.where(k == 0, drystep, 0), 0.0)
-            np.put(wf, li, new)
-            # Eq. 26-27 (model change, see FULL_WET): the pixel keeps the darker of the colour
-            # the liquid offered can hold (lay_out) and what it had (pigment laid is not taken
-            # back)
-            old = np.take(inkv, fi).view(np.float32).reshape(-1, 3)
-            lay = lays[sel]
-            if k == 0:  # a second layer over ink that has set (see LAYER_S)
-                after = LAYER_S / dt if dt > 0 else np.inf  # steps for the ink to set
-                set_ = _set_share(lam, np.take(missed.reshape(-1), li), after)
-                top = np.maximum(old, lay)  # wet: the pigments mix, the darker shows
-                stacked = old + lay * (1.0 - old)  # set: 1 - (1 - old)(1 - lay)
-                lay = top + per_pixel(stacked - top, set_)
-            np.maximum(old, lay, out=old)
-            np.put(inkv, fi, old.reshape(-1).view(_RGB))
+        self._lay(w, laying, q, dt, missed)
         w = np.where(laying.dried.reshape(w.shape), w, np.maximum(w - drystep, 0.0))
         self._saturate_window(w, ink)
         if self.wick_passes:
@@ -215,6 +191,36 @@ class Paper:
             _wick(w, ink, draw, self.wick_passes, self.wick_rate)
         wet[...] = w
         last[...] = step
+
+    def _lay(self, w, laying: Laying, q, dt: float, missed):
+        """Eq. 24 and 26-27 at the marks' pixels (``laying``) of the window whose wetness,
+        dried through the previous step, is ``w`` (h, w), in place, and in the paper's ink; a
+        pixel several marks cover takes them one after the other (Laying's rounds)."""
+        loc, full, wet_tau, lay, bounds = laying[1:6]
+        wf = w.reshape(-1)
+        ab = np.float32(q.ab)
+        lam = np.take(wf, loc)
+        # Eq. 24: wet' = ab * wet_lambda + (1 - ab) * wet_tau - dry (once per step)
+        new = ab * lam + (1 - ab) * wet_tau[: bounds[1]]
+        new = np.maximum(new - np.float32(self.dry_per_step), 0.0)
+        for k in range(1, len(bounds) - 1):  # later visits: the first pixels, each again
+            head = new[: bounds[k + 1] - bounds[k]]
+            np.maximum(ab * head + (1 - ab) * wet_tau[bounds[k] : bounds[k + 1]], 0.0, out=head)
+        np.put(wf, loc, new)
+        # Eq. 26-27 (model change, see FULL_WET): the pixel keeps the darker of the colour the
+        # liquid offered can hold (lay_out) and what it had (pigment laid is not taken back)
+        inkv = self.ink.reshape(-1).view(_RGB)  # one 12-byte element per pixel
+        old = np.take(inkv, full).view(np.float32).reshape(-1, 3)
+        # a second layer over ink that has set (see LAYER_S)
+        after = LAYER_S / dt if dt > 0 else np.inf  # steps for the ink to set
+        set_ = _set_share(lam, np.take(missed.reshape(-1), loc), after)
+        top = np.maximum(old, lay)  # wet: the pigments mix, the darker shows
+        stacked = old + lay * (1.0 - old)  # set: 1 - (1 - old)(1 - lay)
+        np.maximum(old, top + per_pixel(stacked - top, set_), out=old)
+        if laying.over is not None:  # the darkest of the later visits'
+            head = old[: laying.over.shape[0]]
+            np.maximum(head, laying.over, out=head)
+        np.put(inkv, full, old.reshape(-1).view(_RGB))
 
     def _window(self, marks) -> tuple[int, int, int, int]:
         """(y0, y1, x0, x1): the marks' pixels and the reach of saturation around them."""
@@ -516,55 +522,84 @@ def halo_px(capacity: float, ppm: float) -> int:
     return int(min(round(HALO_MM / max(capacity, 1e-9) * ppm), HALO_MAX_PX))
 
 
-# the pixel pairs of wicking (``_wick``): down the rows, then along them, as (giver a, taker
-# b) of the window and the same pixels' colours in its rows of 3 w numbers
-_WICK_PAIRS = (
-    (np.s_[:-1], np.s_[1:], np.s_[:-1], np.s_[1:]),
-    (np.s_[:, :-1], np.s_[:, 1:], np.s_[:, :-3], np.s_[:, 3:]),
-)
+def _wick_pairs(colours: int) -> tuple:
+    """The pixel pairs of wicking (``_wick``): down the rows, then along them, as (giver a,
+    taker b) of the window and the same pixels' colours in its rows of ``colours`` w
+    numbers."""
+    return (
+        (np.s_[:-1], np.s_[1:], np.s_[:-1], np.s_[1:]),
+        (np.s_[:, :-1], np.s_[:, 1:], np.s_[:, :-colours], np.s_[:, colours:]),
+    )
 
 
 def _wick(w, ink, draw, passes: int, rate: float = WICK_RATE) -> None:
     """Capillary wicking (see WICK_MM) of the window's wetness ``w`` (h, w) and ink (h, w, 3),
     in place, over ``passes`` passes at ``rate``; ``draw`` (h, w) in [0, 1] how well each pixel
     draws.
-    Each pass moves liquid down the rows, then along them (each stable on its own). The ink is
-    worked on as rows of 3 w numbers (``rows``), each pixel's liquid repeated for its three
-    colours: long runs of numbers, not three at a time (issue 28: the same products, faster)."""
+    Each pass moves liquid down the rows, then along them (each stable on its own). Of ink
+    whose colours hold the same numbers (black ink all three, the default ink two:
+    ``lift.same_colours``) only the colours that differ are worked on, the others set from
+    them: each colour's numbers are made by the same operations from the same numbers
+    (issue 28)."""
     if not (w > 0.0).any():
         return
+    same = same_colours(ink)
+    if same == [0, 1, 2]:
+        _wick_colours(w, ink, draw, passes, rate)
+        return
+    keep = sorted(set(same))
+    part = np.ascontiguousarray(ink[..., keep])
+    _wick_colours(w, part, draw, passes, rate)
+    ink[...] = part[..., [keep.index(c) for c in same]]
+
+
+def _wick_colours(w, ink, draw, passes: int, rate: float) -> None:
+    """``_wick`` of ink (h, w, colours). The ink is worked on as rows of colours w numbers
+    (``rows``), each pixel's liquid repeated for its colours: long runs of numbers, not three
+    at a time (issue 28: the same products, faster)."""
     rate = np.float32(rate)
     down = rate * draw[:-1] * draw[1:]  # between a pixel and the one below it, ...
     along = rate * draw[:, :-1] * draw[:, 1:]  # ... and the one beside it
     rows = ink.reshape(ink.shape[0], -1)  # a view where the window's rows are whole
+    colours = ink.shape[-1]
     for k in range(passes):
         if k and not (w > 0.0).any():
             break
         inflow = np.zeros_like(w)
         carried = np.zeros_like(rows)
-        for g, (a, b, ia, ib) in zip((down, along), _WICK_PAIRS, strict=True):
+        for g, (a, b, ia, ib) in zip((down, along), _wick_pairs(colours), strict=True):
             flux = g * (w[a] - w[b])  # > 0: from a to b
             to_b, to_a = np.maximum(flux, 0.0), np.maximum(-flux, 0.0)
             inflow[b] += to_b
             inflow[a] += to_a
-            # the same per colour, from the flux repeated for the three colours once
-            flux3 = _colours(flux)
-            carried[ib] += np.maximum(flux3, 0.0) * rows[ia]
-            carried[ia] += np.maximum(-flux3, 0.0) * rows[ib]
+            # the same per colour, what each pixel gave repeated for its colours
+            carried[ib] += _colours(to_b, colours) * rows[ia]
+            carried[ia] += _colours(to_a, colours) * rows[ib]
             w[a] -= flux
             w[b] += flux
         # the pigment the liquid carried in: the givers' colour, weighted by what each gave,
         # laid over what the pixel holds as Eq. 26's change lays it (more liquid, more of it)
-        take = WICK_PIGMENT * -exact.expm1(-inflow / FULL_WET)
-        take /= np.where(inflow > 0.0, inflow, 1.0)
-        rows += (1.0 - rows) * (carried * _colours(take))
+        rows += (1.0 - rows) * (carried * _colours(_wick_take(inflow), colours))
     if not np.may_share_memory(rows, ink):  # (a window of a sheet: rows, a view, already is)
         ink[...] = rows.reshape(ink.shape)
 
 
-def _colours(a):
-    """(h, w) -> (h, 3 w): every pixel's number three times, once for each of its colours."""
-    return a.repeat(3, axis=1)
+def _wick_take(inflow):
+    """The share of the carried pigment a pixel that took ``inflow`` of liquid keeps, per unit
+    of liquid: WICK_PIGMENT (1 - exp(-inflow / FULL_WET)) / inflow, and -0.0 (as that sum
+    gives it) where it took none; the exponential only where it took some (issue 28)."""
+    took = np.flatnonzero(inflow > 0.0)
+    some = np.take(inflow, took)
+    take = WICK_PIGMENT * -exact.expm1(-some / FULL_WET)
+    take /= some
+    out = np.full(inflow.shape, -0.0, dtype=inflow.dtype)
+    np.put(out, took, take)
+    return out
+
+
+def _colours(a, colours: int = 3):
+    """(h, w) -> (h, colours w): every pixel's number once for each of its colours."""
+    return a if colours == 1 else a.repeat(colours, axis=1)
 
 
 class PaperHold:

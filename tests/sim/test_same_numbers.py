@@ -10,8 +10,9 @@ from sim.brush.primitive import HairyBrush
 from sim.core import exact
 from sim.core.frames import per_pixel
 from sim.core.params import BrushGeometry, QualityParams
-from sim.paper.lift import box_mean
-from sim.paper.paper import FULL_WET, WICK_PIGMENT, WICK_RATE, _wick
+from sim.paper import lift
+from sim.paper.lift import box_mean, level_rows, same_colours
+from sim.paper.paper import FULL_WET, WICK_PIGMENT, WICK_RATE, Paper, _wick
 
 RNG = np.random.default_rng(28)
 
@@ -53,6 +54,44 @@ def test_wicking_on_rows_of_colours_gives_the_broadcast_numbers():
         assert wet.tobytes() == ref_w.tobytes()
         assert ink.tobytes() == ref_ink.tobytes()
         assert sheet[:2].any()  # (the sheet around the window is left as it was)
+
+
+def _equal_colours(shape, same):
+    """Random ink of ``shape`` (h, w, 3) whose colours are those of ``same``'s (same_colours)."""
+    return np.ascontiguousarray(RNG.random(shape).astype(np.float32)[..., same])
+
+
+def test_ink_of_equal_colours_wicks_them_once_and_gives_the_broadcast_numbers():
+    for same in ([0, 0, 0], [0, 0, 2], [0, 1, 1], [0, 1, 0]):
+        for h, w, passes in ((1, 7, 1), (9, 1, 1), (23, 31, 1), (40, 17, 3)):
+            wet = (RNG.random((h, w)) * 0.6).astype(np.float32)
+            wet[RNG.random((h, w)) < 0.3] = 0.0
+            sheet = _equal_colours((h + 4, w + 6, 3), same)
+            draw = (0.05 + 0.95 * RNG.random((h, w))).astype(np.float32)
+            ink, ref_ink = sheet[2:-2, 3:-3], sheet[2:-2, 3:-3].copy()
+            assert same_colours(ink) == same  # (worked on as fewer colours)
+            ref_w = wet.copy()
+            _wick(wet, ink, draw, passes)
+            _plain_wick(ref_w, ref_ink, draw, passes)
+            assert wet.tobytes() == ref_w.tobytes()
+            assert ink.tobytes() == ref_ink.tobytes()
+
+
+def test_ink_of_equal_colours_levels_them_once_and_gives_the_three_colours_numbers(monkeypatch):
+    paper = Paper(90, 70, 8.0, capacity=1.0)
+    paper.wet[...] = RNG.random((70, 90)).astype(np.float32) * 0.9
+    paper.last[...] = RNG.integers(0, 3, (70, 90))
+    args = (paper, 1, (0.9, 0.9, 0.9), (10, 60), (0, 70, 5, 85))
+    for same in ([0, 0, 0], [0, 0, 2]):
+        paper.ink[...] = _equal_colours((70, 90, 3), same) * 0.95
+        with monkeypatch.context() as m:
+            at, fewer = level_rows(*args)
+            m.setattr(lift, "same_colours", lambda ink: [0, 1, 2])  # every colour on its own
+            at3, three = level_rows(*args)
+        assert at[0].size > 100 and all(
+            a.tobytes() == b.tobytes() for a, b in zip(at, at3, strict=True)
+        )
+        assert fewer.tobytes() == three.tobytes()
 
 
 def test_expm1_of_float32_gives_ldexps_numbers():
