@@ -128,6 +128,10 @@ def _darkest(ink) -> np.ndarray:
 # (capillarity), only a spread, loaded belly leaving fast sheds it (times the share of
 # SPATTER_POINT_MM by which the contact is wider than that, up to 1; issue 26: no specks past
 # a point).
+# A droplet that falls on the stroke's ink or touches it (within a pixel) runs into the wet
+# film and is not laid: a bead stuck to a head or a point reads as a blob, not as a speck
+# (issue 26.2; SPATTER_MERGE: ink darker than that share of the stroke's colour, above the
+# water halo's faint tint, HALO_PIGMENT).
 # Each droplet is SPATTER_MM across (mostly the small end), up to SPATTER_REACH_MM away. Every
 # draw is the sheet's hash of where the stroke landed and of its seed (``paper_grain``), not
 # the brush's generator: the brush's draws are unchanged, and the same stroke throws the same
@@ -142,6 +146,7 @@ SPATTER_DENSITY = 0.8  # a droplet's density (of the ink's), SPATTER_FULL_MM or 
 SPATTER_FULL_MM = 0.2  # a smaller droplet is a thinner film: lighter
 SPATTER_MAX = 6
 SPATTER_POINT_MM = 0.3  # an exit's contact radius below which the hair is gathered in a point
+SPATTER_MERGE = 0.3  # ink this dark (share of the stroke's colour) takes a droplet in
 SPATTER_DRAWS = 2 + 4 * SPATTER_MAX
 SPATTER_SALT = 21 << 40  # keeps these draws apart from the grain's and the texture's
 
@@ -194,15 +199,18 @@ def spatter(paper, t, colour) -> None:
             way = np.array(exact.sin_cos(ang))
             centre = (ly + way[0] * dist * paper.ppm, lx + way[1] * dist * paper.ppm)
             drops.append((centre, way, size, 1.0 + 0.3 * d))
+    merge = SPATTER_MERGE * float(np.max(colour))
     for centre, way, size, stretch in drops:
         dens = SPATTER_DENSITY * min(size / SPATTER_FULL_MM, 1.0)
-        _drop(paper, centre, way, (size * paper.ppm, stretch), dens * colour)
+        _drop(paper, centre, way, (size * paper.ppm, stretch), (dens * colour, merge))
 
 
-def _drop(paper, centre, way, shape, colour) -> None:
+def _drop(paper, centre, way, shape, colours) -> None:
     """One droplet at ``centre`` (row, column, px): an ellipse of radius ``shape[0]`` px,
-    ``shape[1]`` times that along ``way``, its rim anti-aliased, of the ink ``colour``,
-    laid where darker than what the pixels hold."""
+    ``shape[1]`` times that along ``way``, its rim anti-aliased, of the ink ``colours[0]``,
+    laid where darker than what the pixels hold; not laid at all where it falls on or touches
+    (its ellipse grown by a pixel) ink darker than ``colours[1]``: it runs into that film."""
+    colour, merge = colours
     radius, stretch = shape
     reach = radius * stretch + 1.5
     y0, y1 = int(np.floor(centre[0] - reach)), int(np.ceil(centre[0] + reach)) + 1
@@ -216,8 +224,11 @@ def _drop(paper, centre, way, shape, colour) -> None:
     across = (-dy * way[1] + dx * way[0]) / radius
     r = np.sqrt(along * along + across * across)
     cover = np.clip((1.0 - r) * radius + 0.5, 0.0, 1.0)  # a pixel's share of the drop
-    tint = cover.astype(np.float32)[..., None] * colour
     ink = paper.ink[y0:y1, x0:x1]
+    near = (1.0 - r) * radius + 1.5 > 0.0  # the drop and a pixel round it
+    if (_darkest(ink)[near] > merge).any():
+        return  # it runs into the wet stroke
+    tint = cover.astype(np.float32)[..., None] * colour
     if not (tint > ink).any():
         return
     paper._touch(y0, y1, x0, x1)

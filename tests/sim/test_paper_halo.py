@@ -174,3 +174,39 @@ def test_a_slow_exit_throws_nothing_and_counts_follow_poisson():
     draws = np.linspace(0.0005, 0.9995, 1000)
     mean = np.mean([lift_module._poisson(0.3, u) for u in draws])
     assert abs(mean - 0.3) < 0.02
+
+
+def test_a_droplet_on_or_touching_the_ink_runs_into_it():
+    """SPATTER_MERGE: a droplet that would lie on the stroke or touch its edge (a bead stuck to
+    a head or a point) is not laid; one clear of it is."""
+    paper = _sheet()
+    _stroke(paper)  # the band: rows 20-62, columns 40-60
+    colour = np.array([0.9, 0.9, 0.9], dtype=np.float32)
+    shape, merge = (3.0, 1.0), lift_module.SPATTER_MERGE * 0.9
+    way = np.array([0.0, 1.0])
+    for centre in ((40.0, 62.5), (40.0, 50.0), (40.0, 37.0)):  # touching, on, touching
+        before = paper.ink.copy()
+        lift_module._drop(paper, centre, way, shape, (colour, merge))
+        np.testing.assert_array_equal(paper.ink, before)
+    lift_module._drop(paper, (40.0, 70.0), way, shape, (colour, merge))  # 7 px clear of it
+    assert paper.ink[40, 70, 0] > 0.8
+
+
+def test_no_droplet_is_laid_against_the_stroke_it_came_from(monkeypatch):
+    """However many droplets a landing shakes off, none is stuck to the stroke: every piece of
+    ink darker than the halo beyond the stroke's own lies clear of it."""
+    from scipy import ndimage as ndi
+
+    monkeypatch.setattr(lift_module, "SPATTER_LAND", 50.0)
+    monkeypatch.setattr(lift_module, "SPATTER_EXIT", 50.0)
+    still, thrown = Paper(300, 100, 8.0, capacity=1.0, fibre=0.5), None
+    _fast(still, lift=False)
+    thrown = Paper(300, 100, 8.0, capacity=1.0, fibre=0.5)
+    _fast(thrown)
+    dark = thrown.ink[..., 0] > 0.3
+    stroke = still.ink[..., 0] > 0.3
+    pieces, n = ndi.label(dark)
+    own = set(np.unique(pieces[stroke])) - {0}
+    assert n > len(own)  # droplets were laid ...
+    grown = ndi.binary_dilation(stroke)
+    assert not (dark & grown & ~stroke).any()  # ... none of them on or against the stroke
