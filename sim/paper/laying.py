@@ -2,7 +2,7 @@
 """What the paper (Sec. 6) takes of a step's marks that does not depend on the paper: where their
 pixels lie in the sheet and in the step's window, the liquid the hair offers each (Eq. 24's
 wet_tau, as the sheet's grain lets it take it), the colour it can hold (Eq. 26-27 with the
-model change of ``sim.paper.paper.FULL_WET``) and the order in which a pixel that several marks
+model change of ``FULL_WET`` below) and the order in which a pixel that several marks
 cover takes them. Worked out for many steps in one pass of numpy calls (``lay_out``), before the
 paper takes them one step after the other (``Paper.take``): the per-sample cost of small marks
 is the numpy calls', not the pixels' (issue 28). The arithmetic is the same, element by element,
@@ -17,6 +17,24 @@ import numpy as np
 from ..core import exact
 from ..core.frames import per_pixel
 from .grain import paper_grain
+
+# Model change to Eq. 26 (not in the paper). The paper moves a pixel's colour toward the brush's
+# by Cr = wet' (the pixel's wetness of Eq. 24) per time slice: a pixel under the hair for a few
+# slices takes the ink's full colour whatever the load (every stroke as black as the ink), and
+# how many slices it gets depends on the sample rate and on where the step's mark happened to
+# end (bands across the stroke, a step apart, where the hair passes only a few times). Here a
+# pixel takes, at once, the colour the liquid offered to it can hold - the ink's colour times
+# 1 - exp(-offer / FULL_WET): more liquid, more pigment, saturating - and keeps the darker of
+# that and what it had (pigment laid is not taken back). The offer is the hair bundle's
+# (``sim.brush.bristles.lay``: Eq. 23's wetness times the bundle's share of the ink, more where
+# the hair lingers): a brush just dipped (offer about 1) lays 98% of the ink's colour, a brush
+# run low (offer 0.3) about 70% of it, a pause or a pressed turn pools darker, and Eq. 27's
+# Cr = 0 (the bundle's gap) leaves the pixel as it is. Eq. 24 still gives the pixel's wetness
+# (drying, and saturation, Eq. 25). A diluted ink (``InkSpec.pigment`` below 1: light ink,
+# 淡墨) carries that much less pigment in the same liquid: a pixel needs FULL_WET / pigment of it
+# to take the ink's full colour, so a pale stroke is paler where the hair passes quickly and
+# darker where it lingers or the brush was just dipped, as diluted ink is, not one flat grey.
+FULL_WET = 0.25
 
 _RGB = np.dtype((np.void, 12))  # a pixel's three float32 ink densities as one item
 

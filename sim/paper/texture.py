@@ -201,7 +201,7 @@ DRAW_MIN = 0.05
 
 def sheet_draw(rows: slice, cols: slice, ppm: float, seed: int, tile: int, fibre: float):
     """How well each pixel of the window draws liquid along the sheet (capillary wicking,
-    ``sim.paper.paper._wick``), in [DRAW_MIN, 1]: more on a fibre and where the pulp lies thick,
+    ``sim.paper.wick._wick``), in [DRAW_MIN, 1]: more on a fibre and where the pulp lies thick,
     less between them, as much as the paper's ``fibre`` says (0: evenly); the sheet's own
     clouds and fibres (``paper_tone`` at full texture), so the same in every window and at any
     resolution in mm. Put together from tiles of draw made once and kept (``_tile_draw``: each

@@ -12,10 +12,10 @@ from sim.paper.paper import (
     LAYER_S,
     TILE,
     _set_share,
-    _wick,
     paper_grain,
 )
 from sim.paper.texture import sheet_draw
+from sim.paper.wick import _wick
 
 _NEIGHBOURS = [(-1, -1), (-1, 0), (-1, 1), (0, -1), (0, 1), (1, -1), (1, 0), (1, 1)]
 
@@ -81,7 +81,7 @@ def reference_deposit(self, marks, q, dt: float, step: int, saturate=None):
         sy0, sy1 = max(over[0].min() - 1, 0), over[0].max() + 2
         sx0, sx1 = max(over[1].min() - 1, 0), over[1].max() + 2
         saturate(w[sy0:sy1, sx0:sx1], ink[sy0:sy1, sx0:sx1], self.capacity)
-    if self.wick_passes:  # capillary wicking (a model addition, sim.paper.paper._wick)
+    if self.wick_passes:  # capillary wicking (a model addition, sim.paper.wick._wick)
         draw = sheet_draw(
             slice(y0, y1), slice(x0, x1), self.ppm, self.grain_seed, TILE, self.wick_fibre
         )

@@ -228,7 +228,7 @@ def test_eq24_eq26_absorption_and_colour():
     mk = _one_pixel_mark(0.8, [0.5, 0.5, 0.5])
     paper.deposit([mk], q, DT, 1)
     assert paper.wet[1, 1] == pytest.approx(0.4)  # Eq. 24: .5 * 0 + .5 * .8
-    # Eq. 26 as the model changes it (sim.paper.paper.FULL_WET): the colour the liquid offered
+    # Eq. 26 as the model changes it (sim.paper.laying.FULL_WET): the colour the liquid offered
     # can hold, at once
     held = 0.5 * (1.0 - np.exp(-0.8 / FULL_WET))
     assert paper.ink[1, 1, 0] == pytest.approx(held, rel=1e-5)

@@ -1,20 +1,14 @@
 # SPDX-License-Identifier: GPL-3.0-or-later
-"""Capillary wicking (a model addition, ``sim.paper.paper._wick``): the sheet draws liquid and
+"""Capillary wicking (a model addition, ``sim.paper.wick._wick``): the sheet draws liquid and
 pigment a little way out of a stroke's edge along its fibres."""
 
 import numpy as np
 import pytest
 
 from sim.core.params import load_preset, paper_from_preset
-from sim.paper.paper import (
-    TILE,
-    WICK_MAX_PASSES,
-    WICK_RATE,
-    Paper,
-    _wick,
-    wick_steps,
-)
+from sim.paper.paper import TILE, Paper
 from sim.paper.texture import DRAW_MIN, sheet_draw
+from sim.paper.wick import WICK_MAX_PASSES, WICK_RATE, _wick, wick_steps
 
 SIZED_FIBRE = paper_from_preset(load_preset("paper", "sized_xuan")).fibre  # the default paper's
 

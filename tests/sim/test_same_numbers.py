@@ -12,7 +12,8 @@ from sim.core.frames import per_pixel
 from sim.core.params import BrushGeometry, QualityParams
 from sim.paper import lift
 from sim.paper.lift import box_mean, level_rows, same_colours
-from sim.paper.paper import FULL_WET, WICK_PIGMENT, WICK_RATE, Paper, _wick
+from sim.paper.paper import FULL_WET, Paper
+from sim.paper.wick import WICK_PIGMENT, WICK_RATE, _wick
 
 RNG = np.random.default_rng(28)
 
