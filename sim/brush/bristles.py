@@ -26,8 +26,9 @@ Each bundle has, as fields of the brush state (``state``: snapshots carry them):
   ren FLY times its dryness: how far its wetness (its share times ``moist``, the wetness of
   the hair on the paper, ``contact_wetness``, followed over SETTLE_S) falls short of W_DRY,
   a threshold that rises with the brush's speed (fast hair leaves less) and falls as the hair
-  gathers into a contact narrower than the belly (times ``spread`` over a / 2: the gathered
-  hair of a lifting point is held together by its ink and parts less; issue 26.2). A loaded bundle
+  gathers into a contact narrower than GATHER of the belly (``spread`` over GATHER a / 2: the
+  gathered hair of a lifting point is held together by its ink and parts less; issue 26.2).
+  A loaded bundle
   obeys Eq. 27 alone; as the ink is spent (Eq. 15 with what the paper takes,
   ``dynamics.lose_wetness``) the bundles with the least ink and the lowest draws go dry
   first: streaks along the stroke, first at its sides (their bundles hold less), so a dry
@@ -64,6 +65,10 @@ W_DRY = 0.28  # a bundle's wetness below which it starts to leave flying white, 
 V_FLY = 120.0  # mm/s: at this speed the threshold W_DRY has doubled
 FLY = 2.5  # how strongly a bundle's dryness adds to Eq. 27's probability (times ren)
 RAMP_S = 0.12  # seconds a bundle's gap takes to open or close
+GATHER = 0.5  # a contact narrower than this share of the belly's width (``spread`` over a / 2)
+# is hair gathered to a point: its dryness threshold falls in proportion below it (the whole
+# width: a dry pressed stroke's streaks closed, 0.02 of its pixels parted where 0.05 is a dry
+# stroke's; issue 26.2)
 
 SETTLE_S = 0.1  # seconds over which the bundles follow the wetness of the hair on the paper
 POOL = 0.5  # the hair of a brush at rest offers (1 + POOL) times the liquid of a fast one
@@ -158,9 +163,10 @@ def step(brush, speed: float, dt: float):
     follow = 1.0 - exact.exp(-dt / SETTLE_S)
     brush.moist = np.where(brush.moist > 0, brush.moist + follow * (wet_on - brush.moist), wet_on)
     w = brush.moist[:, None] * brush.bundle
-    # hair gathered into a contact narrower than the belly (``spread``) is held together by
-    # its ink and parts less: its dryness threshold shrinks in proportion (model addition)
-    gathered = (spread(brush, speed) / (0.5 * brush.a))[:, None]
+    # hair gathered into a contact narrower than GATHER of the belly (``spread``: a lifting
+    # point) is held together by its ink and parts less: its dryness threshold shrinks in
+    # proportion (model addition, issue 26.2)
+    gathered = np.minimum(spread(brush, speed) / (GATHER * 0.5 * brush.a), 1.0)[:, None]
     dryness = clip(1.0 - w / (W_DRY * (1.0 + speed / V_FLY) * gathered), 0.0, 1.0)
     p = np.minimum(q.ren * (q.ab * brush.gamma[:, None] + FLY * dryness), 1.0)
     dry = (brush.hair_u < p) & brush.touching[:, None]

@@ -1,10 +1,10 @@
 # SPDX-License-Identifier: GPL-3.0-or-later
 """A dry flick (issue 26.2): as the belly lifts off, the hair gathers to the point, its bundles
 close up inside the narrowing mark (``bristles.spread``) and, held together by the ink, part
-less there: streaks along the stroke at its wide root, a tapering outline and a point that
-reaches the end of the flick. (Before, the bundles were laid across the belly's width whatever
-the contact: the narrow point held one or two of them, and where those were dry it broke off
-short, or splayed.) No Blender."""
+less once it is narrower than half the belly (``bristles.GATHER``): streaks along the stroke at
+its wide root, a tapering outline and a point that reaches the end of the flick. (Before, the
+bundles were laid across the belly's width whatever the contact: the narrow point held one or
+two of them, and where those were dry it broke off short, or splayed.) No Blender."""
 
 import numpy as np
 import pytest
@@ -39,16 +39,18 @@ def test_the_bundles_lie_across_the_contact_not_the_belly():
 
 def test_gathered_hair_parts_less():
     parted = {}
-    for share in (1.0, 0.5):
+    for share in (1.0, 0.5, 0.25):
         b = _pressed_brush(6)
         b.wet[:], b.moist[:], b.gap[:] = 0.25, 0.0, 0.0
         b.sweep = share * b.a * 50.0
         b.step_bundles(50.0, bristles.RAMP_S)
         parted[share] = (b.gap > 0.5).mean()
-    # a dry brush's bundles part across the full belly, half of them; gathered into half its
-    # width, hardly any (main: as many as across the belly)
+    # a dry brush's bundles part across the full belly, half of them, and as many across a
+    # pressed stroke's contact; gathered to a point, a quarter of its width, hardly any (main:
+    # as many as across the belly)
     assert parted[1.0] > 0.4
-    assert parted[0.5] < 0.1 * parted[1.0]
+    assert parted[0.5] == parted[1.0]
+    assert parted[0.25] < 0.1 * parted[1.0]
 
 
 def _fifths(ink):
