@@ -96,18 +96,13 @@ def _one_hook(ink, dark, font, own, corner, tip) -> tuple:
 def measure(task) -> list[tuple]:
     """Per hook of one character written at ``n`` px: (char, n, stroke, widths, short,
     outside, darkness past 50 %, past 75 %)."""
-    from sim.core.recording import DEFAULT_BRUSH, Recording
-    from sim.writing.hanzi import find_char
+    from scripts.shoulders_eval import written  # the same writing as the corners' measure
+    from sim.core.recording import DEFAULT_BRUSH
     from sim.writing.outline import fill, rasterise, stroke_polygons, to_image
-    from sim.writing.response import calibrate
-    from sim.writing.writer import coverage_mask, write_character
+    from sim.writing.writer import coverage_mask
 
     ch, n, data = task
-    char = find_char(ch, data)
-    tpl = Recording(np.zeros((1, 6)), seed=0, brush={"preset": DEFAULT_BRUSH})
-    tpl.resolve()
-    cache = os.environ.get("XDG_CACHE_HOME", "/tmp") + "/hairy-brush"
-    _rec, _r, sim = write_character(char, n, tpl, response=calibrate(tpl, cache_dir=cache))
+    char, sim = written(ch, DEFAULT_BRUSH, n, data)
     ink = coverage_mask(sim)
     grey = sim.image8().astype(float).max(axis=2)
     dark = np.clip(1.0 - grey / float(np.median(grey[:8, :])), 0.0, 1.0)

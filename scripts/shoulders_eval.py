@@ -65,23 +65,32 @@ def _img(p, n):
     return np.array([p[0] * n / 1024.0, (900.0 - p[1]) * n / 1024.0])
 
 
-def measure(task):
-    """Per corner of one character written with one brush: (char, brush, index, outside px,
-    bare px, corner distance px); and the written image."""
-    from scipy.ndimage import binary_dilation, distance_transform_edt
-
+def written(ch: str, brush: str, n: int, data):
+    """The character ``ch`` (from ``data``) written at ``n`` px with the brush preset ``brush``
+    and the defaults, its response from the cache in $XDG_CACHE_HOME: (char, simulation)."""
     from sim.core.recording import Recording
     from sim.writing.hanzi import find_char
-    from sim.writing.outline import rasterise
     from sim.writing.response import calibrate
-    from sim.writing.writer import coverage_mask, write_character
+    from sim.writing.writer import write_character
 
-    ch, brush, n, data, png = task
     char = find_char(ch, data)
     tpl = Recording(np.zeros((1, 6)), seed=0, brush={"preset": brush})
     tpl.resolve()
     cache = os.environ.get("XDG_CACHE_HOME", "/tmp") + "/hairy-brush"
     _rec, _r, sim = write_character(char, n, tpl, response=calibrate(tpl, cache_dir=cache))
+    return char, sim
+
+
+def measure(task):
+    """Per corner of one character written with one brush: (char, brush, index, outside px,
+    bare px, corner distance px); and the written image."""
+    from scipy.ndimage import binary_dilation, distance_transform_edt
+
+    from sim.writing.outline import rasterise
+    from sim.writing.writer import coverage_mask
+
+    ch, brush, n, data, png = task
+    char, sim = written(ch, brush, n, data)
     ink = coverage_mask(sim)
     font = rasterise(char, n)
     outside = ink & ~binary_dilation(font, iterations=1)
