@@ -27,7 +27,10 @@ from .practice import Lesson, _practise_stroke, _stroke_masks
 from .response import Response, _coverage, _settings, calibrate
 
 MAX_PASSES = 50
-DEFAULT_PASSES = 3  # practice passes a stroke gets by default (issue 28: 4 -> 3, measured)
+# practice passes a stroke gets by default (issue 28: 3 cost 0.88 of the CPU time at the same
+# held-out IoU, 0.928, but 永 written at 768 px grew a second bump below its 横折 shoulder's
+# knob that the fourth pass takes off)
+DEFAULT_PASSES = 4
 MIN_SHEET_PX = 8
 
 
