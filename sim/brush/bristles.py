@@ -14,16 +14,21 @@ along a line, and a dry bundle leaves a streak along the stroke, not a stipple.
 
 Each bundle has, as fields of the brush state (``state``: snapshots carry them):
 
-- ``edge``: where the bundles meet, in units of the primitive's half width a / 2 (the middle
-  control ellipse's major axis, Eq. 6, which Eq. 16 lengthens as the belly presses flat), in
-  (-1, 1); the outermost bundles take the pixels past it;
+- ``edge``: where the bundles meet, in units of the half width they lie across (``spread``:
+  half the contact's width across the way, at most the middle control ellipse's a / 2, Eq. 6,
+  which Eq. 16 lengthens as the belly presses flat; issue 26.2: every hair runs to the tip, so
+  as the belly lifts the bundles gather inside the narrowing mark), in (-1, 1); the outermost
+  bundles take the pixels past it;
 - ``bundle``: its share of the primitive's ink, a factor on the wetness of Eq. 23; thinner
   toward the section's sides (their hair holds less), jittered; set at a dip;
 - ``hair_u``: its dry-brush draw. Eq. 27 says a pixel takes no ink with probability
   min(ren ab gamma, 1); a bundle goes dry when its draw is below that probability plus
   ren FLY times its dryness: how far its wetness (its share times ``moist``, the wetness of
   the hair on the paper, ``contact_wetness``, followed over SETTLE_S) falls short of W_DRY,
-  a threshold that rises with the brush's speed (fast hair leaves less). A loaded bundle
+  a threshold that rises with the brush's speed (fast hair leaves less) and falls as the hair
+  gathers into a contact narrower than GATHER of the belly (``spread`` over GATHER a / 2: the
+  gathered hair of a lifting point is held together by its ink and parts less; issue 26.2).
+  A loaded bundle
   obeys Eq. 27 alone; as the ink is spent (Eq. 15 with what the paper takes,
   ``dynamics.lose_wetness``) the bundles with the least ink and the lowest draws go dry
   first: streaks along the stroke, first at its sides (their bundles hold less), so a dry
@@ -60,6 +65,10 @@ W_DRY = 0.28  # a bundle's wetness below which it starts to leave flying white, 
 V_FLY = 120.0  # mm/s: at this speed the threshold W_DRY has doubled
 FLY = 2.5  # how strongly a bundle's dryness adds to Eq. 27's probability (times ren)
 RAMP_S = 0.12  # seconds a bundle's gap takes to open or close
+GATHER = 0.5  # a contact narrower than this share of the belly's width (``spread`` over a / 2)
+# is hair gathered to a point: its dryness threshold falls in proportion below it (the whole
+# width: a dry pressed stroke's streaks closed, 0.02 of its pixels parted where 0.05 is a dry
+# stroke's; issue 26.2)
 
 SETTLE_S = 0.1  # seconds over which the bundles follow the wetness of the hair on the paper
 POOL = 0.5  # the hair of a brush at rest offers (1 + POOL) times the liquid of a fast one
@@ -104,11 +113,28 @@ def state(brush, speed: float) -> BristleState:
         brush.bundle.copy(),
         brush.gap.copy(),
         brush.edge.copy(),
-        0.5 * brush.a,
+        spread(brush, speed),
         brush.trail[np.isfinite(brush.trail[:, 0])],
         brush.travel.copy(),
         float(speed),
     )
+
+
+def spread(brush, speed: float) -> np.ndarray:
+    """(m,) mm: half the span the bundles lie across, each primitive's: half the width of its
+    contact with the paper across the way it moves (``sweep``, that width times the speed, over
+    the speed), at most half the middle control ellipse's major axis a (Eq. 6, 16); a / 2
+    where the primitive sweeps no paper (off it, or the brush at rest). Model addition (issue
+    26.2): every hair of a primitive runs from the ferrule to the tip, so all its bundles pass
+    through the contact however narrow it is: as the belly lifts off, the hair gathers to the
+    point and the bundles close up side by side inside the narrowing mark. Laid across the
+    belly's a / 2 whatever the contact, a lifting hook's narrow mark held one or two of them,
+    and where those were dry its point broke off short or splayed into hairs."""
+    half = 0.5 * brush.a
+    if speed <= 0.0:
+        return half.copy()
+    width = brush.sweep / speed
+    return np.where(width > 0.0, np.minimum(0.5 * width, half), half)
 
 
 def contact_wetness(brush):
@@ -137,7 +163,11 @@ def step(brush, speed: float, dt: float):
     follow = 1.0 - exact.exp(-dt / SETTLE_S)
     brush.moist = np.where(brush.moist > 0, brush.moist + follow * (wet_on - brush.moist), wet_on)
     w = brush.moist[:, None] * brush.bundle
-    dryness = clip(1.0 - w / (W_DRY * (1.0 + speed / V_FLY)), 0.0, 1.0)
+    # hair gathered into a contact narrower than GATHER of the belly (``spread``: a lifting
+    # point) is held together by its ink and parts less: its dryness threshold shrinks in
+    # proportion (model addition, issue 26.2)
+    gathered = np.minimum(spread(brush, speed) / (GATHER * 0.5 * brush.a), 1.0)[:, None]
+    dryness = clip(1.0 - w / (W_DRY * (1.0 + speed / V_FLY) * gathered), 0.0, 1.0)
     p = np.minimum(q.ren * (q.ab * brush.gamma[:, None] + FLY * dryness), 1.0)
     dry = (brush.hair_u < p) & brush.touching[:, None]
     ramp = min(dt / RAMP_S, 1.0)
