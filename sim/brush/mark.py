@@ -25,6 +25,7 @@ distance to a row's plane; S_i and hei_i the cut's bounding-box area and its dis
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 from typing import NamedTuple
 
@@ -282,20 +283,19 @@ def cut_marks(brush, sec, ink_rows, ppm: float, paper_shape) -> Cut | None:
     pts, grid = edge_crossings(X)
     if grid.size == 0:
         return None
+    near = (r0, min(r1, rows_c.shape[1]))
+    rows = SurfaceRows(rows_c, rows_U, rows_V, rows_T, Zmin, ink_rows)
     # each touching primitive's cut: bounding box, S_i and hei_i (Eq. 10)
     if len(touching) == 1:
-        cuts = np.zeros(1, dtype=np.intp)
-        xmin, xmax = pts[:, 0].min(keepdims=True), pts[:, 0].max(keepdims=True)
-        ymin, ymax = pts[:, 1].min(keepdims=True), pts[:, 1].max(keepdims=True)
-    else:
-        order = np.argsort(grid, kind="stable")
-        grid, pts = grid[order], pts[order]
-        first = np.flatnonzero(np.r_[True, grid[1:] != grid[:-1]])
-        cuts = grid[first]  # grids with a cut
-        xmin = np.minimum.reduceat(pts[:, 0], first)
-        xmax = np.maximum.reduceat(pts[:, 0], first)
-        ymin = np.minimum.reduceat(pts[:, 1], first)
-        ymax = np.maximum.reduceat(pts[:, 1], first)
+        return _one_cut(brush, pts, touching, (H, W), ring, near, rows)
+    order = np.argsort(grid, kind="stable")
+    grid, pts = grid[order], pts[order]
+    first = np.flatnonzero(np.r_[True, grid[1:] != grid[:-1]])
+    cuts = grid[first]  # grids with a cut
+    xmin = np.minimum.reduceat(pts[:, 0], first)
+    xmax = np.maximum.reduceat(pts[:, 0], first)
+    ymin = np.minimum.reduceat(pts[:, 1], first)
+    ymax = np.maximum.reduceat(pts[:, 1], first)
     prims = touching[cuts]
     area = (xmax - xmin) * (ymax - ymin)
     centroid = stack1([(xmin + xmax) / 2, (ymin + ymax) / 2, np.zeros(len(cuts))])
@@ -306,12 +306,35 @@ def cut_marks(brush, sec, ink_rows, ppm: float, paper_shape) -> Cut | None:
         paper=(H, W),
         ring=ring,
         touching=touching,
-        near=(r0, min(r1, rows_c.shape[1])),
-        rows=SurfaceRows(rows_c, rows_U, rows_V, rows_T, Zmin, ink_rows),
+        near=near,
+        rows=rows,
         area=area,
         height=height,
         centre=centroid[:, :2],
         extent=stack1([xmax - xmin, ymax - ymin]),
+    )
+
+
+def _one_cut(brush, pts, touching, paper, ring, near, rows) -> Cut:
+    """``cut_marks``'s Cut where one primitive's grid is cut (``pts``: its crossings): the
+    same numbers on Python floats, a numpy call each saved (the brush's step; issue 28)."""
+    xs, ys = pts[:, 0], pts[:, 1]
+    xmin, xmax, ymin, ymax = float(xs.min()), float(xs.max()), float(ys.min()), float(ys.max())
+    cx, cy = (xmin + xmax) / 2, (ymin + ymax) / 2
+    tx, ty, tz = brush.cc[int(touching[0]), -1].tolist()
+    dx, dy, dz = tx - cx, ty - cy, tz - 0.0
+    return Cut(
+        prims=touching.copy(),
+        box=np.array([[xmin, xmax, ymin, ymax]]),
+        paper=paper,
+        ring=ring,
+        touching=touching,
+        near=near,
+        rows=rows,
+        area=np.array([(xmax - xmin) * (ymax - ymin)]),
+        height=np.array([math.sqrt((dx * dx + dy * dy) + dz * dz)]),  # ``norm``'s sums
+        centre=np.array([[cx, cy]]),
+        extent=np.array([[xmax - xmin, ymax - ymin]]),
     )
 
 
