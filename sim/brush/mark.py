@@ -245,18 +245,28 @@ class Cut:
     def contact(self):
         """The middle of the hair's contact with the paper (mm): the cuts' middles, weighted
         by their S_i."""
+        if len(self.area) == 1:  # one cut: the same numbers on Python floats
+            a = float(self.area[0])
+            w = 1e-12 if a < 1e-12 else a  # np.maximum's pick (NaN stays)
+            cx, cy = self.centre[0].tolist()
+            return np.array([cx * w / w, cy * w / w])
         w = np.maximum(self.area, 1e-12)
         return (self.centre * w[:, None]).sum(axis=0) / w.sum()
 
     def widths(self, m: int, across) -> np.ndarray:
         """Every primitive's contact width (mm) along the unit vector ``across`` (its bounding
         box's extent that way; 0 for those off the paper)."""
+        if m == 1 and len(self.prims) == 1:  # ``matmul``'s sum on Python floats
+            (ex, ey), (ax, ay) = self.extent[0].tolist(), across
+            return np.array([ex * abs(ax) + ey * abs(ay)])
         out = np.zeros(m)
         out[self.prims] = matmul(self.extent, np.abs(np.asarray(across, dtype=float)))
         return out
 
     def sizes(self, m: int):
         """S_i and hei_i of all m primitives (0 for those off the paper)."""
+        if len(self.prims) == m:  # every primitive cut (``prims`` ascends): 0, 1, ..., m - 1
+            return self.area.copy(), self.height.copy()
         area = np.zeros(m)
         height = np.zeros(m)
         area[self.prims] = self.area
