@@ -50,6 +50,7 @@ from ..core.nurbs import (
     averaged_knots_one,
     bezier_form,
     bspline_bases,
+    bspline_bases_one,
     chord_params,
     chord_params_one,
     derivative_ctrl,
@@ -223,7 +224,7 @@ class HairyBrush:
             pl = chord_params_one(self.cc[0].tolist())
             kl = averaged_knots_one(pl, 3)
             params = np.array([pl])
-            bases = bspline_bases(np.array([kl]), 3, np.array([pl + u.tolist()]))
+            bases = bspline_bases_one(kl, 3, pl + u.tolist())
             n = len(pl)
             cl = solve_collocation_one(bases[3][0, :n], self.cc[0])
             return params, bases, np.array([cl]), np.array([derivative_ctrl_one(cl, kl, 3)])
