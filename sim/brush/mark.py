@@ -25,6 +25,7 @@ distance to a row's plane; S_i and hei_i the cut's bounding-box area and its dis
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 from typing import NamedTuple
 
@@ -244,18 +245,28 @@ class Cut:
     def contact(self):
         """The middle of the hair's contact with the paper (mm): the cuts' middles, weighted
         by their S_i."""
+        if len(self.area) == 1:  # one cut: the same numbers on Python floats
+            a = float(self.area[0])
+            w = 1e-12 if a < 1e-12 else a  # np.maximum's pick (NaN stays)
+            cx, cy = self.centre[0].tolist()
+            return np.array([cx * w / w, cy * w / w])
         w = np.maximum(self.area, 1e-12)
         return (self.centre * w[:, None]).sum(axis=0) / w.sum()
 
     def widths(self, m: int, across) -> np.ndarray:
         """Every primitive's contact width (mm) along the unit vector ``across`` (its bounding
         box's extent that way; 0 for those off the paper)."""
+        if m == 1 and len(self.prims) == 1:  # ``matmul``'s sum on Python floats
+            (ex, ey), (ax, ay) = self.extent[0].tolist(), across
+            return np.array([ex * abs(ax) + ey * abs(ay)])
         out = np.zeros(m)
         out[self.prims] = matmul(self.extent, np.abs(np.asarray(across, dtype=float)))
         return out
 
     def sizes(self, m: int):
         """S_i and hei_i of all m primitives (0 for those off the paper)."""
+        if len(self.prims) == m:  # every primitive cut (``prims`` ascends): 0, 1, ..., m - 1
+            return self.area.copy(), self.height.copy()
         area = np.zeros(m)
         height = np.zeros(m)
         area[self.prims] = self.area
@@ -282,20 +293,19 @@ def cut_marks(brush, sec, ink_rows, ppm: float, paper_shape) -> Cut | None:
     pts, grid = edge_crossings(X)
     if grid.size == 0:
         return None
+    near = (r0, min(r1, rows_c.shape[1]))
+    rows = SurfaceRows(rows_c, rows_U, rows_V, rows_T, Zmin, ink_rows)
     # each touching primitive's cut: bounding box, S_i and hei_i (Eq. 10)
     if len(touching) == 1:
-        cuts = np.zeros(1, dtype=np.intp)
-        xmin, xmax = pts[:, 0].min(keepdims=True), pts[:, 0].max(keepdims=True)
-        ymin, ymax = pts[:, 1].min(keepdims=True), pts[:, 1].max(keepdims=True)
-    else:
-        order = np.argsort(grid, kind="stable")
-        grid, pts = grid[order], pts[order]
-        first = np.flatnonzero(np.r_[True, grid[1:] != grid[:-1]])
-        cuts = grid[first]  # grids with a cut
-        xmin = np.minimum.reduceat(pts[:, 0], first)
-        xmax = np.maximum.reduceat(pts[:, 0], first)
-        ymin = np.minimum.reduceat(pts[:, 1], first)
-        ymax = np.maximum.reduceat(pts[:, 1], first)
+        return _one_cut(brush, pts, touching, (H, W), ring, near, rows)
+    order = np.argsort(grid, kind="stable")
+    grid, pts = grid[order], pts[order]
+    first = np.flatnonzero(np.r_[True, grid[1:] != grid[:-1]])
+    cuts = grid[first]  # grids with a cut
+    xmin = np.minimum.reduceat(pts[:, 0], first)
+    xmax = np.maximum.reduceat(pts[:, 0], first)
+    ymin = np.minimum.reduceat(pts[:, 1], first)
+    ymax = np.maximum.reduceat(pts[:, 1], first)
     prims = touching[cuts]
     area = (xmax - xmin) * (ymax - ymin)
     centroid = stack1([(xmin + xmax) / 2, (ymin + ymax) / 2, np.zeros(len(cuts))])
@@ -306,12 +316,35 @@ def cut_marks(brush, sec, ink_rows, ppm: float, paper_shape) -> Cut | None:
         paper=(H, W),
         ring=ring,
         touching=touching,
-        near=(r0, min(r1, rows_c.shape[1])),
-        rows=SurfaceRows(rows_c, rows_U, rows_V, rows_T, Zmin, ink_rows),
+        near=near,
+        rows=rows,
         area=area,
         height=height,
         centre=centroid[:, :2],
         extent=stack1([xmax - xmin, ymax - ymin]),
+    )
+
+
+def _one_cut(brush, pts, touching, paper, ring, near, rows) -> Cut:
+    """``cut_marks``'s Cut where one primitive's grid is cut (``pts``: its crossings): the
+    same numbers on Python floats, a numpy call each saved (the brush's step; issue 28)."""
+    xs, ys = pts[:, 0], pts[:, 1]
+    xmin, xmax, ymin, ymax = float(xs.min()), float(xs.max()), float(ys.min()), float(ys.max())
+    cx, cy = (xmin + xmax) / 2, (ymin + ymax) / 2
+    tx, ty, tz = brush.cc[int(touching[0]), -1].tolist()
+    dx, dy, dz = tx - cx, ty - cy, tz - 0.0
+    return Cut(
+        prims=touching.copy(),
+        box=np.array([[xmin, xmax, ymin, ymax]]),
+        paper=paper,
+        ring=ring,
+        touching=touching,
+        near=near,
+        rows=rows,
+        area=np.array([(xmax - xmin) * (ymax - ymin)]),
+        height=np.array([math.sqrt((dx * dx + dy * dy) + dz * dz)]),  # ``norm``'s sums
+        centre=np.array([[cx, cy]]),
+        extent=np.array([[xmax - xmin, ymax - ymin]]),
     )
 
 

@@ -36,6 +36,7 @@ Gaps in the paper, filled as a real brush behaves (each also noted where it is i
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 
 import numpy as np
@@ -49,6 +50,7 @@ from ..core.nurbs import (
     averaged_knots_one,
     bezier_form,
     bspline_bases,
+    bspline_bases_one,
     chord_params,
     chord_params_one,
     derivative_ctrl,
@@ -167,24 +169,12 @@ class HairyBrush:
         centres = matmul(bases[3][:, n:], ctrl)
         # the derivative's basis is degree 2 on knots[1:-1]
         T = unit(matmul(bases[2][:, n:, 1:-1], dq))
-        # initial frame: the bottom control circle's own x axis (cori = shaft direction)
-        x0 = self.R[:, 0]
-        r0 = x0 - einsum("ij,j->i", T[:, 0], x0)[:, None] * T[:, 0]
-        r0 = unit(r0, fallback=self.R[:, 1])
         frames = np.empty((m, len(u), 2, 3))  # the normals N and binormals Bn side by side
         N = frames[:, :, 0]
-        N[...] = rotation_minimising_frames(centres, T, r0)
+        N[...] = rotation_minimising_frames(centres, T, self._first_normal(T))
         Bn = frames[:, :, 1]
         Bn[...] = cross(T, N)
-        # orientation of the middle control ellipse (Eq. 6): its minor axis eori, projected
-        # into the normal plane at loc, fixes the profiles' angle within the swept frames:
-        # (cos, sin) of its angle from N at loc (cos 0, sin 1 where it is about the axis)
-        ks = clip(u.searchsorted(self.loc), 0, len(u) - 1)
-        minor = matmul(self.eori, self.R.T)
-        cs = einsum("ij,ikj->ik", minor, frames[np.arange(m), ks])
-        h = np.hypot(cs[:, 0], cs[:, 1])[:, None]
-        cs = np.where(h > 1e-9, cs / np.maximum(h, 1e-12), _NO_ANGLE)[:, None, :, None]
-        cos_v, sin_v = cs[:, :, 0], cs[:, :, 1]
+        cos_v, sin_v = self._ellipse_angle(u, frames)
         vhat = cos_v * N + sin_v * Bn  # minor axis direction
         uhat = sin_v * N - cos_v * Bn  # major axis direction
         alpha, beta = self.profile_semiaxes(u)
@@ -199,6 +189,30 @@ class HairyBrush:
         rows_T = unit(at_rows[..., 9:12])  # a new array already
         return Sections(centres, U, V, T, params, rows_c, rows_U, rows_V, rows_T)
 
+    def _first_normal(self, T):
+        """The frames' initial normal: the bottom control circle's own x axis (cori = shaft
+        direction) made perpendicular to the axis's first tangent."""
+        x0 = self.R[:, 0]
+        if self.m == 1:
+            return _first_normal_one(T[0, 0].tolist(), x0.tolist(), self.R[:, 1])
+        r0 = x0 - einsum("ij,j->i", T[:, 0], x0)[:, None] * T[:, 0]
+        return unit(r0, fallback=self.R[:, 1])
+
+    def _ellipse_angle(self, u, frames):
+        """Orientation of the middle control ellipse (Eq. 6): its minor axis eori, projected
+        into the normal plane at loc, fixes the profiles' angle within the swept frames:
+        (cos, sin) of its angle from N at loc (cos 0, sin 1 where it is about the axis), each
+        (m, 1, 1) to scale the frames' (m, stations, 3) vectors."""
+        m = self.m
+        ks = clip(u.searchsorted(self.loc), 0, len(u) - 1)
+        if m == 1:
+            return _ellipse_angle_one(self.eori[0].tolist(), self.R.tolist(), frames[0, ks[0]])
+        minor = matmul(self.eori, self.R.T)
+        cs = einsum("ij,ikj->ik", minor, frames[np.arange(m), ks])
+        h = np.hypot(cs[:, 0], cs[:, 1])[:, None]
+        cs = np.where(h > 1e-9, cs / np.maximum(h, 1e-12), _NO_ANGLE)[:, None, :, None]
+        return cs[:, :, 0], cs[:, :, 1]
+
     def _middle_axis(self, u):
         """A_i through P_i,1..n (Sec. 3.2.3), as ``interpolate_cubic``: the key points'
         parameters, the basis at them (the collocation matrix) and at the stations ``u`` in one
@@ -210,7 +224,7 @@ class HairyBrush:
             pl = chord_params_one(self.cc[0].tolist())
             kl = averaged_knots_one(pl, 3)
             params = np.array([pl])
-            bases = bspline_bases(np.array([kl]), 3, np.array([pl + u.tolist()]))
+            bases = bspline_bases_one(kl, 3, pl + u.tolist())
             n = len(pl)
             cl = solve_collocation_one(bases[3][0, :n], self.cc[0])
             return params, bases, np.array([cl]), np.array([derivative_ctrl_one(cl, kl, 3)])
@@ -346,3 +360,35 @@ def _clip01(x: float) -> float:
     """np.clip(x, 0, 1) of a Python float: the same picks (max, then min, as numpy's clip)."""
     x = x if x > 0.0 else 0.0
     return x if x < 1.0 else 1.0
+
+
+def _einsum_dot3(a, b) -> float:
+    """The dot product of two 3-vectors (Python floats) as np.einsum sums it: from zero, the
+    products of x, then z, then y (issue 28)."""
+    return ((0.0 + a[0] * b[0]) + a[2] * b[2]) + a[1] * b[1]
+
+
+def _first_normal_one(t, x0, fallback):
+    """``_first_normal`` of one primitive on Python floats: its first tangent ``t`` and the
+    circle's x axis ``x0`` (lists), the same operations as the arrays' (``unit``'s length
+    summed x, y, z); an array (1, 3)."""
+    d = _einsum_dot3(t, x0)
+    r = [x0[0] - d * t[0], x0[1] - d * t[1], x0[2] - d * t[2]]
+    n = math.sqrt((r[0] * r[0] + r[1] * r[1]) + r[2] * r[2])
+    if not n > 1e-9:
+        return np.array([fallback])
+    return np.array([[r[0] / n, r[1] / n, r[2] / n]])
+
+
+def _ellipse_angle_one(eori, R, frame):
+    """``_ellipse_angle`` of one primitive: its minor axis ``eori`` (a list, brush frame), the
+    rotation R (rows) and the frame (N, Bn) at loc; the minor axis in the world as
+    ``exact.matmul`` sums it (over 0, 1, 2), the products with N and Bn as np.einsum's."""
+    e0, e1, e2 = eori
+    minor = [(e0 * r[0] + e1 * r[1]) + e2 * r[2] for r in R]
+    fn, fb = frame.tolist()
+    c, s = _einsum_dot3(minor, fn), _einsum_dot3(minor, fb)
+    h = float(np.hypot(c, s))
+    if not h > 1e-9:
+        return float(_NO_ANGLE[0]), float(_NO_ANGLE[1])
+    return c / h, s / h

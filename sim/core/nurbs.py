@@ -76,6 +76,37 @@ def bspline_bases(knots, degree: int, u) -> list:
     return out
 
 
+def bspline_bases_one(knots: list, degree: int, u: list) -> list:
+    """``bspline_bases`` of one knot vector and its parameters, given as lists of Python
+    floats (the arrays (1, N, K - d - 1)): the knot spans and the parameters at the clamped end
+    looked at on the floats, the same arrays made from them (fewer numpy calls: the brush's
+    step; issue 28)."""
+    k = np.array(knots)
+    uu = np.array(u)[:, None]
+    K = len(knots)
+    basis = ((k[:-1] <= uu) & (uu < k[1:])).astype(float)
+    end = knots[-1]
+    at_end = [i for i, v in enumerate(u) if v >= end]
+    if at_end:
+        basis[at_end, K - degree - 2] = 1.0
+    out = [basis[None]]
+    from_knot = uu - k[:-1]
+    to_knot = k[1:] - uu
+    for d in range(1, degree + 1):
+        # x / inf = 0 where a knot span is empty (0/0 := 0 in the recursion)
+        den = np.array([_span(knots[j + d] - knots[j]) for j in range(K - d)])
+        left = from_knot[:, : K - d - 1] / den[:-1]
+        right = to_knot[:, d:] / den[1:]
+        basis = left * basis[:, :-1] + right * basis[:, 1:]
+        out.append(basis[None])
+    return out
+
+
+def _span(x: float) -> float:
+    """A knot span as the recursion divides by it: inf where it is not positive."""
+    return x if x > 0.0 else math.inf
+
+
 def averaged_knots(params, degree: int = 3) -> np.ndarray:
     """Knot vector by averaging (Piegl & Tiller Eq. 9.8); params (..., n) -> (..., n+degree+1)."""
     params = np.asarray(params, dtype=float)

@@ -5,6 +5,7 @@ bit, and snapshots let a caller jump to any sample and get exactly the same stat
 
 from __future__ import annotations
 
+import math
 import time
 from typing import NamedTuple
 
@@ -150,10 +151,11 @@ class Simulation:
         area, height = cut.sizes(b.m) if cut is not None else (np.zeros(b.m), np.zeros(b.m))
         if cut is not None:
             b.follow(cut.contact())  # the path the hair bundles are drawn along (bristles)
-        v3 = vel[:3]
-        speed = float(np.sqrt(np.add.reduce(v3 * v3)))  # |vel[:3]|, not through BLAS (issue 28.2)
+        vx, vy, vz = vel[:3].tolist()  # |vel[:3]| summed as np.add.reduce, not BLAS (issue 28.2)
+        speed = math.sqrt((vx * vx + vy * vy) + vz * vz)
         b.update_stress(area, height, speed, self.dt)  # Eq. 10-12
-        across = np.array([-b.travel[1], b.travel[0]])
+        tx, ty = b.travel.tolist()
+        across = (-ty, tx)
         b.sweep = (cut.widths(b.m, across) if cut is not None else np.zeros(b.m)) * speed
         if cut is not None and b.state == "dipping":
             b.state = "working"

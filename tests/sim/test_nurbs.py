@@ -4,7 +4,11 @@ from geomdl import BSpline
 
 from sim.core.nurbs import (
     CIRCLE_KNOTS,
+    averaged_knots_one,
+    bspline_bases,
+    bspline_bases_one,
     bspline_basis,
+    chord_params_one,
     circle_points,
     evaluate_nurbs_surface,
     interpolate_cubic,
@@ -133,3 +137,21 @@ def test_the_bezier_net_shape_is_what_surface_nets_returns(brush):
     assert nets.shape[1:3] == (shape.points_u, shape.points_v)
     assert shape.points_u == 3 * (len(breaks) - 1) + 1
     assert (shape.order_u, shape.order_v) == (4, 3)  # cubic along the axis, quadratic around
+
+
+def test_bases_of_one_curve_on_lists_are_the_arrays_bases():
+    """Issue 28: ``bspline_bases_one`` (lists in) gives the bits of ``bspline_bases``, zero
+    knot spans (repeated key points), parameters at and past the clamped ends included."""
+    rng = np.random.default_rng(28)
+    for trial in range(200):
+        pts = rng.normal(size=(int(rng.integers(4, 12)), 3)).cumsum(axis=0)
+        if trial % 3 == 0:
+            pts[2] = pts[1]
+        pl = chord_params_one(pts.tolist())
+        kl = averaged_knots_one(pl, 3)
+        at = pl + sorted(rng.random(12).tolist()) + [0.0, 1.0, 1.5, -0.25]
+        want = bspline_bases(np.array([kl]), 3, np.array([at]))
+        got = bspline_bases_one(kl, 3, at)
+        assert len(got) == len(want)
+        for g, w in zip(got, want, strict=True):
+            assert g.shape == w.shape and g.tobytes() == w.tobytes()

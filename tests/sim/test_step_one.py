@@ -76,3 +76,31 @@ def test_one_primitive_steps_as_the_arrays_step_it():
         sim._advance()
         sim._drop_pending()
     assert touched > 50 and moved_on_paper > 50  # the stroke pressed the hair on the paper
+
+
+def test_one_cut_as_the_arrays_cut_it():
+    """Issue 28: one primitive's cut (``cut_marks``, its sizes and widths) on Python floats
+    has the bits of the arrays' cut of the same primitive twice."""
+    from sim.brush.mark import cut_marks
+
+    sim = simulation(long_stroke()[:160], 256, 1.28)
+    cuts = 0
+    while not sim.done:
+        one = sim.brush
+        twin = _twin(one, one.snapshot())
+        args = (None, sim.paper.ppm, sim.paper.shape)
+        a, b = cut_marks(one, one.sections(), *args), cut_marks(twin, twin.sections(), *args)
+        assert (a is None) == (b is None)
+        if a is not None:
+            cuts += 1
+            for name in ("box", "area", "height", "centre", "extent"):
+                x, y = getattr(a, name), getattr(b, name)
+                assert x.dtype == y.dtype and x.tobytes() == y[:1].tobytes(), name
+            assert a.prims.tolist() == [0] and a.near == b.near
+            across = tuple(np.random.default_rng(cuts).normal(size=2).tolist())
+            assert a.widths(1, across).tobytes() == b.widths(2, across)[:1].tobytes()
+            for x, y in zip(a.sizes(1), b.sizes(2), strict=True):
+                assert x.tobytes() == y[:1].tobytes()
+        sim._advance()
+        sim._drop_pending()
+    assert cuts > 50
