@@ -4,7 +4,11 @@ across it at 25, 50 and 75 % of the way from the median's corner to the font's t
 font's (the stroke's own outline cut there, the ink counted 2 px either side of the cut), how
 far the ink stops short of the font's tip (px), the ink outside the font round the hook (px),
 and the hook's darkness (1 - grey / paper, bare pixels 0) over the font's hook past 50 % and
-past 75 % of its length. Written with the default brush and seed, as shoulders_eval does.
+past 75 % of its length, against the body's (the stroke's own font nearest its median over
+``BODY`` hook lengths back up from the corner, not the hook's): the hook's darkness over the
+body's, and its pale share (the hook's font past 25 % darker than no more than half the body,
+grey or streaked between the hair's bundles). Written with the default brush and seed, as
+shoulders_eval does.
 
     python scripts/hooks_eval.py 村时守寸 [--size 384 512] [--workers 2]
 """
@@ -22,11 +26,13 @@ sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 
 STEP = 0.25  # px between the samples of a cut across the hook
 PAD = 2.0  # px either side of the font's cut where the ink is counted too
+BODY = 2.0  # hook lengths of the median back up from the corner whose font is the body
 
 
-def hooks(char: dict) -> list[tuple[int, np.ndarray, np.ndarray]]:
-    """Each hook that goes up from its foot: (stroke, median corner, font tip), data units. The
-    tip is the stroke outline's point farthest along the hook near it."""
+def hooks(char: dict) -> list[tuple[int, np.ndarray, np.ndarray, np.ndarray]]:
+    """Each hook that goes up from its foot: (stroke, median corner, font tip, the median's
+    points up to the corner), data units. The tip is the stroke outline's point farthest along
+    the hook near it."""
     from sim.writing import outline as ol
 
     out = []
@@ -46,7 +52,7 @@ def hooks(char: dict) -> list[tuple[int, np.ndarray, np.ndarray]]:
         edge = edge[np.linalg.norm(edge - c, axis=1) < 1.5 * np.linalg.norm(pts[-1] - c)]
         tip = edge[int(np.argmax((edge - c) @ d))]
         if tip[1] > c[1]:  # y up: a hook flicked up
-            out.append((si, c, tip))
+            out.append((si, c, tip, pts[: ks[-1] + 1]))
     return out
 
 
@@ -71,7 +77,28 @@ def _cut(own, ink, centre, across, reach) -> tuple[float, float]:
     return float(ink[q[a : b + 1, 1], q[a : b + 1, 0]].sum() * STEP), (hi - lo + 1) * STEP
 
 
-def _one_hook(ink, dark, font, own, corner, tip) -> tuple:
+def _body(own, median, corner, tip) -> np.ndarray:
+    """The stroke's own font (``own``) nearer its median (``median``: up to the corner) from
+    half a hook length to ``BODY`` hook lengths back up from the corner than the hook's line
+    (corner to tip), image pixels."""
+    from scipy.spatial import cKDTree
+
+    length = float(np.linalg.norm(tip - corner))
+    s = np.cumsum(np.linalg.norm(np.diff(median[::-1], axis=0), axis=1))
+    back = median[::-1][1:][(s > 0.5 * length) & (s < BODY * length)]
+    hook = corner[None] + np.linspace(0.0, 1.0, 16)[:, None] * (tip - corner)[None]
+    yy, xx = np.nonzero(own)
+    q = np.stack([xx, yy], axis=1).astype(float)
+    if not len(back):
+        return np.zeros_like(own)
+    d_body = cKDTree(back).query(q)[0]
+    d_hook = cKDTree(hook).query(q)[0]
+    out = np.zeros_like(own)
+    out[yy, xx] = d_body < d_hook
+    return out
+
+
+def _one_hook(ink, dark, font, own, corner, tip, median) -> tuple:
     """The figures of one hook (module doc), image pixels."""
     from scipy.ndimage import binary_dilation
 
@@ -90,7 +117,10 @@ def _one_hook(ink, dark, font, own, corner, tip) -> tuple:
     short = length - (float(along[near].max()) if near.any() else 0.0)
     d50 = float(dark[own & (along > 0.5 * length) & (along < length)].mean())
     d75 = float(dark[own & (along > 0.75 * length)].mean())
-    return widths, short, outside, d50, d75
+    body = float(dark[_body(own, median, corner, tip)].mean())
+    past = dark[own & (along > 0.25 * length) & (along < length)]
+    pale = float(np.mean(past < 0.5 * body))
+    return widths, short, outside, d50, d75, body, pale
 
 
 def measure(task) -> list[tuple]:
@@ -109,10 +139,10 @@ def measure(task) -> list[tuple]:
     font = rasterise(char, n)
     polys = stroke_polygons(char)
     rows = []
-    for si, corner, tip in hooks(char):
+    for si, corner, tip, median in hooks(char):
         own = fill([to_image(q, n) for q in polys[si]], n)
         c, t = to_image(corner[None], n)[0], to_image(tip[None], n)[0]
-        rows.append((ch, n, si, *_one_hook(ink, dark, font, own, c, t)))
+        rows.append((ch, n, si, *_one_hook(ink, dark, font, own, c, t, to_image(median, n))))
     return rows
 
 
@@ -126,15 +156,23 @@ def main() -> int:
     tasks = [(c, n, a.data) for n in a.size for c in a.chars]
     with ProcessPoolExecutor(a.workers) as ex:
         rows = [r for rs in ex.map(measure, tasks) for r in rs]
-    print(f"{'ch':<3}{'px':>4}{'st':>3}  ink/font width at 25/50/75 % (px)      short  out  dark")
-    for ch, n, si, w, short, out, d50, d75 in rows:
+    print(
+        f"{'ch':<3}{'px':>4}{'st':>3}  ink/font width at 25/50/75 % (px)      short  out  "
+        "dark 50 75 body  pale"
+    )
+    for ch, n, si, w, short, out, d50, d75, body, pale in rows:
         ws = "  ".join(f"{i:4.1f}/{f:4.1f}" for i, f in w)
-        print(f"{ch:<3}{n:>4}{si:>3}  {ws}  {short:5.1f} {out:4d}  {d50:.2f} {d75:.2f}")
+        print(
+            f"{ch:<3}{n:>4}{si:>3}  {ws}  {short:5.1f} {out:4d}  {d50:.2f} {d75:.2f} {body:.2f}"
+            f"  {pale:.2f}"
+        )
     r = np.nanmean([[i / f if f else np.nan for i, f in row[3]] for row in rows], axis=0)
     m = np.mean([row[4:] for row in rows], axis=0)
     print(
         f"mean {len(rows)} hooks: ink/font width {r[0]:.2f} {r[1]:.2f} {r[2]:.2f}; "
         f"short {m[0]:.1f} px; outside {m[1]:.1f} px; dark past 50 % {m[2]:.3f}, 75 % {m[3]:.3f}"
+        f"; body {m[4]:.3f}; hook/body past 50 % {np.mean([r[6] / r[8] for r in rows]):.3f}; "
+        f"pale {m[5]:.3f}"
     )
     return 0
 

@@ -207,3 +207,21 @@ def _flicked(p, heel: float, path, width) -> np.ndarray:
     root = min(0.5 * float(width[0]), HOOK_ROOT * float(s[-1]))
     taper = heel * np.clip((s[-1] - s) / max(float(s[-1]) - root, 1e-9), 0.0, 1.0)
     return np.maximum(p * _gathered(len(p)), taper)
+
+
+HOOK_BENT = 0.85  # share of the heel's lag the base keeps leading a flicked hook's ink by, to its
+# point (``_bent``; measured at 384 and 512 px, 村 时 守 寸 月 马 丁 小 水 利: the ink short of the
+# font's tip 6.8 -> 1.1 px, ink outside round the hook 79.7 -> 85.9 px; 0.7: 2.4 and 81.5 px;
+# 1.0: 0.0 and 93.2 px, ink past the tip of 马 丁 小 利)
+
+
+def _bent(lag) -> np.ndarray:
+    """The lag (mm, per body sample) the base leads a hook flicked up to a point (``flicks``)
+    by: at least ``HOOK_BENT`` of the heel's, where it sets off. The hair pressed into the heel
+    is bent back and stays so through the quick flick; the response's lag (``_lead_along``,
+    the base leading the ink along the path, Sec. 5.2's hair trailing the brush) is measured in
+    a steady stroke at each press, and falling with the lightening press it drew the base back
+    onto the ink: the hair's tip, still trailing the heel's lag behind the base, let go some
+    1.7 mm short of the font's point (a blunt end). (Model addition, issue 26.2.)"""
+    lag = np.asarray(lag, dtype=float)
+    return np.maximum(lag, HOOK_BENT * float(lag[0])) if lag.size else lag

@@ -15,6 +15,7 @@ from ..core import exact
 from ..core.recording import quantise
 from .feet import (
     _along,
+    _bent,
     _flicked,
     _gathered,
     _heel,
@@ -562,7 +563,9 @@ def _fill(
         corner = r < len(runs) - 1  # the base stops on a corner's foot (a hook's, a 竖折's);
         # into a 折's shoulder it goes on into the 顿 (``_turn_on_the_tip``)
         into_zhe = corner and not hook[r + 1] and _onto_the_dun(pl, run, runs[r + 1])
-        samples[run, :2] = _lead_along(path, response.lag_for(p), corner and not into_zhe, into_zhe)
+        lag = response.lag_for(p)  # a flicked hook's hair stays bent from the heel (``_bent``)
+        lag = _bent(lag) if flick[r] else lag
+        samples[run, :2] = _lead_along(path, lag, corner and not into_zhe, into_zhe)
         placed = side[j0:j1]
         if r == 0:  # the head; a leg sets off from the corner (a hook pressed from its foot)
             placed = _entry_side(placed, pl.target[run], pl.width[run])
