@@ -435,8 +435,11 @@ def _pieces(pts, polys, step: float, edges, curl: bool = False) -> list:
         if hook:  # a hook sets off from the foot the movement before pressed into
             p = _from_the_foot(p, pieces[-1][0][-1], HOOK_FROM_FOOT if flick else HOOK_FROM_MIDDLE)
         centre, width = _bands(p, polys)
-        if flick:  # straight out of the heel
-            centre = _rooted(p, centre, width)
+        if flick:  # straight out of the heel, down the middle of the triangle: cut again
+            # from the first cut's middles (from the line out of the heel, near the lower
+            # edge, the cut's far side is capped at 3x that distance: its middle lay 4-6 px
+            # low at 384 px, and the ink, which follows the plan, spilled past the lower edge)
+            centre = _rooted(p, _bands(_rooted(p, centre, width), polys)[0], width)
         if k:  # the corner is inked by the foot: the movement's own width
             # from where it leaves the corner's disc on (a hook's too: pressed wider, the
             # belly spilled over the hook's inner edge)
