@@ -59,17 +59,20 @@ def bspline_bases(knots, degree: int, u) -> list:
     if at_end.any():
         last = K - degree - 2
         basis[..., last] = np.where(at_end[..., 0], 1.0, basis[..., last])
+    spans = (k[..., d:] - k[..., : K - d] for d in range(1, degree + 1))
+    spans = (np.where(den > 0, den, np.inf) for den in spans)  # x / inf = 0: 0/0 := 0
+    return _raise_degree(basis, uu - k[..., :-1], k[..., 1:] - uu, spans)
+
+
+def _raise_degree(basis, from_knot, to_knot, spans) -> list:
+    """The Cox-de Boor recursion from the degree-0 ``basis`` (..., N, K - 1): ``from_knot`` and
+    ``to_knot`` are u - k_j and k_j - u, each computed once, and ``spans`` gives degree d's knot
+    spans k_{j+d} - k_j for d = 1, 2, ..., inf where a span is empty (x / inf = 0: the
+    recursion's 0/0 := 0; its left denominators are the first K - d - 1 of them, its right ones
+    the last: the same numbers; issue 28). Every degree's basis, 0 first."""
     out = [basis]
-    # the differences every degree's weights take slices of, each computed once (issue 28):
-    # u - k_j and k_j - u, and degree d's knot spans k_{j+d} - k_j (its left denominators are
-    # the first K - d - 1 of them, its right ones the last: the same numbers)
-    from_knot = uu - k[..., :-1]
-    to_knot = k[..., 1:] - uu
-    for d in range(1, degree + 1):
-        # x / inf = 0 where a knot span is empty (0/0 := 0 in the recursion)
-        den = k[..., d:] - k[..., : K - d]
-        den = np.where(den > 0, den, np.inf)
-        left = from_knot[..., : K - d - 1] / den[..., :-1]
+    for d, den in enumerate(spans, start=1):
+        left = from_knot[..., : from_knot.shape[-1] - d] / den[..., :-1]
         right = to_knot[..., d:] / den[..., 1:]
         basis = left * basis[..., :-1] + right * basis[..., 1:]
         out.append(basis)
@@ -89,17 +92,11 @@ def bspline_bases_one(knots: list, degree: int, u: list) -> list:
     at_end = [i for i, v in enumerate(u) if v >= end]
     if at_end:
         basis[at_end, K - degree - 2] = 1.0
-    out = [basis[None]]
-    from_knot = uu - k[:-1]
-    to_knot = k[1:] - uu
-    for d in range(1, degree + 1):
-        # x / inf = 0 where a knot span is empty (0/0 := 0 in the recursion)
-        den = np.array([_span(knots[j + d] - knots[j]) for j in range(K - d)])
-        left = from_knot[:, : K - d - 1] / den[:-1]
-        right = to_knot[:, d:] / den[1:]
-        basis = left * basis[:, :-1] + right * basis[:, 1:]
-        out.append(basis[None])
-    return out
+    spans = (
+        np.array([_span(knots[j + d] - knots[j]) for j in range(K - d)])
+        for d in range(1, degree + 1)
+    )
+    return [b[None] for b in _raise_degree(basis, uu - k[:-1], k[1:] - uu, spans)]
 
 
 def _span(x: float) -> float:
