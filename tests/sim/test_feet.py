@@ -84,7 +84,7 @@ def _off_the_middle(char: dict, n: int = 512) -> list[float]:
     polys = stroke_polygons(char)
     moves = median_movements(char)
     out = []
-    for si, corner, tip, _ in hooks(char):
+    for si, corner, tip, *_ in hooks(char):
         own = fill([to_image(q, n) for q in polys[si]], n)
         c, t = to_image(corner[None], n)[0], to_image(tip[None], n)[0]
         u = (t - c) / np.linalg.norm(t - c)
