@@ -1,5 +1,6 @@
 # SPDX-License-Identifier: GPL-3.0-or-later
-"""Hooks flicked up to a point (issue 26.2), a 竖钩's, a 弯钩's: per hook, the ink's width
+"""Hooks flicked up to a point (issue 26.2), a 竖钩's, a 弯钩's, a 竖弯钩's 乚 (kind ``foot``: off
+a sharp corner; ``curl``: off the curve the end curls from, ``hooks``): per hook, the ink's width
 across it at 25, 50 and 75 % of the way from the median's corner to the font's tip, against the
 font's (the stroke's own outline cut there, the ink counted 2 px either side of the cut), how
 far the ink stops short of the font's tip (px), the ink outside the font round the hook (px),
@@ -8,7 +9,7 @@ past 75 % of its length, against the body's (the stroke's own font nearest its m
 ``BODY`` hook lengths back up from the corner, not the hook's): the hook's darkness over the
 body's, and its pale share (the hook's font past 25 % darker than no more than half the body,
 grey or streaked between the hair's bundles). Written with the default brush and seed, as
-shoulders_eval does.
+shoulders_eval does; the means are given per kind and over all.
 
     python scripts/hooks_eval.py 村时守寸 [--size 384 512] [--workers 2]
 """
