@@ -1,5 +1,6 @@
 # SPDX-License-Identifier: GPL-3.0-or-later
-"""Hooks flicked up to a point (issue 26.2), a 竖钩's, a 弯钩's: per hook, the ink's width
+"""Hooks flicked up to a point (issue 26.2), a 竖钩's, a 弯钩's, a 竖弯钩's 乚 (kind ``foot``: off
+a sharp corner; ``curl``: off the curve the end curls from, ``hooks``): per hook, the ink's width
 across it at 25, 50 and 75 % of the way from the median's corner to the font's tip, against the
 font's (the stroke's own outline cut there, the ink counted 2 px either side of the cut), how
 far the ink stops short of the font's tip (px), the ink outside the font round the hook (px),
@@ -8,7 +9,7 @@ past 75 % of its length, against the body's (the stroke's own font nearest its m
 ``BODY`` hook lengths back up from the corner, not the hook's): the hook's darkness over the
 body's, and its pale share (the hook's font past 25 % darker than no more than half the body,
 grey or streaked between the hair's bundles). Written with the default brush and seed, as
-shoulders_eval does.
+shoulders_eval does; the means are given per kind and over all.
 
     python scripts/hooks_eval.py 村时守寸 [--size 384 512] [--workers 2]
 """
@@ -29,10 +30,25 @@ PAD = 2.0  # px either side of the font's cut where the ink is counted too
 BODY = 2.0  # hook lengths of the median back up from the corner whose font is the body
 
 
-def hooks(char: dict) -> list[tuple[int, np.ndarray, np.ndarray, np.ndarray]]:
-    """Each hook that goes up from its foot: (stroke, median corner, font tip, the median's
-    points up to the corner), data units. The tip is the stroke outline's point farthest along
-    the hook near it."""
+def _hook_corner(pts, polys, step: float) -> tuple[int, str] | None:
+    """Where a hook leaves its stroke's median (``pts``: resampled every ``step``), as
+    ``outline.median_movements`` cuts it, and its kind: at the last sharp corner (``"foot"``: a
+    竖钩, a 横折钩, a 弯钩) if the movement after it is a hook, else where the end curls off a
+    curve (``"curl"``: a 竖弯钩's 乚, 乙, 九; ``outline._curled_end``); None if neither."""
+    from sim.writing import outline as ol
+
+    edges = [0, *ol.corners(pts, step), len(pts) - 1]
+    if len(edges) > 2 and ol._pieces(pts, polys, step, edges)[-1][2]:
+        return edges[-2], "foot"
+    k = ol._curled_end(pts, step, edges[-2])
+    return None if k is None else (k, "curl")
+
+
+def hooks(char: dict) -> list[tuple[int, np.ndarray, np.ndarray, np.ndarray, str]]:
+    """Each hook that goes up from its foot or from the curve it curls off: (stroke, median
+    corner, font tip, the median's points up to the corner, kind: ``_hook_corner``), data
+    units. The tip is the stroke outline's point farthest along the hook near it. (The curled
+    end's 乚 added in issue 26.2: only a corner's hooks were read, none of 元 光 也's.)"""
     from sim.writing import outline as ol
 
     out = []
@@ -43,16 +59,16 @@ def hooks(char: dict) -> list[tuple[int, np.ndarray, np.ndarray, np.ndarray]]:
         zip(char["medians"], polys_all, moves, strict=True)
     ):
         pts, _ = ol.resample(ol._to_the_tips(med, polys), step)
-        ks = ol.corners(pts, step)
-        if not hook or not ks:
+        at = _hook_corner(pts, polys, step) if hook else None
+        if at is None:
             continue
-        c = pts[ks[-1]]
+        c = pts[at[0]]
         d = (pts[-1] - c) / np.linalg.norm(pts[-1] - c)
         edge = np.concatenate(polys)
         edge = edge[np.linalg.norm(edge - c, axis=1) < 1.5 * np.linalg.norm(pts[-1] - c)]
         tip = edge[int(np.argmax((edge - c) @ d))]
         if tip[1] > c[1]:  # y up: a hook flicked up
-            out.append((si, c, tip, pts[: ks[-1] + 1]))
+            out.append((si, c, tip, pts[: at[0] + 1], at[1]))
     return out
 
 
@@ -124,8 +140,8 @@ def _one_hook(ink, dark, font, own, corner, tip, median) -> tuple:
 
 
 def measure(task) -> list[tuple]:
-    """Per hook of one character written at ``n`` px: (char, n, stroke, widths, short,
-    outside, darkness past 50 %, past 75 %)."""
+    """Per hook of one character written at ``n`` px: (char, n, stroke, kind, widths, short,
+    outside, darkness past 50 %, past 75 %, body's, pale share)."""
     from scripts.shoulders_eval import written  # the same writing as the corners' measure
     from sim.core.recording import DEFAULT_BRUSH
     from sim.writing.outline import fill, rasterise, stroke_polygons, to_image
@@ -139,11 +155,26 @@ def measure(task) -> list[tuple]:
     font = rasterise(char, n)
     polys = stroke_polygons(char)
     rows = []
-    for si, corner, tip, median in hooks(char):
+    for si, corner, tip, median, kind in hooks(char):
         own = fill([to_image(q, n) for q in polys[si]], n)
         c, t = to_image(corner[None], n)[0], to_image(tip[None], n)[0]
-        rows.append((ch, n, si, *_one_hook(ink, dark, font, own, c, t, to_image(median, n))))
+        one = _one_hook(ink, dark, font, own, c, t, to_image(median, n))
+        rows.append((ch, n, si, kind, *one))
     return rows
+
+
+def _summary(rows, label: str) -> None:
+    """The means over ``rows`` (``measure``'s) of one kind of hook (``label``)."""
+    if not rows:
+        return
+    r = np.nanmean([[i / f if f else np.nan for i, f in row[4]] for row in rows], axis=0)
+    m = np.mean([row[5:] for row in rows], axis=0)
+    print(
+        f"{label} mean {len(rows)} hooks: ink/font width {r[0]:.2f} {r[1]:.2f} {r[2]:.2f}; "
+        f"short {m[0]:.1f} px; outside {m[1]:.1f} px; dark past 50 % {m[2]:.3f}, 75 % {m[3]:.3f}"
+        f"; body {m[4]:.3f}; hook/body past 50 % {np.mean([r[7] / r[9] for r in rows]):.3f}; "
+        f"pale {m[5]:.3f}"
+    )
 
 
 def main() -> int:
@@ -157,23 +188,17 @@ def main() -> int:
     with ProcessPoolExecutor(a.workers) as ex:
         rows = [r for rs in ex.map(measure, tasks) for r in rs]
     print(
-        f"{'ch':<3}{'px':>4}{'st':>3}  ink/font width at 25/50/75 % (px)      short  out  "
+        f"{'ch':<3}{'px':>4}{'st':>3} kind  ink/font width at 25/50/75 % (px)      short  out  "
         "dark 50 75 body  pale"
     )
-    for ch, n, si, w, short, out, d50, d75, body, pale in rows:
+    for ch, n, si, kind, w, short, out, d50, d75, body, pale in rows:
         ws = "  ".join(f"{i:4.1f}/{f:4.1f}" for i, f in w)
         print(
-            f"{ch:<3}{n:>4}{si:>3}  {ws}  {short:5.1f} {out:4d}  {d50:.2f} {d75:.2f} {body:.2f}"
-            f"  {pale:.2f}"
+            f"{ch:<3}{n:>4}{si:>3} {kind:<4}  {ws}  {short:5.1f} {out:4d}  {d50:.2f} {d75:.2f}"
+            f" {body:.2f}  {pale:.2f}"
         )
-    r = np.nanmean([[i / f if f else np.nan for i, f in row[3]] for row in rows], axis=0)
-    m = np.mean([row[4:] for row in rows], axis=0)
-    print(
-        f"mean {len(rows)} hooks: ink/font width {r[0]:.2f} {r[1]:.2f} {r[2]:.2f}; "
-        f"short {m[0]:.1f} px; outside {m[1]:.1f} px; dark past 50 % {m[2]:.3f}, 75 % {m[3]:.3f}"
-        f"; body {m[4]:.3f}; hook/body past 50 % {np.mean([r[6] / r[8] for r in rows]):.3f}; "
-        f"pale {m[5]:.3f}"
-    )
+    for kind in ("foot", "curl", None):
+        _summary([r for r in rows if kind in (None, r[3])], kind or "all")
     return 0
 
 

@@ -16,6 +16,7 @@ from ..core.recording import quantise
 from .feet import (
     _along,
     _bent,
+    _fall,
     _flicked,
     _gathered,
     _heel,
@@ -474,6 +475,11 @@ def _flicks(pl: Plan, runs, hook) -> list[bool]:
     return [h and flicks(pl.target[run], pl.width[run]) for h, run in zip(hook, runs, strict=True)]
 
 
+def _way_in(path) -> np.ndarray:
+    """The chord of the last half of a movement's ``path``: its way into the corner after it."""
+    return path[-1] - path[len(path) // 2]
+
+
 def _movements(items, body=None) -> list[np.ndarray]:
     """``items`` cut where the body samples (``body``, or the items themselves) jump: one piece
     per movement of the stroke (the brush lifts between them)."""
@@ -552,7 +558,8 @@ def _fill(
         touch = 1.0 if hook[r] else ZHE_TOUCH if r else ENTRY_TOUCH  # a hook sets off pressed
         p = press[j0:j1] * _entry_ramp(pl.target[run], pl.width[run], touch)
         if flick[r]:  # the hook flicks out of the heel, letting go to its point
-            p = _flicked(p, heel, pl.target[run], pl.width[run])
+            fall = _fall(_way_in(pl.target[runs[r - 1]]), pl.target[run[-1]] - pl.target[run[0]])
+            p = _flicked(p, heel, pl.target[run], pl.width[run], fall)
         elif hook[r]:  # the hook gathers the hair to its point as it flicks out
             p = p * _gathered(len(run))
         if r < len(runs) - 1 and flick[r + 1]:  # into a hook's heel, pressed no deeper

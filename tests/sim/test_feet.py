@@ -84,7 +84,7 @@ def _off_the_middle(char: dict, n: int = 512) -> list[float]:
     polys = stroke_polygons(char)
     moves = median_movements(char)
     out = []
-    for si, corner, tip, _ in hooks(char):
+    for si, corner, tip, *_ in hooks(char):
         own = fill([to_image(q, n) for q in polys[si]], n)
         c, t = to_image(corner[None], n)[0], to_image(tip[None], n)[0]
         u = (t - c) / np.linalg.norm(t - c)
@@ -118,3 +118,33 @@ def test_a_flicked_hook_is_planned_down_the_middle_of_its_triangle():
     off = [o for ch in "寸小丁于" for o in _off_the_middle(find_char(ch))]
     assert len(off) == 4
     assert max(off) < 0.1
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("char", ["光", "见"])
+def test_a_bend_hook_is_no_wider_than_the_font_halfway_up(char):
+    # the 竖弯钩's 乚, pushed up off the 弯 (issue 26.2), written with the default brush at
+    # 512 px, one pass: halfway from its corner to the font's tip its ink is at most 1.1 times
+    # the font's width, and it reaches the tip (main: 1.17 and 1.14 times, a candle flame
+    # swelling past the font's outer edge, the heel's press falling evenly to the point)
+    from scripts.hooks_eval import _one_hook, hooks
+    from sim.core.recording import DEFAULT_BRUSH, Recording
+    from sim.writing.outline import fill, rasterise, stroke_polygons, to_image
+    from sim.writing.response import calibrate
+    from sim.writing.writer import coverage_mask, write_character
+
+    n = 512
+    tpl = Recording(np.zeros((1, 6)), brush={"preset": DEFAULT_BRUSH})
+    ch = find_char(char)
+    _, _, sim = write_character(ch, n, tpl, response=calibrate(tpl), passes=1)
+    ((si, corner, tip, median, kind),) = hooks(ch)
+    assert kind == "curl"
+    own = fill([to_image(q, n) for q in stroke_polygons(ch)[si]], n)
+    dark = np.zeros((n, n))
+    at = [to_image(q, n) for q in (corner[None], tip[None], median)]
+    widths, short, *_ = _one_hook(
+        coverage_mask(sim), dark, rasterise(ch, n), own, at[0][0], at[1][0], at[2]
+    )
+    ink, font = widths[1]
+    assert ink <= 1.1 * font
+    assert short <= 2.0

@@ -104,7 +104,7 @@ def _short_of_the_point(ink, char: dict, n: int) -> list[float]:
     polys = stroke_polygons(char)
     yy, xx = np.mgrid[0:n, 0:n]
     out = []
-    for si, corner, tip, _ in hooks(char):
+    for si, corner, tip, *_ in hooks(char):
         own = binary_dilation(fill([to_image(q, n) for q in polys[si]], n), iterations=2)
         c, t = to_image(corner[None], n)[0], to_image(tip[None], n)[0]
         length = float(np.linalg.norm(t - c))
