@@ -12,22 +12,23 @@ from .laying import FULL_WET
 from .lift import same_colours
 
 # Model addition (not in the paper): capillary wicking. Eq. 25 moves only a saturated pixel's
-# excess; below saturation the paper still draws liquid from a wet pixel into its drier
-# neighbours along its fibres, and the liquid carries pigment with it: a real stroke's edge is
-# not the hair's cut drawn with a ruler but a front the sheet's fibres pulled a little way out,
-# further along a fibre than between fibres. Each pass moves, between every two neighbouring
-# pixels (four-neighbour), a rate (at most WICK_RATE) times their difference in wetness times
-# how well both draw (``sheet_draw``: the sheet's fibres and pulp, in mm, from its seed, as
-# uneven as the paper's fibre); a pixel that takes
-# liquid takes the pigment it carries, laid over what it holds: 1 - exp(-taken / FULL_WET) of
-# the givers' colour, times WICK_PIGMENT (the pigment lags the water), so the fringe darkens as
-# the liquid keeps coming and stays lighter than the stroke, and a dry-brush gap inside a
-# stroke, as wet as its neighbours, takes almost none. The sheet's reach, WICK_MM / capacity**2
-# mm a step while it is wet (a paper that holds little passes liquid on further: sized xuan
-# 0.18 mm, raw xuan 0.6 mm, smooth paper none), is the same in mm at any resolution: the
-# passes and their rate give the spreading (rate times passes) of that reach in pixels
-# squared, up to WICK_MAX_PASSES passes at WICK_RATE (beyond, above about 5.5 px a mm on sized
-# xuan or on a very absorbent sheet, it reaches less in mm: a pass a step is what it costs).
+# excess; below saturation the paper still draws liquid from a wet pixel into its drier neighbours
+# along its fibres, and the liquid carries pigment with it: a real stroke's edge is not the hair's
+# cut drawn with a ruler but a front the sheet's fibres pulled a little way out, further along a
+# fibre than between fibres. Each pass moves, between every two neighbouring pixels
+# (four-neighbour), a rate (at most WICK_RATE) times their difference in wetness times how well
+# both draw (``sheet_draw``: the sheet's fibres and pulp, in mm, from its seed, as uneven as the
+# paper's fibre); a pixel that takes liquid takes the pigment it carries, mixed into what it holds
+# (``_wick_mix``, issue 26): its colour moves toward the givers' by 1 - exp(-taken / FULL_WET)
+# times WICK_PIGMENT (the pigment lags the water) where it is lighter, and stays where it is as
+# dark (ink drawn into ink still wet with the same ink merges; no step, no line at a mark's edge
+# inside a stroke), so the fringe darkens toward the stroke's colour as the liquid keeps coming,
+# and a dry-brush gap inside a stroke, as wet as its neighbours, takes almost none. The sheet's
+# reach, WICK_MM / capacity**2 mm a step while it is wet (a paper that holds little passes liquid
+# on further: sized xuan 0.18 mm, raw xuan 0.6 mm, smooth paper none), is the same in mm at any
+# resolution: the passes and their rate give the spreading (rate times passes) of that reach in
+# pixels squared, up to WICK_MAX_PASSES passes at WICK_RATE (beyond, above about 5.5 px a mm on
+# sized xuan or on a very absorbent sheet, it reaches less in mm: a pass a step is what it costs).
 WICK_MM = 0.18
 WICK_RATE = 0.24  # <= 1/4 keeps every pass stable (one axis at a time, draw <= 1)
 WICK_PIGMENT = 0.8
@@ -101,10 +102,28 @@ def _wick_colours(w, ink, draw, passes: int, rate: float) -> None:
             w[a] -= flux
             w[b] += flux
         # the pigment the liquid carried in: the givers' colour, weighted by what each gave,
-        # laid over what the pixel holds as Eq. 26's change lays it (more liquid, more of it)
-        rows += (1.0 - rows) * (carried * _colours(_wick_take(inflow), colours))
+        # mixed into what the pixel holds (``_wick_mix``: more liquid, more of it)
+        _wick_mix(rows, carried, _colours(inflow, colours), _colours(_wick_take(inflow), colours))
     if not np.may_share_memory(rows, ink):  # (a window of a sheet: rows, a view, already is)
         ink[...] = rows.reshape(ink.shape)
+
+
+def _wick_mix(rows, carried, inflow, take) -> None:
+    """Mix the pigment the liquid carried in (``carried``: the givers' colours times what each
+    gave, ``inflow`` the liquid, ``take`` ``_wick_take``'s share per unit of it) into the ink
+    ``rows`` holds, in place: the pixel's colour moves toward the givers' colour (carried /
+    inflow) by WICK_PIGMENT (1 - exp(-inflow / FULL_WET)) where it is lighter, and stays where
+    it is as dark (issue 26: ink drawn into ink still wet with the same ink merges with it;
+    laid over it as a layer, every pass of liquid between two pixels of a grey pool darkened
+    the taker toward black, and the window's and the marks' edges, where the liquid keeps
+    moving one way step after step, drew thin dark lines inside the stroke). On dry paper
+    (nothing held) it is the fringe's 1 - exp(-inflow / FULL_WET) of the givers' colour, as
+    before; a fringe the liquid keeps coming to darkens toward the stroke's colour, not past
+    it."""
+    gap = carried - rows * inflow  # (the givers' colour less the pixel's) times the liquid
+    np.maximum(gap, 0.0, out=gap)
+    gap *= take
+    rows += gap
 
 
 def _wick_take(inflow):

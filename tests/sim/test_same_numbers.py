@@ -19,7 +19,8 @@ RNG = np.random.default_rng(28)
 
 
 def _plain_wick(w, ink, draw, passes, rate=WICK_RATE):
-    """The wicking with its colours broadcast three numbers at a time (before issue 28)."""
+    """The wicking with its colours broadcast three numbers at a time (before issue 28; the
+    pigment mixed into what a pixel holds, issue 26)."""
     rate = np.float32(rate)
     down = rate * draw[:-1] * draw[1:]
     along = rate * draw[:, :-1] * draw[:, 1:]
@@ -39,7 +40,7 @@ def _plain_wick(w, ink, draw, passes, rate=WICK_RATE):
             w[b] += flux
         take = WICK_PIGMENT * -exact.expm1(-inflow / FULL_WET)
         take /= np.where(inflow > 0.0, inflow, 1.0)
-        ink += (1.0 - ink) * (carried * take[..., None])
+        ink += np.maximum(carried - ink * inflow[..., None], 0.0) * take[..., None]
 
 
 def test_wicking_on_rows_of_colours_gives_the_broadcast_numbers():
