@@ -18,12 +18,12 @@ from .lift import same_colours
 # fibre than between fibres. Each pass moves, between every two neighbouring pixels
 # (four-neighbour), a rate (at most WICK_RATE) times their difference in wetness times how well
 # both draw (``sheet_draw``: the sheet's fibres and pulp, in mm, from its seed, as uneven as the
-# paper's fibre); a pixel that takes liquid takes the pigment it carries, mixed into what it holds
-# (``_wick_mix``, issue 26): its colour moves toward the givers' by 1 - exp(-taken / FULL_WET)
-# times WICK_PIGMENT (the pigment lags the water) where it is lighter, and stays where it is as
-# dark (ink drawn into ink still wet with the same ink merges; no step, no line at a mark's edge
-# inside a stroke), so the fringe darkens toward the stroke's colour as the liquid keeps coming,
-# and a dry-brush gap inside a stroke, as wet as its neighbours, takes almost none. The sheet's
+# paper's fibre); a pixel that takes liquid takes the pigment it carries, laid over what it holds:
+# 1 - exp(-taken / FULL_WET) of the givers' colour, times WICK_PIGMENT (the pigment lags the
+# water), but never past the givers' colour (``_wick_mix``, issue 26: ink drawn into ink still
+# wet with the same ink merges, no step, no line at a mark's edge inside a stroke), so the fringe
+# darkens as the liquid keeps coming and stays lighter than the stroke, and a dry-brush gap
+# inside a stroke, as wet as its neighbours, takes almost none. The sheet's
 # reach, WICK_MM / capacity**2 mm a step while it is wet (a paper that holds little passes liquid
 # on further: sized xuan 0.18 mm, raw xuan 0.6 mm, smooth paper none), is the same in mm at any
 # resolution: the passes and their rate give the spreading (rate times passes) of that reach in
@@ -102,28 +102,30 @@ def _wick_colours(w, ink, draw, passes: int, rate: float) -> None:
             w[a] -= flux
             w[b] += flux
         # the pigment the liquid carried in: the givers' colour, weighted by what each gave,
-        # mixed into what the pixel holds (``_wick_mix``: more liquid, more of it)
+        # laid over what the pixel holds as Eq. 26's change lays it (more liquid, more of it),
+        # up to the givers' colour (``_wick_mix``)
         _wick_mix(rows, carried, _colours(inflow, colours), _colours(_wick_take(inflow), colours))
     if not np.may_share_memory(rows, ink):  # (a window of a sheet: rows, a view, already is)
         ink[...] = rows.reshape(ink.shape)
 
 
 def _wick_mix(rows, carried, inflow, take) -> None:
-    """Mix the pigment the liquid carried in (``carried``: the givers' colours times what each
-    gave, ``inflow`` the liquid, ``take`` ``_wick_take``'s share per unit of it) into the ink
-    ``rows`` holds, in place: the pixel's colour moves toward the givers' colour (carried /
-    inflow) by WICK_PIGMENT (1 - exp(-inflow / FULL_WET)) where it is lighter, and stays where
-    it is as dark (issue 26: ink drawn into ink still wet with the same ink merges with it;
-    laid over it as a layer, every pass of liquid between two pixels of a grey pool darkened
-    the taker toward black, and the window's and the marks' edges, where the liquid keeps
-    moving one way step after step, drew thin dark lines inside the stroke). On dry paper
-    (nothing held) it is the fringe's 1 - exp(-inflow / FULL_WET) of the givers' colour, as
-    before; a fringe the liquid keeps coming to darkens toward the stroke's colour, not past
-    it."""
-    gap = carried - rows * inflow  # (the givers' colour less the pixel's) times the liquid
-    np.maximum(gap, 0.0, out=gap)
-    gap *= take
-    rows += gap
+    """Lay the pigment the liquid carried in (``carried``: the givers' colours times what each
+    gave, ``inflow`` the liquid, ``take`` ``_wick_take``'s share per unit of it) over the ink
+    ``rows`` holds, in place: 1 - exp(-inflow / FULL_WET) times WICK_PIGMENT of the givers'
+    colour (carried / inflow) laid over it, as before, but never past that colour (issue 26:
+    ink drawn into ink still wet with the same ink merges with it; laid over it as a layer
+    without end, every pass of liquid between two pixels of a grey pool darkened the taker
+    toward black, and the window's and the marks' edges, where the liquid keeps moving one way
+    step after step, drew thin dark lines inside the stroke). A fringe on dry paper darkens as
+    the liquid keeps coming, up to the colour of the ink it came from."""
+    laid = carried * take
+    laid *= 1.0 - rows
+    room = carried - rows * inflow  # (the givers' colour less the pixel's) times the liquid
+    np.maximum(room, 0.0, out=room)
+    room /= np.where(inflow > 0.0, inflow, np.float32(1.0))
+    np.minimum(laid, room, out=laid)
+    rows += laid
 
 
 def _wick_take(inflow):

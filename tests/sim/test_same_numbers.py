@@ -19,8 +19,8 @@ RNG = np.random.default_rng(28)
 
 
 def _plain_wick(w, ink, draw, passes, rate=WICK_RATE):
-    """The wicking with its colours broadcast three numbers at a time (before issue 28; the
-    pigment mixed into what a pixel holds, issue 26)."""
+    """The wicking with its colours broadcast three numbers at a time (before issue 28; laid
+    up to the givers' colour, issue 26)."""
     rate = np.float32(rate)
     down = rate * draw[:-1] * draw[1:]
     along = rate * draw[:, :-1] * draw[:, 1:]
@@ -40,7 +40,9 @@ def _plain_wick(w, ink, draw, passes, rate=WICK_RATE):
             w[b] += flux
         take = WICK_PIGMENT * -exact.expm1(-inflow / FULL_WET)
         take /= np.where(inflow > 0.0, inflow, 1.0)
-        ink += np.maximum(carried - ink * inflow[..., None], 0.0) * take[..., None]
+        room = np.maximum(carried - ink * inflow[..., None], 0.0)
+        room /= np.where(inflow > 0.0, inflow, np.float32(1.0))[..., None]
+        ink += np.minimum((1.0 - ink) * (carried * take[..., None]), room)
 
 
 def test_wicking_on_rows_of_colours_gives_the_broadcast_numbers():
