@@ -20,10 +20,10 @@ from .lift import same_colours
 # both draw (``sheet_draw``: the sheet's fibres and pulp, in mm, from its seed, as uneven as the
 # paper's fibre); a pixel that takes liquid takes the pigment it carries, laid over what it holds:
 # 1 - exp(-taken / FULL_WET) of the givers' colour, times WICK_PIGMENT (the pigment lags the
-# water), but never past the givers' colour (``_wick_mix``, issue 26: ink drawn into ink still
-# wet with the same ink merges, no step, no line at a mark's edge inside a stroke), so the fringe
-# darkens as the liquid keeps coming and stays lighter than the stroke, and a dry-brush gap
-# inside a stroke, as wet as its neighbours, takes almost none. The sheet's
+# water), but never past the colour of the darkest pixel it came from (``_wick_lay``, issue 26:
+# ink drawn into ink still wet with the same ink merges, no step, no line at a mark's edge inside
+# a stroke), so the fringe darkens as the liquid keeps coming and stays lighter than the stroke,
+# and a dry-brush gap inside a stroke, as wet as its neighbours, takes almost none. The sheet's
 # reach, WICK_MM / capacity**2 mm a step while it is wet (a paper that holds little passes liquid
 # on further: sized xuan 0.18 mm, raw xuan 0.6 mm, smooth paper none), is the same in mm at any
 # resolution: the passes and their rate give the spreading (rate times passes) of that reach in
@@ -91,39 +91,41 @@ def _wick_colours(w, ink, draw, passes: int, rate: float) -> None:
             break
         inflow = np.zeros_like(w)
         carried = np.zeros_like(rows)
+        darkest = np.zeros_like(rows)  # the darkest colour of the pixels each took liquid from
         for g, (a, b, ia, ib) in zip((down, along), _wick_pairs(colours), strict=True):
             flux = g * (w[a] - w[b])  # > 0: from a to b
             to_b, to_a = np.maximum(flux, 0.0), np.maximum(-flux, 0.0)
             inflow[b] += to_b
             inflow[a] += to_a
             # the same per colour, what each pixel gave repeated for its colours
-            carried[ib] += _colours(to_b, colours) * rows[ia]
-            carried[ia] += _colours(to_a, colours) * rows[ib]
+            gave_b, gave_a = _colours(to_b, colours), _colours(to_a, colours)
+            carried[ib] += gave_b * rows[ia]
+            carried[ia] += gave_a * rows[ib]
+            np.maximum(darkest[ib], np.where(gave_b > 0.0, rows[ia], 0.0), out=darkest[ib])
+            np.maximum(darkest[ia], np.where(gave_a > 0.0, rows[ib], 0.0), out=darkest[ia])
             w[a] -= flux
             w[b] += flux
         # the pigment the liquid carried in: the givers' colour, weighted by what each gave,
         # laid over what the pixel holds as Eq. 26's change lays it (more liquid, more of it),
-        # up to the givers' colour (``_wick_mix``)
-        _wick_mix(rows, carried, _colours(inflow, colours), _colours(_wick_take(inflow), colours))
+        # up to the darkest giver's colour (``_wick_lay``)
+        _wick_lay(rows, carried * _colours(_wick_take(inflow), colours), darkest)
     if not np.may_share_memory(rows, ink):  # (a window of a sheet: rows, a view, already is)
         ink[...] = rows.reshape(ink.shape)
 
 
-def _wick_mix(rows, carried, inflow, take) -> None:
-    """Lay the pigment the liquid carried in (``carried``: the givers' colours times what each
-    gave, ``inflow`` the liquid, ``take`` ``_wick_take``'s share per unit of it) over the ink
-    ``rows`` holds, in place: 1 - exp(-inflow / FULL_WET) times WICK_PIGMENT of the givers'
-    colour (carried / inflow) laid over it, as before, but never past that colour (issue 26:
-    ink drawn into ink still wet with the same ink merges with it; laid over it as a layer
+def _wick_lay(rows, laid, darkest) -> None:
+    """Lay the pigment the liquid carried in (``laid``: 1 - exp(-inflow / FULL_WET) times
+    WICK_PIGMENT of the givers' colour) over the ink ``rows`` holds, in place, as before, but
+    never past the colour of the darkest pixel the liquid came from (``darkest``; issue 26:
+    ink drawn into ink still wet with the same ink merges with it. Laid over it as a layer
     without end, every pass of liquid between two pixels of a grey pool darkened the taker
     toward black, and the window's and the marks' edges, where the liquid keeps moving one way
-    step after step, drew thin dark lines inside the stroke). A fringe on dry paper darkens as
-    the liquid keeps coming, up to the colour of the ink it came from."""
-    laid = carried * take
+    step after step, drew thin dark lines inside the stroke, and a grid where the hair
+    lingered). A fringe on dry paper darkens as the liquid keeps coming, as before, up to the
+    ink it came from."""
     laid *= 1.0 - rows
-    room = carried - rows * inflow  # (the givers' colour less the pixel's) times the liquid
+    room = darkest - rows
     np.maximum(room, 0.0, out=room)
-    room /= np.where(inflow > 0.0, inflow, np.float32(1.0))
     np.minimum(laid, room, out=laid)
     rows += laid
 
