@@ -22,7 +22,7 @@ from .lift import same_colours
 # 1 - exp(-taken / FULL_WET) of the givers' colour, times WICK_PIGMENT (the pigment lags the
 # water), but never past the colour of the darkest pixel it came from (``_wick_lay``, issue 26:
 # ink drawn into ink still wet with the same ink merges, no step, no line at a mark's edge inside
-# a stroke), so the fringe darkens as the liquid keeps coming and stays lighter than the stroke,
+# a stroke), so the fringe darkens as the liquid keeps coming and never past the stroke itself,
 # and a dry-brush gap inside a stroke, as wet as its neighbours, takes almost none. The sheet's
 # reach, WICK_MM / capacity**2 mm a step while it is wet (a paper that holds little passes liquid
 # on further: sized xuan 0.18 mm, raw xuan 0.6 mm, smooth paper none), is the same in mm at any
