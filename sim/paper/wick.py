@@ -12,22 +12,23 @@ from .laying import FULL_WET
 from .lift import same_colours
 
 # Model addition (not in the paper): capillary wicking. Eq. 25 moves only a saturated pixel's
-# excess; below saturation the paper still draws liquid from a wet pixel into its drier
-# neighbours along its fibres, and the liquid carries pigment with it: a real stroke's edge is
-# not the hair's cut drawn with a ruler but a front the sheet's fibres pulled a little way out,
-# further along a fibre than between fibres. Each pass moves, between every two neighbouring
-# pixels (four-neighbour), a rate (at most WICK_RATE) times their difference in wetness times
-# how well both draw (``sheet_draw``: the sheet's fibres and pulp, in mm, from its seed, as
-# uneven as the paper's fibre); a pixel that takes
-# liquid takes the pigment it carries, laid over what it holds: 1 - exp(-taken / FULL_WET) of
-# the givers' colour, times WICK_PIGMENT (the pigment lags the water), so the fringe darkens as
-# the liquid keeps coming and stays lighter than the stroke, and a dry-brush gap inside a
-# stroke, as wet as its neighbours, takes almost none. The sheet's reach, WICK_MM / capacity**2
-# mm a step while it is wet (a paper that holds little passes liquid on further: sized xuan
-# 0.18 mm, raw xuan 0.6 mm, smooth paper none), is the same in mm at any resolution: the
-# passes and their rate give the spreading (rate times passes) of that reach in pixels
-# squared, up to WICK_MAX_PASSES passes at WICK_RATE (beyond, above about 5.5 px a mm on sized
-# xuan or on a very absorbent sheet, it reaches less in mm: a pass a step is what it costs).
+# excess; below saturation the paper still draws liquid from a wet pixel into its drier neighbours
+# along its fibres, and the liquid carries pigment with it: a real stroke's edge is not the hair's
+# cut drawn with a ruler but a front the sheet's fibres pulled a little way out, further along a
+# fibre than between fibres. Each pass moves, between every two neighbouring pixels
+# (four-neighbour), a rate (at most WICK_RATE) times their difference in wetness times how well
+# both draw (``sheet_draw``: the sheet's fibres and pulp, in mm, from its seed, as uneven as the
+# paper's fibre); a pixel that takes liquid takes the pigment it carries, laid over what it holds:
+# 1 - exp(-taken / FULL_WET) of the givers' colour, times WICK_PIGMENT (the pigment lags the
+# water), but never past the colour of the darkest pixel it came from (``_wick_lay``, issue 26:
+# ink drawn into ink still wet with the same ink merges, no step, no line at a mark's edge inside
+# a stroke), so the fringe darkens as the liquid keeps coming and never past the stroke itself,
+# and a dry-brush gap inside a stroke, as wet as its neighbours, takes almost none. The sheet's
+# reach, WICK_MM / capacity**2 mm a step while it is wet (a paper that holds little passes liquid
+# on further: sized xuan 0.18 mm, raw xuan 0.6 mm, smooth paper none), is the same in mm at any
+# resolution: the passes and their rate give the spreading (rate times passes) of that reach in
+# pixels squared, up to WICK_MAX_PASSES passes at WICK_RATE (beyond, above about 5.5 px a mm on
+# sized xuan or on a very absorbent sheet, it reaches less in mm: a pass a step is what it costs).
 WICK_MM = 0.18
 WICK_RATE = 0.24  # <= 1/4 keeps every pass stable (one axis at a time, draw <= 1)
 WICK_PIGMENT = 0.8
@@ -90,21 +91,43 @@ def _wick_colours(w, ink, draw, passes: int, rate: float) -> None:
             break
         inflow = np.zeros_like(w)
         carried = np.zeros_like(rows)
+        darkest = np.zeros_like(rows)  # the darkest colour of the pixels each took liquid from
         for g, (a, b, ia, ib) in zip((down, along), _wick_pairs(colours), strict=True):
             flux = g * (w[a] - w[b])  # > 0: from a to b
             to_b, to_a = np.maximum(flux, 0.0), np.maximum(-flux, 0.0)
             inflow[b] += to_b
             inflow[a] += to_a
             # the same per colour, what each pixel gave repeated for its colours
-            carried[ib] += _colours(to_b, colours) * rows[ia]
-            carried[ia] += _colours(to_a, colours) * rows[ib]
+            gave_b, gave_a = _colours(to_b, colours), _colours(to_a, colours)
+            carried[ib] += gave_b * rows[ia]
+            carried[ia] += gave_a * rows[ib]
+            np.maximum(darkest[ib], np.where(gave_b > 0.0, rows[ia], 0.0), out=darkest[ib])
+            np.maximum(darkest[ia], np.where(gave_a > 0.0, rows[ib], 0.0), out=darkest[ia])
             w[a] -= flux
             w[b] += flux
         # the pigment the liquid carried in: the givers' colour, weighted by what each gave,
-        # laid over what the pixel holds as Eq. 26's change lays it (more liquid, more of it)
-        rows += (1.0 - rows) * (carried * _colours(_wick_take(inflow), colours))
+        # laid over what the pixel holds as Eq. 26's change lays it (more liquid, more of it),
+        # up to the darkest giver's colour (``_wick_lay``)
+        _wick_lay(rows, carried * _colours(_wick_take(inflow), colours), darkest)
     if not np.may_share_memory(rows, ink):  # (a window of a sheet: rows, a view, already is)
         ink[...] = rows.reshape(ink.shape)
+
+
+def _wick_lay(rows, laid, darkest) -> None:
+    """Lay the pigment the liquid carried in (``laid``: 1 - exp(-inflow / FULL_WET) times
+    WICK_PIGMENT of the givers' colour) over the ink ``rows`` holds, in place, as before, but
+    never past the colour of the darkest pixel the liquid came from (``darkest``; issue 26:
+    ink drawn into ink still wet with the same ink merges with it. Laid over it as a layer
+    without end, every pass of liquid between two pixels of a grey pool darkened the taker
+    toward black, and the window's and the marks' edges, where the liquid keeps moving one way
+    step after step, drew thin dark lines inside the stroke, and a grid where the hair
+    lingered). A fringe on dry paper darkens as the liquid keeps coming, as before, up to the
+    ink it came from."""
+    laid *= 1.0 - rows
+    room = darkest - rows
+    np.maximum(room, 0.0, out=room)
+    np.minimum(laid, room, out=laid)
+    rows += laid
 
 
 def _wick_take(inflow):

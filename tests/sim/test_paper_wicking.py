@@ -78,3 +78,29 @@ def test_draw_is_the_same_in_any_window():
     assert np.all(even == even[0, 0])
     weak = sheet_draw(slice(0, 128), slice(0, 128), 8.0, 5, TILE, fibre=0.2)
     assert 0.0 < weak.std() < a.std()
+
+
+def test_liquid_drawn_through_a_wet_grey_pool_leaves_its_grey_as_it_was():
+    """Issue 26: ink drawn into ink still wet with the same ink merges with it. A pool of grey
+    ink whose wetness runs down across it (the liquid moves one way, pass after pass, as at a
+    mark's or a window's edge inside a stroke) keeps its grey: no pixel darkens (laid over it
+    as a layer, the takers went darker pass after pass, thin dark lines inside the stroke)."""
+    draw = sheet_draw(slice(0, 40), slice(0, 40), 10.0, 3, TILE, SIZED_FIBRE)
+    w = np.tile(np.linspace(0.9, 0.3, 40, dtype=np.float32), (40, 1))
+    ink = np.full((40, 40, 3), 0.5, np.float32)
+    for _ in range(50):  # fifty steps of a paused brush
+        _wick(w, ink, draw, 1)
+    assert np.abs(ink - 0.5).max() < 1e-6
+
+
+def test_a_fringe_the_liquid_keeps_coming_to_darkens_toward_the_stroke_not_past_it():
+    draw = np.full((40, 40), 1.0, np.float32)
+    w = np.zeros((40, 40), np.float32)
+    ink = np.zeros((40, 40, 3), np.float32)
+    fringe = []
+    for _ in range(60):  # the stroke's edge kept wet (a paused brush), its grey ink 0.5
+        w[:, :20], ink[:, :20] = 0.6, 0.5
+        _wick(w, ink, draw, 1)
+        fringe.append(float(ink[:, 20, 0].mean()))
+    assert fringe[0] > 0.05 and fringe[-1] > fringe[0]  # darker as the liquid keeps coming
+    assert fringe[-1] <= 0.5 + 1e-6  # never darker than the ink it came from

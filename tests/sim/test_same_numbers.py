@@ -19,7 +19,8 @@ RNG = np.random.default_rng(28)
 
 
 def _plain_wick(w, ink, draw, passes, rate=WICK_RATE):
-    """The wicking with its colours broadcast three numbers at a time (before issue 28)."""
+    """The wicking with its colours broadcast three numbers at a time (before issue 28; laid
+    up to the darkest giver's colour, issue 26)."""
     rate = np.float32(rate)
     down = rate * draw[:-1] * draw[1:]
     along = rate * draw[:, :-1] * draw[:, 1:]
@@ -28,6 +29,7 @@ def _plain_wick(w, ink, draw, passes, rate=WICK_RATE):
             return
         inflow = np.zeros_like(w)
         carried = np.zeros_like(ink)
+        darkest = np.zeros_like(ink)
         for g, a, b in ((down, np.s_[:-1], np.s_[1:]), (along, np.s_[:, :-1], np.s_[:, 1:])):
             flux = g * (w[a] - w[b])
             to_b, to_a = np.maximum(flux, 0.0), np.maximum(-flux, 0.0)
@@ -35,11 +37,14 @@ def _plain_wick(w, ink, draw, passes, rate=WICK_RATE):
             inflow[a] += to_a
             carried[b] += to_b[..., None] * ink[a]
             carried[a] += to_a[..., None] * ink[b]
+            darkest[b] = np.maximum(darkest[b], np.where(to_b[..., None] > 0.0, ink[a], 0.0))
+            darkest[a] = np.maximum(darkest[a], np.where(to_a[..., None] > 0.0, ink[b], 0.0))
             w[a] -= flux
             w[b] += flux
         take = WICK_PIGMENT * -exact.expm1(-inflow / FULL_WET)
         take /= np.where(inflow > 0.0, inflow, 1.0)
-        ink += (1.0 - ink) * (carried * take[..., None])
+        laid = (1.0 - ink) * (carried * take[..., None])
+        ink += np.minimum(laid, np.maximum(darkest - ink, 0.0))
 
 
 def test_wicking_on_rows_of_colours_gives_the_broadcast_numbers():
