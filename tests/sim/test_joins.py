@@ -43,6 +43,16 @@ def test_strokes_that_touch_in_the_outline_touch_in_the_ink(template, kaishu_res
     assert pieces(coverage_mask(sim)) == pieces(font_mask(ch, N))
 
 
+@pytest.mark.parametrize("size", [320, 512])
+def test_a_join_into_a_later_stroke_holds_over_sizes(template, kaishu_response, size):
+    # a join is no luck of the size: 好's 横撇 runs into its 竖钩 (written after it) with its
+    # belly down (``outline.JOIN_WIDTH``), not a dry broom short of it; with JOIN_WIDTH 0.45 it
+    # broke off at 320 and 512 px (3 pieces, not 2)
+    ch = find_char("好")
+    _rec, _resp, sim = write_character(ch, size, template, response=kaishu_response)
+    assert pieces(coverage_mask(sim)) == pieces(font_mask(ch, size))
+
+
 @pytest.mark.parametrize(("char", "stroke", "into"), [("好", 3, 4), ("北", 3, 4)])
 def test_an_end_that_joins_a_stroke_goes_on_into_it(char, stroke, into):
     # the median of 好's 横撇 (北's right 撇) stops short of the 竖钩 (竖弯钩) its outline runs
