@@ -86,8 +86,9 @@ SETTLE_S = 0.1  # seconds over which the bundles follow the wetness of the hair 
 POOL = 0.5  # the hair of a brush at rest offers (1 + POOL) times the liquid of a fast one
 V_POOL = 15.0  # mm/s: the speed at which half of POOL is left
 REDRAW_RATE = 1.5  # per second: how often a bundle's dry-brush draw changes
-O_DARK = 0.45  # the liquid a pixel is offered below which the hair covers only part of it
+O_DARK = 0.5  # the liquid a pixel is offered below which the hair covers only part of it
 COVER_POWER = 0.5  # the share of the lines of hair that lay ink: (offer / O_DARK) ** this
+OUTER_FIRST = 1.0  # how much earlier the hair at the section's outside runs dry (``_hairs``)
 HAIR_MM = 0.3  # mm: the width of a line of hair that lays ink or not (``_hairs``)
 TRAIL = 48  # points of the contact's recent path kept (``trail``)
 TRAIL_MM = 0.25  # mm the contact moves before the trail takes a new point
@@ -291,7 +292,7 @@ def lay(marks, st: BristleState, ppm: float) -> list:
         beside = np.where(near == b, 0.0, _in_gap(u, h, centre[near], gap[near], px))
         share = np.clip(1.0 - own - beside, 0.0, 1.0)
         wet = mk.wet * st.bundle[i, b].astype(np.float32) * pool
-        bare, rich = _hairs(wet, mk.lateral, np.int64(i))
+        bare, rich = _hairs(wet, mk.lateral, mk.depth, np.int64(i))
         share = np.where(bare, 0.0, share)
         out.append(
             replace(
@@ -347,7 +348,8 @@ def lay_steps(marks_per_step, states, ppm: float) -> list:
     cut = np.cumsum(n)[:-1]
     wet = np.concatenate([mk.wet for _, mk in live]) * bundle * pool_k[mark]
     # (wet * bundle) * pool, as ``lay`` multiplies
-    bare, rich = _hairs(wet, lateral, np.array(prim, dtype=np.int64)[mark])
+    depth = np.concatenate([mk.depth for _, mk in live])
+    bare, rich = _hairs(wet, lateral, depth, np.array(prim, dtype=np.int64)[mark])
     share = np.where(bare, 0.0, share)
     shares = np.split(share.astype(np.float32), cut)
     skips = np.split(share <= 0.0, cut)
@@ -360,7 +362,7 @@ def lay_steps(marks_per_step, states, ppm: float) -> list:
     return [[next(laid) if mk.rows.size else mk for mk in marks] for marks in marks_per_step]
 
 
-def _hairs(offer, lateral, prim) -> tuple[np.ndarray, np.ndarray]:
+def _hairs(offer, lateral, depth, prim) -> tuple[np.ndarray, np.ndarray]:
     """Which pixels the hair running dry leaves bare, and the pigment per unit of liquid of
     the others (model change, see the module's docstring): a pixel offered ``offer`` below
     O_DARK is covered by c = offer / O_DARK of the lines of hair, those whose draw (a hash of
@@ -375,6 +377,10 @@ def _hairs(offer, lateral, prim) -> tuple[np.ndarray, np.ndarray]:
     x = (x * np.uint64(0x85EBCA77)) & np.uint64(0xFFFFFFFF)
     x ^= x >> np.uint64(13)
     draw = (x.astype(np.float32)) * np.float32(1.0 / 4294967296.0)
+    # the hair at the section's outside (Eq. 23's f near 1) runs dry first
+    draw = (draw + np.float32(OUTER_FIRST) * depth.astype(np.float32)) * np.float32(
+        1.0 / (1.0 + OUTER_FIRST)
+    )
     bare = draw >= c
     rich = np.float32(1.0) / np.maximum(full, np.float32(1e-6))
     return bare, rich.astype(np.float32)

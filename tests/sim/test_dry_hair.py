@@ -3,6 +3,8 @@
 its marks break into dark lines of hair along the motion with white between (飞白), not a flat
 pale sheet; a loaded brush covers its mark whole."""
 
+from dataclasses import replace
+
 import numpy as np
 
 from sim.brush import bristles
@@ -30,6 +32,8 @@ def _stroke(wet: float) -> np.ndarray:
             trail[-48:], np.array([1.0, 0.0]), 100.0,
         )  # fmt: skip
         mk = band(*ROWS, 10 + 2 * k, 30 + 2 * k, wet, 1.0)
+        # Eq. 23's f: 0 on the section's axis (the stroke's middle row), 1 at its outside
+        mk = replace(mk, depth=np.abs(mk.rows + ROWS[0] + 0.5 - 50.0) / 12.0)
         marks = bristles.lay(bristles.across([mk], st, PPM), st, PPM)
         paper.deposit(marks, Q, DT, k + 1)
     return paper.ink[ROWS[0] + 2 : ROWS[1] - 2, 30:60, 0]  # the stroke's middle, past its start
