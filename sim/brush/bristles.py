@@ -364,24 +364,28 @@ def lay_steps(marks_per_step, states, ppm: float) -> list:
 
 def _hairs(offer, lateral, depth, prim) -> tuple[np.ndarray, np.ndarray]:
     """Which pixels the hair running dry leaves bare, and the pigment per unit of liquid of
-    the others (model change, see the module's docstring): a pixel offered ``offer`` below
-    O_DARK is covered by c = offer / O_DARK of the lines of hair, those whose draw (a hash of
-    the line, HAIR_MM wide across the path at ``lateral`` mm, and of the primitive ``prim``)
-    is below c; the covered pixels' pigment is that of offer / c (``rich`` = 1 / c)."""
+    the others (model change, see the module's docstring). A pixel offered ``offer`` below
+    O_DARK (full = offer / O_DARK below 1) is covered by c = full ** COVER_POWER of the lines
+    of hair: it is bare where its line's draw - a hash of the line (HAIR_MM wide across the
+    path, at ``lateral`` mm, and of the primitive ``prim``), drawn later the farther out in
+    the section the pixel lies (Eq. 23's f, ``depth``; OUTER_FIRST) - is not below c. The
+    covered pixels' pigment is that of O_DARK (``rich`` = 1 / full). Only the pixels offered
+    less than O_DARK are drawn (a loaded brush covers its mark whole: the draw is below 1)."""
     full = np.minimum(offer * np.float32(1.0 / O_DARK), np.float32(1.0))
-    c = full**COVER_POWER
-    line = np.floor(lateral * np.float32(1.0 / HAIR_MM)).astype(np.int64) + prim * 4099
-    x = (line & 0xFFFFFFFF).astype(np.uint64)
-    x = (x * np.uint64(0x9E3779B1)) & np.uint64(0xFFFFFFFF)
-    x ^= x >> np.uint64(15)
-    x = (x * np.uint64(0x85EBCA77)) & np.uint64(0xFFFFFFFF)
-    x ^= x >> np.uint64(13)
-    draw = (x.astype(np.float32)) * np.float32(1.0 / 4294967296.0)
-    # the hair at the section's outside (Eq. 23's f near 1) runs dry first
-    draw = (draw + np.float32(OUTER_FIRST) * depth.astype(np.float32)) * np.float32(
-        1.0 / (1.0 + OUTER_FIRST)
-    )
-    bare = draw >= c
+    bare = np.zeros(full.shape, dtype=bool)
+    low = np.flatnonzero(full < 1.0)
+    if low.size:
+        line = np.floor(lateral[low] * np.float32(1.0 / HAIR_MM)).astype(np.int64)
+        line += (np.take(prim, low) if np.ndim(prim) else prim) * 4099
+        x = (line & 0xFFFFFFFF).astype(np.uint32)  # a 32-bit integer hash of the line
+        x *= np.uint32(0x9E3779B1)
+        x ^= x >> np.uint32(15)
+        x *= np.uint32(0x85EBCA77)
+        x ^= x >> np.uint32(13)
+        draw = x.astype(np.float32) * np.float32(1.0 / 4294967296.0)
+        draw += np.float32(OUTER_FIRST) * depth[low].astype(np.float32)
+        draw *= np.float32(1.0 / (1.0 + OUTER_FIRST))
+        bare[low] = draw >= full[low] ** np.float32(COVER_POWER)
     rich = np.float32(1.0) / np.maximum(full, np.float32(1e-6))
     return bare, rich.astype(np.float32)
 
