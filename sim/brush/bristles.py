@@ -49,11 +49,13 @@ follow the liquid the hair offers it (Eq. 26 with ``sim.paper.laying.FULL_WET``)
 laid late on the load was a flat pale sheet with the mark's hard outline, the most
 "computer-made" thing in the writing. A running-dry hair keeps its ink on fewer hairs: where
 the offer o (Eq. 23's wetness times the bundle's share, ``lay``) falls below O_DARK, only
-c = o / O_DARK of the lines of hair across the path (lines HAIR_MM wide, each with a fixed
-draw, ``_hairs``, measured from the same path as the bundles so they run along the motion)
-lay ink, and those lay the liquid of c of the hair: their pigment is that of o / c (``rich``,
-read by ``sim.paper.laying``; Eq. 24's wetness is the offer, unchanged). A dry stroke breaks
-into dark lines along the stroke with white between, as real ink does (飞白), not into grey.
+(o / O_DARK) ** COVER_POWER of the lines of hair across the path (lines HAIR_MM wide, each
+with a fixed draw, ``_hairs``, measured from the same path as the bundles so they run along the
+motion; the hair at the section's outside, Eq. 23's f near 1, drawn later by OUTER_FIRST: it
+runs dry first) lay ink, and those lay it as a brush offering O_DARK would (``rich``, read by
+``sim.paper.laying``; Eq. 24's wetness is the offer, unchanged). A dry stroke breaks into dark
+lines along the stroke with white between, as real ink does (飞白), not into grey; a dry mark's
+pale outer rim, laid where the font has no ink, is left bare rather than darkened.
 
 All draws come from the brush's one seeded generator; a split primitive's children draw
 their own (Sec. 5.5)."""
