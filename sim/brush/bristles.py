@@ -43,6 +43,20 @@ as the brush slows: hair that lingers over the paper (a pause, a pressed turn) g
 up to (1 + POOL) times at rest, so the ink pools darker there (``sim.paper.Paper.deposit``;
 past the paper's capacity it spreads, Eq. 25).
 
+Model change to Eq. 23 and 27 (issue 26, points 1 and 2): a brush late on its load does not
+lay a uniformly paler ink. The paper (and, before this, the model) made the colour of a pixel
+follow the liquid the hair offers it (Eq. 26 with ``sim.paper.laying.FULL_WET``), so a mark
+laid late on the load was a flat pale sheet with the mark's hard outline, the most
+"computer-made" thing in the writing. A running-dry hair keeps its ink on fewer hairs: where
+the offer o (Eq. 23's wetness times the bundle's share, ``lay``) falls below O_DARK, only
+(o / O_DARK) ** COVER_POWER of the lines of hair across the path (lines HAIR_MM wide, each
+with a fixed draw, ``_hairs``, measured from the same path as the bundles so they run along the
+motion; the hair at the section's outside, Eq. 23's f near 1, drawn later by OUTER_FIRST: it
+runs dry first) lay ink, and those lay it as a brush offering O_DARK would (``rich``, read by
+``sim.paper.laying``; Eq. 24's wetness is the offer, unchanged). A dry stroke breaks into dark
+lines along the stroke with white between, as real ink does (飞白), not into grey; a dry mark's
+pale outer rim, laid where the font has no ink, is left bare rather than darkened.
+
 All draws come from the brush's one seeded generator; a split primitive's children draw
 their own (Sec. 5.5)."""
 
@@ -74,6 +88,10 @@ SETTLE_S = 0.1  # seconds over which the bundles follow the wetness of the hair 
 POOL = 0.5  # the hair of a brush at rest offers (1 + POOL) times the liquid of a fast one
 V_POOL = 15.0  # mm/s: the speed at which half of POOL is left
 REDRAW_RATE = 1.5  # per second: how often a bundle's dry-brush draw changes
+O_DARK = 0.5  # the liquid a pixel is offered below which the hair covers only part of it
+COVER_POWER = 0.5  # the share of the lines of hair that lay ink: (offer / O_DARK) ** this
+OUTER_FIRST = 1.0  # how much earlier the hair at the section's outside runs dry (``_hairs``)
+HAIR_MM = 0.3  # mm: the width of a line of hair that lays ink or not (``_hairs``)
 TRAIL = 48  # points of the contact's recent path kept (``trail``)
 TRAIL_MM = 0.25  # mm the contact moves before the trail takes a new point
 
@@ -275,13 +293,16 @@ def lay(marks, st: BristleState, ppm: float) -> list:
         own = _in_gap(u, h, centre[b], gap[b], px)
         beside = np.where(near == b, 0.0, _in_gap(u, h, centre[near], gap[near], px))
         share = np.clip(1.0 - own - beside, 0.0, 1.0)
-        wet = mk.wet * st.bundle[i, b].astype(np.float32)
+        wet = mk.wet * st.bundle[i, b].astype(np.float32) * pool
+        bare, rich = _hairs(wet, mk.lateral, mk.depth, np.int64(i))
+        share = np.where(bare, 0.0, share)
         out.append(
             replace(
                 mk,
-                wet=wet * pool,
+                wet=wet,
                 col=per_pixel(mk.col, share.astype(np.float32)),
                 skip=share <= 0.0,
+                rich=rich,
             )
         )
     return out
@@ -327,15 +348,48 @@ def lay_steps(marks_per_step, states, ppm: float) -> list:
     share = np.clip(1.0 - own - beside, 0.0, 1.0)
     bundle = share_k[mark, b].astype(np.float32)
     cut = np.cumsum(n)[:-1]
-    wet = np.split(np.concatenate([mk.wet for _, mk in live]) * bundle * pool_k[mark], cut)
+    wet = np.concatenate([mk.wet for _, mk in live]) * bundle * pool_k[mark]
     # (wet * bundle) * pool, as ``lay`` multiplies
+    depth = np.concatenate([mk.depth for _, mk in live])
+    bare, rich = _hairs(wet, lateral, depth, np.array(prim, dtype=np.int64)[mark])
+    share = np.where(bare, 0.0, share)
     shares = np.split(share.astype(np.float32), cut)
     skips = np.split(share <= 0.0, cut)
     laid = iter(
-        replace(mk, wet=w, col=per_pixel(mk.col, sh), skip=sk)
-        for (_, mk), w, sh, sk in zip(live, wet, shares, skips, strict=True)
+        replace(mk, wet=w, col=per_pixel(mk.col, sh), skip=sk, rich=r)
+        for (_, mk), w, sh, sk, r in zip(
+            live, np.split(wet, cut), shares, skips, np.split(rich, cut), strict=True
+        )
     )
     return [[next(laid) if mk.rows.size else mk for mk in marks] for marks in marks_per_step]
+
+
+def _hairs(offer, lateral, depth, prim) -> tuple[np.ndarray, np.ndarray]:
+    """Which pixels the hair running dry leaves bare, and the pigment per unit of liquid of
+    the others (model change, see the module's docstring). A pixel offered ``offer`` below
+    O_DARK (full = offer / O_DARK below 1) is covered by c = full ** COVER_POWER of the lines
+    of hair: it is bare where its line's draw - a hash of the line (HAIR_MM wide across the
+    path, at ``lateral`` mm, and of the primitive ``prim``), drawn later the farther out in
+    the section the pixel lies (Eq. 23's f, ``depth``; OUTER_FIRST) - is not below c. The
+    covered pixels' pigment is that of O_DARK (``rich`` = 1 / full). Only the pixels offered
+    less than O_DARK are drawn (a loaded brush covers its mark whole: the draw is below 1)."""
+    full = np.minimum(offer * np.float32(1.0 / O_DARK), np.float32(1.0))
+    bare = np.zeros(full.shape, dtype=bool)
+    low = np.flatnonzero(full < 1.0)
+    if low.size:
+        line = np.floor(lateral[low] * np.float32(1.0 / HAIR_MM)).astype(np.int64)
+        line += (np.take(prim, low) if np.ndim(prim) else prim) * 4099
+        x = (line & 0xFFFFFFFF).astype(np.uint32)  # a 32-bit integer hash of the line
+        x *= np.uint32(0x9E3779B1)
+        x ^= x >> np.uint32(15)
+        x *= np.uint32(0x85EBCA77)
+        x ^= x >> np.uint32(13)
+        draw = x.astype(np.float32) * np.float32(1.0 / 4294967296.0)
+        draw += np.float32(OUTER_FIRST) * depth[low].astype(np.float32)
+        draw *= np.float32(1.0 / (1.0 + OUTER_FIRST))
+        bare[low] = draw >= full[low] ** np.float32(COVER_POWER)
+    rich = np.float32(1.0) / np.maximum(full, np.float32(1e-6))
+    return bare, rich.astype(np.float32)
 
 
 def _bundle_of(inner, mark, u) -> np.ndarray:

@@ -94,6 +94,7 @@ class Mark:
     area_bbox: float  # S_i: area of the section's bounding box (mm^2), Eq. 10
     height: float  # hei_i: distance from the section to the tip line's midpoint (mm)
     skip: np.ndarray | None = None  # (P,) no ink this step (Eq. 27, set by bristles.lay)
+    rich: np.ndarray | None = None  # (P,) the liquid's pigment per unit of wet (bristles.lay)
 
 
 def slice_grids(X):

@@ -88,7 +88,13 @@ def lay_out(paper, steps, grain_depth: float, full_wet: float) -> list:
     grain = paper_grain(full, paper.grain_seed) - 0.5
     offer = wet_tau * (1.0 - grain_depth * grain).astype(np.float32)
     # Eq. 26-27 (model change, see FULL_WET): where the hair bundle lays ink (Cr not 0)
-    # the pixel takes the colour the liquid offered to it can hold
+    # the pixel takes the colour the liquid offered to it can hold; a hair running dry lays
+    # its ink on fewer lines, each as rich as a wetter hair's (``rich``, sim.brush.bristles)
+    if any(mk.rich is not None for mk in live):
+        rich = np.concatenate(
+            [mk.rich if mk.rich is not None else np.ones(mk.rows.size, np.float32) for mk in live]
+        )
+        offer = offer * rich
     held = -exact.expm1(-offer / full_wet)
     held = np.where(skip, 0.0, held).astype(np.float32)
     lay = per_pixel(col, held)
