@@ -23,6 +23,17 @@ from .feet import (
     _into_the_heel,
     flicks,
 )
+from .lifts import (
+    POINT_CLEAR,
+    POINT_LIFT,
+    POINT_PACE,  # noqa: F401  (tests read it here)
+    _flick_travel,
+    _heel_held,
+    _point_reach,
+    _turned_back,
+    _width_at,
+    is_dot,
+)
 from .outline import EM, TOP, median_movements
 
 if TYPE_CHECKING:  # the response is handed in (its module builds on this one)
@@ -391,64 +402,18 @@ def _enter_and_leave(
     top = hover if corner[1] is None else corner[1]
     z0 = samples[body[-1], 2]
     rise = z0 + (top - z0) * np.sqrt(f)
+    dot = corner[0] is None and corner[1] is None and is_dot(pl.target[body], pl.width[body])
     point = _point_reach(pl.target[body], pl.width[body]) if corner[1] is None else 0.0
+    point = 0.0 if dot else point  # a dot ends in its heel (``_heel_held``), not a point
     if point > 0.0:  # 出锋: the belly lets go evenly as the brush sweeps on, out to the point
         g = np.clip(f / POINT_LIFT, 0.0, 1.0)
         clear = hair + POINT_CLEAR  # the let-go ends with the tip clear of the paper
         rise = np.where(f <= POINT_LIFT, z0 + (clear - z0) * g, rise)
         travel = _flick_travel(np.maximum(travel, g * point), hair - rise, g < 1.0, width_at)
+    if dot:
+        travel = _turned_back(samples[body[-1], :2] - pl.target[body[-1]], t1, f)  # 回锋
     samples[lift, :2] = samples[body[-1], :2] + travel[:, None] * t1
     samples[lift, 2] = rise
-
-
-POINT_CLEAR = 1.0  # mm above the paper the tip has at the end of a point's let-go (POINT_LIFT)
-POINT_PACE = 0.75  # a point's let-go moves on at most this share of the mark's width a sample
-
-
-def _width_at(response):
-    """The band's width (mm) a press leaves, from the response's measured widths (linear in
-    between, falling linearly to none at no press below the lightest measured press)."""
-    press = np.concatenate([[0.0], response.press_mm])
-    width = np.concatenate([[0.0], response.width_mm])
-    return lambda p: np.interp(p, press, width)
-
-
-def _flick_travel(reach, press, down, width_at=None) -> np.ndarray:
-    """How far (mm) the base has moved on along the way out at each sample of a point's
-    let-go: towards ``reach`` (per sample), but while the tip may still touch (``down``, until
-    it is ``POINT_CLEAR`` above the paper) each step at most ``POINT_PACE`` of the width the
-    press (``press``, per sample; ``width_at``: the response's width for a press) lays, so the
-    shrinking marks of the tip overlap into one taper; once clear, its steps are not held back.
-    (Added in issue 26: moving on half a step a sample as the press fell below a millimetre,
-    the tip's marks fell apart into a dotted hairline past the point, and the tip, still
-    touching at no planned press, left a speck beyond it.)"""
-    if width_at is None:
-        return reach
-    step = np.diff(reach, prepend=0.0)
-    mark = np.where(down, width_at(press), np.inf)
-    return np.cumsum(np.minimum(step, POINT_PACE * mark))
-
-
-POINT_SHARE = 0.6  # a movement whose planned width ends below this share of its widest, ...
-POINT_PEAK = 0.6  # ... its widest point lying in this first share of it, ends in a point
-POINT_LIFT = 0.75  # share of the lift-off over which the belly lets go, sweeping out to the point
-
-
-def _point_reach(path, width) -> float:
-    """How far (mm) past its median's end a movement's outline runs on to its point (the
-    median stops short of it), for a movement that narrows to its end (出锋: a hook, a 撇, a
-    提; ``width`` planned per body sample along ``path``): from its widest, in its first
-    ``POINT_PEAK`` share, to an end below ``POINT_SHARE`` of that; the last width over the
-    rate it narrowed at, from half to twice that width. 0 for any other movement: a round or
-    pressed end (收笔), whose width falls only over the end's cap, a 捺 that swells to its end."""
-    n = len(width)
-    top = int(np.argmax(width))
-    w, w_max = float(width[-1]), float(width[top])
-    if n < 5 or top > POINT_PEAK * (n - 1) or w >= POINT_SHARE * w_max:
-        return 0.0
-    run = float(np.linalg.norm(np.diff(path[top:], axis=0), axis=1).sum())
-    rate = (w_max - w) / max(run, 1e-9)
-    return float(np.clip(w / max(rate, 1e-6), 0.5 * w, 2.0 * w))
 
 
 def _onto_the_dun(pl: Plan, run, leg) -> bool:
@@ -565,6 +530,8 @@ def _fill(
         if r < len(runs) - 1 and flick[r + 1]:  # into a hook's heel, pressed no deeper
             p = _into_the_heel(p, pl.target[run], pl.width[run])
         path = pl.target[run]
+        if len(runs) == 1 and is_dot(path, pl.width[run]):  # pressed into its heel
+            path, p = _heel_held(path, p, pl.width[run])
         if ends is not None:
             path = _ends_moved(path, pl.tangent[run], pl.width[run], ends[r])
         corner = r < len(runs) - 1  # the base stops on a corner's foot (a hook's, a 竖折's);
