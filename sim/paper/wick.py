@@ -72,9 +72,12 @@ def _wick(w, ink, draw, passes: int, rate: float = WICK_RATE) -> None:
         _wick_colours(w, ink, draw, passes, rate)
         return
     keep = sorted(set(same))
-    part = np.ascontiguousarray(ink[..., keep])
+    part = np.empty(ink.shape[:2] + (len(keep),), dtype=ink.dtype)
+    for i, c in enumerate(keep):  # a colour at a time: no fancy indexing's copies
+        part[..., i] = ink[..., c]
     _wick_colours(w, part, draw, passes, rate)
-    ink[...] = part[..., [keep.index(c) for c in same]]
+    for c, k in enumerate(same):
+        ink[..., c] = part[..., keep.index(k)]
 
 
 def _wick_colours(w, ink, draw, passes: int, rate: float) -> None:
@@ -90,8 +93,8 @@ def _wick_colours(w, ink, draw, passes: int, rate: float) -> None:
         if k and not (w > 0.0).any():
             break
         inflow = np.zeros_like(w)
-        carried = np.zeros_like(rows)
-        darkest = np.zeros_like(rows)  # the darkest colour of the pixels each took liquid from
+        # what the liquid carried in, and the darkest colour of the pixels each took it from
+        carried, darkest = np.zeros((2, *rows.shape), dtype=rows.dtype)
         for g, (a, b, ia, ib) in zip((down, along), _wick_pairs(colours), strict=True):
             flux = g * (w[a] - w[b])  # > 0: from a to b
             to_b, to_a = np.maximum(flux, 0.0), np.maximum(-flux, 0.0)
@@ -101,14 +104,15 @@ def _wick_colours(w, ink, draw, passes: int, rate: float) -> None:
             gave_b, gave_a = _colours(to_b, colours), _colours(to_a, colours)
             carried[ib] += gave_b * rows[ia]
             carried[ia] += gave_a * rows[ib]
-            np.maximum(darkest[ib], np.where(gave_b > 0.0, rows[ia], 0.0), out=darkest[ib])
-            np.maximum(darkest[ia], np.where(gave_a > 0.0, rows[ib], 0.0), out=darkest[ia])
+            np.maximum(darkest[ib], (gave_b > 0.0) * rows[ia], out=darkest[ib])
+            np.maximum(darkest[ia], (gave_a > 0.0) * rows[ib], out=darkest[ia])
             w[a] -= flux
             w[b] += flux
         # the pigment the liquid carried in: the givers' colour, weighted by what each gave,
         # laid over what the pixel holds as Eq. 26's change lays it (more liquid, more of it),
         # up to the darkest giver's colour (``_wick_lay``)
-        _wick_lay(rows, carried * _colours(_wick_take(inflow), colours), darkest)
+        carried *= _colours(_wick_take(inflow), colours)
+        _wick_lay(rows, carried, darkest)
     if not np.may_share_memory(rows, ink):  # (a window of a sheet: rows, a view, already is)
         ink[...] = rows.reshape(ink.shape)
 
@@ -124,7 +128,7 @@ def _wick_lay(rows, laid, darkest) -> None:
     lingered). A fringe on dry paper darkens as the liquid keeps coming, as before, up to the
     ink it came from."""
     laid *= 1.0 - rows
-    room = darkest - rows
+    room = np.subtract(darkest, rows, out=darkest)
     np.maximum(room, 0.0, out=room)
     np.minimum(laid, room, out=laid)
     rows += laid
@@ -136,7 +140,8 @@ def _wick_take(inflow):
     gives it) where it took none; the exponential only where it took some (issue 28)."""
     took = np.flatnonzero(inflow > 0.0)
     some = np.take(inflow, took)
-    take = WICK_PIGMENT * -exact.expm1(-some / FULL_WET)
+    take = exact.expm1(some / -FULL_WET)
+    take *= -WICK_PIGMENT
     take /= some
     out = np.full(inflow.shape, -0.0, dtype=inflow.dtype)
     np.put(out, took, take)
