@@ -43,6 +43,12 @@ def _flick_travel(reach, press, down, width_at=None) -> np.ndarray:
 POINT_SHARE = 0.6  # a movement whose planned width ends below this share of its widest, ...
 POINT_PEAK = 0.6  # ... its widest point lying in this first share of it, ends in a point
 POINT_LIFT = 0.75  # share of the lift-off over which the belly lets go, sweeping out to the point
+POINT_EASE = 3.0  # a 撇's or a 提's belly rises over its let-go as the let-go's share to this
+# power: it lets go slowly at first and the tip stays down as it sweeps out to the point (1,
+# linear, as a hook's still does: the tip cleared the paper a third of the way out and the
+# ink ended 4 px (at 512) short of the font's point, blunt; 2: 2 px; 3: 0.4 px past, 11 of
+# 16 ends within 2 px; scripts/ends_eval.py, issue 26 point 2)
+POINT_SAMPLES = 16  # samples of a 撇's or a 提's lift-off to its point (planner.EXIT_SAMPLES: 8)
 
 
 def _point_reach(path, width) -> float:
@@ -60,6 +66,17 @@ def _point_reach(path, width) -> float:
     run = float(np.linalg.norm(np.diff(path[top:], axis=0), axis=1).sum())
     rate = (w_max - w) / max(run, 1e-9)
     return float(np.clip(w / max(rate, 1e-6), 0.5 * w, 2.0 * w))
+
+
+def _lets_go(path, width, movements: int) -> bool:
+    """Whether a stroke's last movement (of ``movements``; not a hook's) ends in a point
+    (``_point_reach``), not a dot: a 撇, a 提. Its lift-off takes ``POINT_SAMPLES``, so that
+    paced by its shrinking marks (``_flick_travel``) the tip reaches the point before it is
+    clear of the paper. (Added in issue 26 point 2: in 8 samples the tip cleared the paper a
+    third of the way out, and 撇 and 提 ended 4 px (at 512) short of the font's point, blunt.)"""
+    if movements == 1 and is_dot(path, width):
+        return False
+    return _point_reach(path, width) > 0.0
 
 
 DOT_LENGTH = 3.4  # a movement alone in its stroke shorter than this many of its widest is a dot
