@@ -565,7 +565,8 @@ def _fill(
             keep = HOOK_KEEP * p[-1] if hook[r + 1] else 0.0
             heel = _heel(p, press[j1]) if flick[r + 1] else keep
             nxt = hair - (heel if hook[r + 1] else ZHE_KEEP * p[-1])
-        ease = POINT_EASE if r == len(runs) - 1 and not any(hook) else 1.0  # a 撇, a 提
+        last = len(runs) == 1 and _lets_go(pl.target[run], pl.width[run], 1)  # a 撇, a 提
+        ease = POINT_EASE if last else 1.0
         _enter_and_leave(samples, pl, run, hover, hair, step_mm, (at, nxt), run_up, width_at, ease)
         if nxt is not None:
             heights.append(nxt)
