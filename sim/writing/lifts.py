@@ -46,7 +46,7 @@ POINT_LIFT = 0.75  # share of the lift-off over which the belly lets go, sweepin
 POINT_EASE = 3.0  # a 撇's or a 提's belly rises over its let-go as the let-go's share to this
 # power: it lets go slowly at first and the tip stays down as it sweeps out to the point (1,
 # linear, as a hook's still does: the tip cleared the paper a third of the way out and the
-# ink ended 4 px (at 512) short of the font's point, blunt; 2: 2 px; 3: 0.4 px past, 11 of
+# ink ended 4 px (at 512) short of the font's point, blunt; 2: 2 px short; 3: 0.0 px, 12 of
 # 16 ends within 2 px; scripts/ends_eval.py, issue 26 point 2)
 SLANT = 0.3  # share of its chord a 撇 or 提 runs across (``_lets_go``)
 POINT_SAMPLES = 16  # samples of a 撇's or a 提's lift-off to its point (planner.EXIT_SAMPLES: 8)
