@@ -43,6 +43,13 @@ def _flick_travel(reach, press, down, width_at=None) -> np.ndarray:
 POINT_SHARE = 0.6  # a movement whose planned width ends below this share of its widest, ...
 POINT_PEAK = 0.6  # ... its widest point lying in this first share of it, ends in a point
 POINT_LIFT = 0.75  # share of the lift-off over which the belly lets go, sweeping out to the point
+POINT_EASE = 3.0  # a 撇's or a 提's belly rises over its let-go as the let-go's share to this
+# power: it lets go slowly at first and the tip stays down as it sweeps out to the point (1,
+# linear, as a hook's still does: the tip cleared the paper a third of the way out and the
+# ink ended 4 px (at 512) short of the font's point, blunt; 2: 2 px short; 3: 0.0 px, 12 of
+# 16 ends within 2 px; scripts/ends_eval.py, issue 26 point 2)
+SLANT = 0.3  # share of its chord a 撇 or 提 runs across (``_lets_go``)
+POINT_SAMPLES = 16  # samples of a 撇's or a 提's lift-off to its point (planner.EXIT_SAMPLES: 8)
 
 
 def _point_reach(path, width) -> float:
@@ -60,6 +67,22 @@ def _point_reach(path, width) -> float:
     run = float(np.linalg.norm(np.diff(path[top:], axis=0), axis=1).sum())
     rate = (w_max - w) / max(run, 1e-9)
     return float(np.clip(w / max(rate, 1e-6), 0.5 * w, 2.0 * w))
+
+
+def _lets_go(path, width, movements: int) -> bool:
+    """Whether a stroke of ``movements`` movements, its last one's body samples' targets
+    ``path`` (mm, y up) planned ``width`` wide, is a 撇 or a 提: one movement that ends in a
+    point (``_point_reach``), not a dot, running down to the left or up to the right, at least
+    ``SLANT`` of its chord across (not a 竖 that narrows to its end). Its lift-off takes
+    ``POINT_SAMPLES`` and its belly rises as ``POINT_EASE``, so that paced by its shrinking
+    marks (``_flick_travel``) the tip reaches the point before it is clear of the paper.
+    (Added in issue 26 point 2: in 8 samples, rising evenly, the tip cleared the paper a third
+    of the way out, and 撇 and 提 ended 4 px (at 512) short of the font's point, blunt.)"""
+    if movements != 1 or is_dot(path, width):
+        return False
+    chord = np.asarray(path[-1], float) - np.asarray(path[0], float)
+    slant = abs(chord[0]) >= SLANT * float(np.linalg.norm(chord))
+    return bool(slant and chord[0] * chord[1] > 0.0 and _point_reach(path, width) > 0.0)
 
 
 DOT_LENGTH = 3.4  # a movement alone in its stroke shorter than this many of its widest is a dot

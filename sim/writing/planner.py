@@ -25,10 +25,13 @@ from .feet import (
 )
 from .lifts import (
     POINT_CLEAR,
+    POINT_EASE,
     POINT_LIFT,
     POINT_PACE,  # noqa: F401  (tests read it here)
+    POINT_SAMPLES,
     _flick_travel,
     _heel_held,
+    _lets_go,
     _point_reach,
     _turned_back,
     _width_at,
@@ -163,6 +166,8 @@ def plan(
             # at a sharp corner the brush is already down: a shorter lift and entry
             m0 = CORNER_SAMPLES if j else ENTRY_SAMPLES
             m1 = CORNER_SAMPLES if j < len(moves) - 1 else EXIT_SAMPLES
+            if j == len(moves) - 1 and not hook and _lets_go(p, w, len(moves)):
+                m1 = POINT_SAMPLES  # a 撇's, a 提's let-go to its point: slower (``lifts``)
             if heel:  # into and out of the hook's heel
                 m0 = HEEL_SAMPLES
             if flick and j == len(moves) - 2:
@@ -358,13 +363,23 @@ def _landing(path, run_up: float) -> float:
 
 
 def _enter_and_leave(
-    samples, pl, body, hover, hair, step_mm, corner=(None, None), run_up=RUN_UP, width_at=None
+    samples,
+    pl,
+    body,
+    hover,
+    hair,
+    step_mm,
+    corner=(None, None),
+    run_up=RUN_UP,
+    width_at=None,
+    ease=1.0,
 ) -> None:
     """The brush comes down moving along the movement's first direction (over ``run_up`` times
     half a step a sample: with 0, straight down onto the start; a stroke that sets off down
     comes down moving back up it, ``_landing``), the tip touching where the body begins, and
     lifts off moving on along the last direction (a flick, so that hooks and left-falling
-    strokes end in a point, not a blot from a lift on the spot). ``corner``:
+    strokes end in a point, not a blot from a lift on the spot; ``ease``: the power the belly's
+    rise over a point's let-go goes as, ``POINT_EASE`` for a 撇's or a 提's). ``corner``:
     the base's height at the sharp corner the movement begins after / ends at
     (``median_pieces``; None: none). At a 折 the brush lifts only slightly (``ZHE_KEEP``), on
     the corner itself (a flick there overshoots the corner), and presses again (``ENTRY_TOUCH``):
@@ -408,7 +423,7 @@ def _enter_and_leave(
     if point > 0.0:  # 出锋: the belly lets go evenly as the brush sweeps on, out to the point
         g = np.clip(f / POINT_LIFT, 0.0, 1.0)
         clear = hair + POINT_CLEAR  # the let-go ends with the tip clear of the paper
-        rise = np.where(f <= POINT_LIFT, z0 + (clear - z0) * g, rise)
+        rise = np.where(f <= POINT_LIFT, z0 + (clear - z0) * g**ease, rise)
         travel = _flick_travel(np.maximum(travel, g * point), hair - rise, g < 1.0, width_at)
     if dot:
         travel = _turned_back(samples[body[-1], :2] - pl.target[body[-1]], t1, f)  # 回锋
@@ -550,7 +565,9 @@ def _fill(
             keep = HOOK_KEEP * p[-1] if hook[r + 1] else 0.0
             heel = _heel(p, press[j1]) if flick[r + 1] else keep
             nxt = hair - (heel if hook[r + 1] else ZHE_KEEP * p[-1])
-        _enter_and_leave(samples, pl, run, hover, hair, step_mm, (at, nxt), run_up, width_at)
+        last = len(runs) == 1 and _lets_go(pl.target[run], pl.width[run], 1)  # a 撇, a 提
+        ease = POINT_EASE if last else 1.0
+        _enter_and_leave(samples, pl, run, hover, hair, step_mm, (at, nxt), run_up, width_at, ease)
         if nxt is not None:
             heights.append(nxt)
             dun.append(into_zhe)
