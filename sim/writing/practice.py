@@ -208,6 +208,8 @@ END_MAX = 0.6  # widths an end may be carried on or drawn back in all
 END_BACK = 0.5  # widths inside a movement's end its reach is read from
 END_LOOK = 1.5  # widths past the end the inks are followed (further: the ink runs on)
 END_FAN = np.radians(np.linspace(-60.0, 60.0, 9))  # rays round the way out of an end
+JOIN_MAX = END_LOOK  # widths a joining end may be shifted in all: as far as its fan sees a join
+# (model addition, issue 26.2: a thin entry lays its ink short of where it is placed)
 
 
 class _Ends(NamedTuple):
@@ -224,6 +226,7 @@ class _Ends(NamedTuple):
     limit: np.ndarray
     outline: np.ndarray  # (ends, rays, steps): the character's outlines there (``whole``)
     dirs: np.ndarray  # (ends, rays, 2): each ray's direction (the middle one the way out)
+    width: np.ndarray  # (ends,): the planned width there (mm)
 
 
 def _extent(ink: np.ndarray, along: np.ndarray) -> np.ndarray:
@@ -244,7 +247,7 @@ def _end_probes(sim, pl: Plan, body, own: _Window, whole: np.ndarray) -> _Ends:
     another stroke, the end touches it: its outline is taken to run on too (the end is carried
     on to it if the ink falls short, never drawn back from it)."""
     ppm = sim.paper.ppm
-    which, rows, cols, along, limit, dirs = [], [], [], [], [], []
+    which, rows, cols, along, width, dirs = [], [], [], [], [], []
     runs = _movements(body)
     for m, run in enumerate(runs):
         for e, (i, sign) in enumerate(((run[0], -1.0), (run[-1], 1.0))):
@@ -261,7 +264,7 @@ def _end_probes(sim, pl: Plan, body, own: _Window, whole: np.ndarray) -> _Ends:
             along.append(d[None, :] * c[:, None])
             dirs.append(rays)
             which.append((m, e))
-            limit.append(END_MAX * w)
+            width.append(w)
     k = max(len(r[0]) for r in rows)
     rows, cols, along = (
         np.stack([np.pad(x, ((0, 0), (0, k - x.shape[1])), "edge") for x in a])
@@ -277,8 +280,9 @@ def _end_probes(sim, pl: Plan, body, own: _Window, whole: np.ndarray) -> _Ends:
     outline = whole[rows, cols]
     touches = _extent(outline, along) >= look - 1e-9
     want = np.where(touches & np.isfinite(want), look, want)
-    ends = (np.array(which), rows, cols, along, want, np.array(limit), outline, np.array(dirs))
-    return _Ends(*ends)
+    width = np.array(width)
+    ends = (np.array(which), rows, cols, along, want, END_MAX * width, outline, np.array(dirs))
+    return _Ends(*ends, width)
 
 
 def _reach_error(sim, ends: _Ends, before) -> np.ndarray:
@@ -327,12 +331,13 @@ def _join_moves(ends: _Ends, gap, way, moves) -> np.ndarray:
     """The next pass's end shifts (movements, 2 ends, 2: mm on the paper) for the joins: each
     end shifted on by ``END_GAIN`` of its gap ``gap`` the way ``way`` (``_join_error``: toward
     the stroke it joins, not only along its own way out: a 横 setting off beside a 撇 moves
-    onto it), at most ``END_MAX`` of its width in all."""
+    onto it), at most ``JOIN_MAX`` of its width in all (as far as the fan sees a join: a thin
+    entry's head lays its ink short of where it is placed, more than ``END_MAX`` of its width)."""
     out = moves.copy()
     m, e = ends.which[:, 0], ends.which[:, 1]
     shift = moves[m, e] + END_GAIN * gap[:, None] * way
     size = np.maximum(np.linalg.norm(shift, axis=1), 1e-12)
-    out[m, e] = shift * np.minimum(1.0, ends.limit / size)[:, None]
+    out[m, e] = shift * np.minimum(1.0, JOIN_MAX * ends.width / size)[:, None]
     return out
 
 

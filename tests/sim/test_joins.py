@@ -43,6 +43,17 @@ def test_strokes_that_touch_in_the_outline_touch_in_the_ink(template, kaishu_res
     assert pieces(coverage_mask(sim)) == pieces(font_mask(ch, N))
 
 
+@pytest.mark.parametrize("char", ["来", "以"])
+def test_a_thin_head_is_carried_as_far_as_its_join(template, kaishu_response, char):
+    # 来's 捺 sets off from the 竖 beside the 横 with a thin entry whose ink begins short of where
+    # it is placed: carried on at most END_MAX (0.6) of its width it stayed 2 px short of the 竖
+    # (4 pieces, not 3); so did one of 以's (4, not 3): a joining end goes on as far as its fan
+    # sees the join (``practice.JOIN_MAX``)
+    ch = find_char(char)
+    _rec, _resp, sim = write_character(ch, N, template, response=kaishu_response)
+    assert pieces(coverage_mask(sim)) == pieces(font_mask(ch, N))
+
+
 @pytest.mark.parametrize("size", [320, 512])
 def test_a_join_into_a_later_stroke_holds_over_sizes(template, kaishu_response, size):
     # a join is no luck of the size: 好's 横撇 runs into its 竖钩 (written after it) with its
