@@ -56,28 +56,34 @@ def write(tag: str, chars: str, data: str, n: int, sets=()) -> None:
     np.savez_compressed(f"{OUT}/{tag}.npz", **out)
 
 
-def dots(char: dict, n: int) -> list[dict]:
-    """Per dot of ``char``: its stroke, start and unit way (image px), and its font mask."""
-    from sim.writing.outline import (
-        EM,
-        distance_to_outline,
-        fill,
-        resample,
-        stroke_polygons,
-        to_image,
-    )
+def strokes(char: dict, n: int):
+    """Per stroke of ``char``: (k, median (data units), its length, the half widths along it
+    resampled every 4 units, the median in image px, a function giving the font's mask)."""
+    from sim.writing.outline import distance_to_outline, fill, resample, stroke_polygons, to_image
 
-    out = []
     for k, (med, polys) in enumerate(zip(char["medians"], stroke_polygons(char), strict=True)):
         med = np.asarray(med, float)
         pts, _ = resample(med, 4.0)
-        w = 2 * np.maximum(distance_to_outline(pts, polys), 0.0).max()
-        if np.linalg.norm(np.diff(med, axis=0), axis=1).sum() >= DOT * w:
+        half = np.maximum(distance_to_outline(pts, polys), 0.0)
+        length = float(np.linalg.norm(np.diff(med, axis=0), axis=1).sum())
+
+        def mask(polys=polys):
+            return fill([to_image(p, n) for p in polys], n)
+
+        yield k, med, length, half, to_image(med, n), mask
+
+
+def dots(char: dict, n: int) -> list[dict]:
+    """Per dot of ``char``: its stroke, start and unit way (image px), and its font mask."""
+    from sim.writing.outline import EM
+
+    out = []
+    for k, _, length, half, m, mask in strokes(char, n):
+        w = 2 * half.max()
+        if length >= DOT * w:
             continue
-        m = to_image(med, n)
         d = (m[-1] - m[0]) / max(float(np.linalg.norm(m[-1] - m[0])), 1e-9)
-        mask = fill([to_image(p, n) for p in polys], n)
-        out.append({"stroke": k, "start": m[0], "way": d, "mask": mask, "w": w * n / EM})
+        out.append({"stroke": k, "start": m[0], "way": d, "mask": mask(), "w": w * n / EM})
     return out
 
 

@@ -24,7 +24,7 @@ from scipy import ndimage as ndi
 
 sys.path.insert(0, str(Path(__file__).resolve().parent.parent))
 
-from scripts.dots_eval import DOT, OUT, SPECK, _profile, crop  # noqa: E402
+from scripts.dots_eval import DOT, OUT, SPECK, _profile, crop, strokes  # noqa: E402
 
 AT = (0.70, 0.85, 0.95)  # shares of the font stroke's length the widths are compared at
 TIP = 0.5  # the font's width at 95 % of the stroke below this share of its widest: a point
@@ -33,22 +33,10 @@ STRAIGHT = 0.9  # chord over the median's length above this: one straight-ish mo
 
 def pointed(char: dict, n: int) -> list[dict]:
     """Per 撇 or 提 of ``char``: its stroke, start, unit way (image px), kind and font mask."""
-    from sim.writing.outline import (
-        EM,
-        distance_to_outline,
-        fill,
-        resample,
-        stroke_polygons,
-        to_image,
-    )
+    from sim.writing.outline import EM
 
     out = []
-    for k, (med, polys) in enumerate(zip(char["medians"], stroke_polygons(char), strict=True)):
-        med = np.asarray(med, float)
-        pts, _ = resample(med, 4.0)
-        half = np.maximum(distance_to_outline(pts, polys), 0.0)
-        length = np.linalg.norm(np.diff(med, axis=0), axis=1).sum()
-        m = to_image(med, n)
+    for k, _, length, half, m, font in strokes(char, n):
         chord = m[-1] - m[0]
         c = float(np.linalg.norm(chord))
         if length < DOT * 2 * half.max() or c < STRAIGHT * length * n / EM:
@@ -59,7 +47,7 @@ def pointed(char: dict, n: int) -> list[dict]:
         kind = "pie" if d[0] < 0 < d[1] else "ti" if d[0] > 0 > d[1] else None
         if kind is None:
             continue
-        mask = fill([to_image(p, n) for p in polys], n)
+        mask = font()
         out.append(
             {
                 "stroke": k,
