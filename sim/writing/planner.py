@@ -27,7 +27,6 @@ from .lifts import (
     POINT_CLEAR,
     POINT_EASE,
     POINT_LIFT,
-    POINT_PACE,  # noqa: F401  (tests read it here)
     POINT_SAMPLES,
     _flick_travel,
     _heel_held,

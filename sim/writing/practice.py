@@ -216,17 +216,17 @@ class _Ends(NamedTuple):
     """Where each movement end's reach is read: the end's (movement, 0 start / 1 end), the
     paper pixels of a fan of rays out of it (rows, cols: (ends, rays, steps)), each step's
     distance along the way out (mm, from the end), how far the stroke's outline reaches there
-    (mm, ``_extent``) and the most an end may move (mm)."""
+    (mm, ``_extent``) and the planned width there (mm: an end moves at most ``END_MAX`` of it,
+    a joining one ``JOIN_MAX``)."""
 
     which: np.ndarray
     rows: np.ndarray
     cols: np.ndarray
     along: np.ndarray
     want: np.ndarray
-    limit: np.ndarray
+    width: np.ndarray
     outline: np.ndarray  # (ends, rays, steps): the character's outlines there (``whole``)
     dirs: np.ndarray  # (ends, rays, 2): each ray's direction (the middle one the way out)
-    width: np.ndarray  # (ends,): the planned width there (mm)
 
 
 def _extent(ink: np.ndarray, along: np.ndarray) -> np.ndarray:
@@ -280,9 +280,7 @@ def _end_probes(sim, pl: Plan, body, own: _Window, whole: np.ndarray) -> _Ends:
     outline = whole[rows, cols]
     touches = _extent(outline, along) >= look - 1e-9
     want = np.where(touches & np.isfinite(want), look, want)
-    width = np.array(width)
-    ends = (np.array(which), rows, cols, along, want, END_MAX * width, outline, np.array(dirs))
-    return _Ends(*ends, width)
+    return _Ends(np.array(which), rows, cols, along, want, np.array(width), outline, np.array(dirs))
 
 
 def _reach_error(sim, ends: _Ends, before) -> np.ndarray:
@@ -347,7 +345,8 @@ def _reach_moves(ends: _Ends, err, moves) -> np.ndarray:
     all."""
     out = moves.copy()
     m, e = ends.which[:, 0], ends.which[:, 1]
-    out[m, e] = np.clip(moves[m, e] + END_GAIN * err, -ends.limit, ends.limit)
+    limit = END_MAX * ends.width
+    out[m, e] = np.clip(moves[m, e] + END_GAIN * err, -limit, limit)
     return out
 
 

@@ -284,7 +284,7 @@ def test_a_hook_lets_go_in_overlapping_steps_and_leaves_clear(response):
     # the press lays a sample (none at no press), so the tip's marks overlap into one taper
     # (before: half a step, 0.34 mm at 128 px, with the press falling below 0.2 mm, a dotted
     # hairline past the point), and the let-go ends with the tip clear of the paper
-    from sim.writing.planner import POINT_CLEAR, POINT_PACE
+    from sim.writing.lifts import POINT_CLEAR, POINT_PACE
 
     s, hair = _hook_lift(response)
     press = hair - s[:, 2]
