@@ -114,19 +114,12 @@ def _template():
     return template(_parser().parse_args(["write", "x", "-o", "/dev/null"]))
 
 
-def main(argv=None) -> int:
-    ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
-    ap.add_argument("chars")
-    ap.add_argument("--data", default="/tmp/chars/package")
-    ap.add_argument("--size", type=int, default=512)
-    ap.add_argument("--save", default=None, help="a folder for each character's density (.npy)")
-    ap.add_argument("--load", default=None, help="read the densities --save wrote, not write")
-    args = ap.parse_args(argv)
+def densities(args):
+    """(name, density) per character of ``args.chars``: written with the defaults at
+    ``args.size`` (stroke data from ``args.data``), or read from ``args.load``; each kept in
+    ``args.save`` when given."""
     from sim.cli.shared import _chars
 
-    keys = tuple(f"{k}{w}" for k in ("ridge", "step", "trough") for w in ("", "_along", "_across"))
-    total = dict.fromkeys(keys, 0.0)
-    print("char " + " ".join(f"{k:>10}" for k in keys))
     names = list(args.chars)
     chars = [None] * len(names) if args.load else _chars(names, args.data)
     for name, ch in zip(names, chars, strict=True):
@@ -136,9 +129,25 @@ def main(argv=None) -> int:
             d = density(ch, args.size)
         if args.save:
             np.save(os.path.join(args.save, f"{name}.npy"), d.astype(np.float32))
+        yield name, d
+
+
+def main(argv=None) -> int:
+    ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    ap.add_argument("chars")
+    ap.add_argument("--data", default="/tmp/chars/package")
+    ap.add_argument("--size", type=int, default=512)
+    ap.add_argument("--save", default=None, help="a folder for each character's density (.npy)")
+    ap.add_argument("--load", default=None, help="read the densities --save wrote, not write")
+    args = ap.parse_args(argv)
+    keys = tuple(f"{k}{w}" for k in ("ridge", "step", "trough") for w in ("", "_along", "_across"))
+    total = dict.fromkeys(keys, 0.0)
+    print("char " + " ".join(f"{k:>10}" for k in keys))
+    names = list(args.chars)
+    for name, d in densities(args):
         s = seam_stats(d)
         for k in keys:
-            total[k] += s[k] / len(chars)
+            total[k] += s[k] / len(names)
         print(f"{name}    " + " ".join(f"{s[k]:10.4f}" for k in keys))
     print("mean " + " ".join(f"{total[k]:10.4f}" for k in keys))
     return 0

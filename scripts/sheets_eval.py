@@ -67,21 +67,13 @@ def main(argv=None) -> int:
     ap.add_argument("--load", default=None, help="read the densities --save wrote, not write")
     ap.add_argument("--masks", default=None, help="a folder for each character's sheet mask (png)")
     args = ap.parse_args(argv)
-    from scripts.seams_eval import density
-    from sim.cli.shared import _chars
+    from scripts.seams_eval import densities
 
     keys = ("sheet", "pale", "ink")
     total = dict.fromkeys(keys, 0.0)
     print("char " + " ".join(f"{k:>9}" for k in keys))
     names = list(args.chars)
-    chars = [None] * len(names) if args.load else _chars(names, args.data)
-    for name, ch in zip(names, chars, strict=True):
-        if args.load:
-            d = np.load(os.path.join(args.load, f"{name}.npy")).astype(np.float64)
-        else:
-            d = density(ch, args.size)
-        if args.save:
-            np.save(os.path.join(args.save, f"{name}.npy"), d.astype(np.float32))
+    for name, d in densities(args):
         if args.masks:
             _save_mask(d, os.path.join(args.masks, f"{name}.png"))
         s = sheet_stats(d)
