@@ -161,6 +161,16 @@ def crop(img, own, zone, scale: int = 4) -> np.ndarray:
     return np.kron(rgb, np.ones((scale, scale, 1), np.uint8))
 
 
+def save_crop(png: str | None, name: str, img, box) -> None:
+    """With ``--png`` (a folder), ``crop`` of ``img`` round ``box`` saved as NAME.png there."""
+    if not png:
+        return
+    from PIL import Image
+
+    os.makedirs(png, exist_ok=True)
+    Image.fromarray(crop(img, *box)).save(f"{png}/{name}.png")
+
+
 def report(tags, png: str | None, data: str) -> None:
     from sim.writing.hanzi import find_char
 
@@ -179,12 +189,7 @@ def report(tags, png: str | None, data: str) -> None:
                     f"  {c} {r['stroke']:2d}  {rs}   {r['peak_ink']:4.2f}/{r['peak_font']:4.2f}"
                     f"  {r['outside']:4d} {r['beyond']:4d}  {r['specks']:2d} {r['past']:2d}"
                 )
-                if png:
-                    from PIL import Image
-
-                    os.makedirs(png, exist_ok=True)
-                    im = crop(z[c + "_img"], *r["box"])
-                    Image.fromarray(im).save(f"{png}/{tag}_{c}_{i}.png")
+                save_crop(png, f"{tag}_{c}_{i}", z[c + "_img"], r["box"])
             rows_all += rows
         if not rows_all:
             continue

@@ -15,7 +15,6 @@ near it; with ``--png`` a 4x crop of the end with the font's edge in red."""
 from __future__ import annotations
 
 import argparse
-import os
 import sys
 from pathlib import Path
 
@@ -24,7 +23,7 @@ from scipy import ndimage as ndi
 
 sys.path.insert(0, str(Path(__file__).resolve().parent.parent))
 
-from scripts.dots_eval import DOT, OUT, SPECK, _profile, crop, strokes  # noqa: E402
+from scripts.dots_eval import DOT, OUT, SPECK, _profile, save_crop, strokes  # noqa: E402
 
 AT = (0.70, 0.85, 0.95)  # shares of the font stroke's length the widths are compared at
 TIP = 0.5  # the font's width at 95 % of the stroke below this share of its widest: a point
@@ -119,12 +118,7 @@ def report(tags, png: str | None, data: str) -> None:
                     f"  {c} {r['stroke']:2d} {r['kind']:4s}  {rs}  ({fw})"
                     f"  {r['reach']:+5.1f}  {r['specks']}"
                 )
-                if png:
-                    from PIL import Image
-
-                    os.makedirs(png, exist_ok=True)
-                    im = crop(z[c + "_img"], *r["box"])
-                    Image.fromarray(im).save(f"{png}/{tag}_{c}_{i}.png")
+                save_crop(png, f"{tag}_{c}_{i}", z[c + "_img"], r["box"])
                 rows_all.append(r)
         if rows_all:
             ratio = np.mean([r["ratio"] for r in rows_all], axis=0)
