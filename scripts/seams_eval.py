@@ -128,18 +128,24 @@ def densities(args):
         else:
             d = density(ch, args.size)
         if args.save:
+            os.makedirs(args.save, exist_ok=True)
             np.save(os.path.join(args.save, f"{name}.npy"), d.astype(np.float32))
         yield name, d
 
 
-def main(argv=None) -> int:
-    ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+def arguments(doc: str) -> argparse.ArgumentParser:
+    """The options every script reading ``densities`` takes: characters, data, size, save, load."""
+    ap = argparse.ArgumentParser(description=doc.split("\n\n")[0])
     ap.add_argument("chars")
     ap.add_argument("--data", default="/tmp/chars/package")
     ap.add_argument("--size", type=int, default=512)
     ap.add_argument("--save", default=None, help="a folder for each character's density (.npy)")
     ap.add_argument("--load", default=None, help="read the densities --save wrote, not write")
-    args = ap.parse_args(argv)
+    return ap
+
+
+def main(argv=None) -> int:
+    args = arguments(__doc__).parse_args(argv)
     keys = tuple(f"{k}{w}" for k in ("ridge", "step", "trough") for w in ("", "_along", "_across"))
     total = dict.fromkeys(keys, 0.0)
     print("char " + " ".join(f"{k:>10}" for k in keys))

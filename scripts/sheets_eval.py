@@ -20,7 +20,6 @@ Statistics only, nothing here is used by the simulator.
 
 from __future__ import annotations
 
-import argparse
 import os
 import sys
 
@@ -59,15 +58,11 @@ def sheet_stats(d: np.ndarray) -> dict:
 
 
 def main(argv=None) -> int:
-    ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
-    ap.add_argument("chars")
-    ap.add_argument("--data", default="/tmp/chars/package")
-    ap.add_argument("--size", type=int, default=512)
-    ap.add_argument("--save", default=None, help="a folder for each character's density (.npy)")
-    ap.add_argument("--load", default=None, help="read the densities --save wrote, not write")
+    from scripts.seams_eval import arguments, densities
+
+    ap = arguments(__doc__)
     ap.add_argument("--masks", default=None, help="a folder for each character's sheet mask (png)")
     args = ap.parse_args(argv)
-    from scripts.seams_eval import densities
 
     keys = ("sheet", "pale", "ink")
     total = dict.fromkeys(keys, 0.0)
