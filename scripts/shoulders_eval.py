@@ -207,7 +207,8 @@ def main() -> int:
             sel = [r for r in rows if r[1] == b and r[2] == kind]
             if not sel:
                 continue
-            o, bare, d, wi, wf, inner, hole = (np.mean([r[k] for r in sel]) for k in range(4, 11))
+            figures = (np.nanmean([r[k] for r in sel]) for k in range(4, 11))  # a short leg: nan
+            o, bare, d, wi, wf, inner, hole = figures
             head = f"mean {b:<10} {kind:<4} {len(sel)} corners"
             print(f"{head}  outside {o:.1f}  bare {bare:.1f}  corner {d:.2f} px")
             print(f"{' ' * len(head)}  widest {wi:.2f} (font {wf:.2f}) x the median width,")
