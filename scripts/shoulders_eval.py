@@ -26,9 +26,9 @@ UNSEEN = "四司旧里勇目因回水寸才小"
 NEAR = 1.5  # stroke widths round the corner that are read
 
 
-def corner_points(char: dict) -> list[tuple[str, np.ndarray, np.ndarray, float]]:
+def corner_points(char: dict) -> list[tuple[str, np.ndarray, np.ndarray, float, int]]:
     """Each 横折's and hook foot's (kind "zhe" or "foot", median corner, outline corner, leg
-    width), data units: the outline's
+    width, stroke), data units: the outline's
     corner is the stroke outline's point farthest along the corner's outer bisector within
     ``NEAR`` widths of the median's corner."""
     from sim.writing import outline as ol
@@ -36,8 +36,8 @@ def corner_points(char: dict) -> list[tuple[str, np.ndarray, np.ndarray, float]]
     out = []
     step = 4.0
     moves = ol.median_movements(char, step)
-    for med, polys, (pieces, hook) in zip(
-        char["medians"], ol.stroke_polygons(char), moves, strict=True
+    for st, (med, polys, (pieces, hook)) in enumerate(
+        zip(char["medians"], ol.stroke_polygons(char), moves, strict=True)
     ):
         pts, _ = ol.resample(ol._to_the_tips(med, polys), step)
         ks = ol.corners(pts, step)
@@ -57,7 +57,7 @@ def corner_points(char: dict) -> list[tuple[str, np.ndarray, np.ndarray, float]]
             if not len(near):
                 continue
             tip = near[int(np.argmax((near - pts[k]) @ bis))]
-            out.append(("foot" if foot else "zhe", pts[k], tip, width))
+            out.append(("foot" if foot else "zhe", pts[k], tip, width, st))
     return out
 
 
@@ -81,10 +81,52 @@ def written(ch: str, brush: str, n: int, data):
     return char, sim
 
 
+def _median_width(dist, path, r, corners) -> float:
+    """A stroke's median width (px) in a mask whose distance transform is ``dist``: twice the
+    largest distance within ``r`` / 2 of each point of its median (``path``, image px) at
+    least ``r`` from its ends and ``NEAR`` * ``r`` from its corners."""
+    n = dist.shape[0]
+    s = np.concatenate([[0.0], np.cumsum(np.linalg.norm(np.diff(path, axis=0), axis=1))])
+    far = (s > r) & (s < s[-1] - r)
+    for c in corners:
+        far &= np.linalg.norm(path - c, axis=1) > NEAR * r
+    if not far.any():  # a short leg: all of it past the corner's disc
+        far = s > NEAR * r
+    got = []
+    h = max(int(r / 2), 1)
+    for x, y in np.round(path[far]).astype(int):
+        win = dist[max(y - h, 0) : min(y + h + 1, n), max(x - h, 0) : min(x + h + 1, n)]
+        if win.size:
+            got.append(win.max())
+    return 2.0 * float(np.median(got)) if got else float("nan")
+
+
+def shape(mask, char, n, stroke, corner, width) -> tuple[float, float]:
+    """A corner's widest cross-section: the diameter of the largest disc inside ``mask`` within
+    ``NEAR`` widths of ``corner`` (median corner, data units), over the median width in
+    ``mask`` of the leg on from it (``_median_width``); and that median width (px). (A crisp
+    L of two bands as wide as the leg: 1.17.)"""
+    from scipy.ndimage import distance_transform_edt
+
+    from sim.writing.outline import resample
+
+    dist = distance_transform_edt(mask)
+    c, r = _img(corner, n), width * n / 1024.0
+    pts, _ = resample(np.asarray(char["medians"][stroke], float), 4.0)
+    path = np.stack([_img(p, n) for p in pts])
+    ks = [_img(k[1], n) for k in corner_points(char) if k[4] == stroke]
+    leg = path[int(np.argmin(np.linalg.norm(path - c, axis=1))) :]  # the leg, on from the corner
+    med = _median_width(dist, leg, r, ks)
+    yy, xx = np.mgrid[0:n, 0:n]
+    disc = (xx - c[0]) ** 2 + (yy - c[1]) ** 2 < (NEAR * r) ** 2
+    return 2.0 * float(dist[disc].max()) / med, med
+
+
 def measure(task):
     """Per corner of one character written with one brush: (char, brush, index, outside px,
-    bare px, corner distance px); and the written image."""
-    from scipy.ndimage import binary_dilation, distance_transform_edt
+    bare px, corner distance px, widest over median (ink, font; ``shape``), outside on the
+    corner's inner side px, holes px); and the written image."""
+    from scipy.ndimage import binary_dilation, binary_fill_holes, distance_transform_edt, label
 
     from sim.writing.outline import rasterise
     from sim.writing.writer import coverage_mask
@@ -95,12 +137,16 @@ def measure(task):
     font = rasterise(char, n)
     outside = ink & ~binary_dilation(font, iterations=1)
     dist = distance_transform_edt(~ink)
+    holes, _ = label(binary_fill_holes(ink) & ~ink)
+    holes = holes * ~np.isin(holes, holes[~font])  # wholly inside the font: not 口's counter
     yy, xx = np.mgrid[0:n, 0:n]
     rows = []
-    for i, (kind, mc, tip, w) in enumerate(corner_points(char)):
+    for i, (kind, mc, tip, w, st) in enumerate(corner_points(char)):
         c, t, r = _img(mc, n), _img(tip, n), NEAR * w * n / 1024.0
         disc = (xx - c[0]) ** 2 + (yy - c[1]) ** 2 < r * r
+        inner = (xx - c[0]) * (t[0] - c[0]) + (yy - c[1]) * (t[1] - c[1]) < 0.0
         ti = np.clip(np.round(t).astype(int), 0, n - 1)
+        wide = shape(ink, char, n, st, mc, w)[0], shape(font, char, n, st, mc, w)[0]
         rows.append(
             (
                 ch,
@@ -110,6 +156,9 @@ def measure(task):
                 int((outside & disc).sum()),
                 int((font & ~ink & disc).sum()),
                 float(dist[ti[1], ti[0]]),
+                *wide,
+                int((outside & disc & inner).sum()),
+                int(((holes > 0) & disc).sum()),
             )
         )
         if png:
@@ -149,17 +198,21 @@ def main() -> int:
     with ProcessPoolExecutor(a.workers) as ex:
         rows = [r for rs in ex.map(measure, tasks) for r in rs]
     head = f"{'char':<4} {'brush':<10} {'kind':<4} {'#':>2} {'outside':>8} {'bare':>6}"
-    print(f"{head} {'corner px':>9}")
-    for ch, b, kind, i, o, bare, d in rows:
-        print(f"{ch:<4} {b:<10} {kind:<4} {i:>2} {o:>8} {bare:>6} {d:>9.1f}")
+    print(f"{head} {'corner px':>9} {'widest':>6} {'font':>5} {'inner':>5} {'holes':>5}")
+    for ch, b, kind, i, o, bare, d, wi, wf, inner, hole in rows:
+        line = f"{ch:<4} {b:<10} {kind:<4} {i:>2} {o:>8} {bare:>6} {d:>9.1f}"
+        print(f"{line} {wi:>6.2f} {wf:>5.2f} {inner:>5} {hole:>5}")
     for b in a.brush:
         for kind in ("zhe", "foot"):
             sel = [r for r in rows if r[1] == b and r[2] == kind]
             if not sel:
                 continue
-            o, bare, d = (np.mean([r[k] for r in sel]) for k in (4, 5, 6))
+            figures = (np.nanmean([r[k] for r in sel]) for k in range(4, 11))  # a short leg: nan
+            o, bare, d, wi, wf, inner, hole = figures
             head = f"mean {b:<10} {kind:<4} {len(sel)} corners"
             print(f"{head}  outside {o:.1f}  bare {bare:.1f}  corner {d:.2f} px")
+            print(f"{' ' * len(head)}  widest {wi:.2f} (font {wf:.2f}) x the median width,")
+            print(f"{' ' * len(head)}  outside inside the corner {inner:.1f}, holes {hole:.1f} px")
     return 0
 
 

@@ -50,3 +50,34 @@ def test_a_zhe_leg_sets_off_from_down_right_of_the_corner(char):
     off = leg[0] - head[-1]
     body = float(np.median(leg_w))
     assert off[0] > 0.1 * body and off[1] < 0.0
+
+
+@pytest.mark.parametrize("char", ["口", "马", "月"])
+def test_the_way_into_a_zhe_swells_only_on_the_corner(char):
+    # the 横 into a 折 (issue 26.2) is planned its own width (SHOULDER_OVER of its body's) until
+    # SHOULDER_SWELL shoulder widths before the corner and swells to the shoulder's from there:
+    # a little more than a shoulder width before the corner it is no wider than halfway (main:
+    # pressed to the shoulder's over both widths, its belly stood up out of the font there)
+    from sim.writing.feet import _body_width
+    from sim.writing.outline import SHOULDER_OVER, SHOULDER_SWELL
+
+    (head, head_w), (leg, leg_w) = median_pieces(find_char(char))[1][:2]
+    own = SHOULDER_OVER * _body_width(head_w)
+    shoulder = max(SHOULDER_OVER * _body_width(leg_w), own)
+    d = np.linalg.norm(head - head[-1], axis=1)
+    half = (d > 1.2 * shoulder) & (d < 1.4 * shoulder)
+    assert SHOULDER_SWELL >= 2.0 and half.any()
+    assert head_w[half].max() <= 0.5 * (own + shoulder) + 1e-9
+
+
+@pytest.mark.slow
+def test_a_written_zhe_stands_no_knob_out_of_the_font():
+    # 月's 横折 written with the default brush at 512 px (as scripts/shoulders_eval.py reads
+    # it): the ink outside the font within 1.5 widths of the corner, a ball on the 横's top
+    # before the corner on main (134 px), is under 110 px (83)
+    from scripts.shoulders_eval import measure
+    from sim.core.recording import DEFAULT_BRUSH
+
+    rows = [r for r in measure(("月", DEFAULT_BRUSH, 512, None, None)) if r[2] == "zhe"]
+    assert len(rows) == 1
+    assert rows[0][4] < 110
