@@ -225,7 +225,8 @@ def _one_flick(pl: Plan, body, placed, first) -> tuple[np.ndarray, np.ndarray]:
         if not hook:
             continue
         run = runs[r]
-        press[run] = np.minimum.accumulate(np.minimum(press[run], first[run[0]]))
+        settled = np.maximum.accumulate(press[run][::-1])[::-1]  # nowhere lighter than after
+        press[run] = np.minimum(settled, first[run[0]])
         s = _along(pl.target[body[run]])
         line = np.stack([np.ones_like(s), s], axis=1)
         out[run] = line @ np.linalg.lstsq(line, out[run], rcond=None)[0]
