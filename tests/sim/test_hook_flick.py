@@ -10,7 +10,7 @@ import pytest
 
 from sim.writing import writer
 from sim.writing.hanzi import find_char
-from sim.writing.planner import WRITING, _is_hook, _movements
+from sim.writing.planner import WRITING, _flicks, _is_hook, _movements
 from sim.writing.practice import _one_flick
 from sim.writing.writer import write_character
 from tests.sim.builders import stiff_template
@@ -34,10 +34,11 @@ def _passes(response, monkeypatch, char):
 
 
 def _hooks(pl, a, b):
-    """The body samples (indices into the stroke's body) of each hook of stroke a..b."""
+    """The body samples (indices into the stroke's body) of each flicked hook of stroke a..b."""
     body = np.flatnonzero(pl.phase[a:b] == WRITING) + a
-    runs = _movements(np.arange(len(body)), body)
-    return [run for run, hook in zip(runs, _is_hook(pl, _movements(body)), strict=True) if hook]
+    runs, moves = _movements(np.arange(len(body)), body), _movements(body)
+    flicked = _flicks(pl, moves, _is_hook(pl, moves))
+    return [run for run, hook in zip(runs, flicked, strict=True) if hook]
 
 
 @pytest.mark.slow
@@ -58,7 +59,8 @@ def test_practice_corrects_a_hook_as_one_movement(response, monkeypatch, char):
 
 
 def test_a_hooks_placement_is_a_line_and_its_foot_rests_as_planned():
-    # a noisy correction over a hook becomes the straight line nearest it; the foot's last width,
+    # a noisy correction over a hook becomes the straight line nearest it, its press never
+    # deeper than the foot's end nor deepening again; the foot's last width,
     # where the base rests, is eased to the planned placement (none)
     from sim.writing.planner import TURNING, Plan
 
@@ -66,7 +68,8 @@ def test_a_hooks_placement_is_a_line_and_its_foot_rests_as_planned():
     hook = np.stack([np.linspace(0.3, 3.0, 10), np.linspace(0.3, 1.5, 10)], axis=1)
     target = np.concatenate([leg, leg[-1:], hook])
     phase = np.r_[np.full(20, WRITING), TURNING, np.full(10, WRITING)]
-    pl = Plan(target, np.full(31, 1.0), np.zeros((31, 2)), phase, [], [(0, 31)], hooks=(21,))
+    width = np.r_[np.full(21, 1.0), np.linspace(1.0, 0.2, 10)]  # the hook narrows to a point
+    pl = Plan(target, width, np.zeros((31, 2)), phase, [], [(0, 31)], hooks=(21,))
     body = np.flatnonzero(phase == WRITING)
     rng = np.random.default_rng(0)
     side = 0.3 + rng.normal(0.0, 0.2, len(body))
@@ -76,6 +79,6 @@ def test_a_hooks_placement_is_a_line_and_its_foot_rests_as_planned():
     h = slice(20, 30)
     assert np.abs(np.diff(s[h], 2)).max() < 1e-9  # a line
     assert abs(s[h].mean() - side[h].mean()) < 1e-9  # the nearest: the same mean
-    assert np.all(np.diff(p[h]) <= 0.0) and p[h].max() <= 2.0
+    assert np.all(np.diff(p[h]) <= 0.0) and p[h].max() <= press[19]  # no deeper than the foot
     assert s[19] == 0.0 and np.allclose(s[:15], side[:15])  # the foot's rest, the leg as it was
     assert np.array_equal(p[:20], press[:20])
