@@ -96,13 +96,18 @@ def measure(ch: str, n: int, data) -> list[tuple]:
     return rows
 
 
-def main(argv=None) -> int:
-    ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+def hook_rows(doc: str, measure, argv=None) -> list:
+    """The rows ``measure(char, size, data)`` gives for the characters on the command line."""
+    ap = argparse.ArgumentParser(description=doc.split("\n\n")[0])
     ap.add_argument("chars")
     ap.add_argument("--size", type=int, default=512)
     ap.add_argument("--data", default="/tmp/chars/package")
     a = ap.parse_args(argv)
-    rows = [r for ch in a.chars for r in measure(ch, a.size, a.data)]
+    return [r for ch in a.chars for r in measure(ch, a.size, a.data)]
+
+
+def main(argv=None) -> int:
+    rows = hook_rows(__doc__, measure, argv)
     print("char  hook  swing(deg) zigs")
     for ch, h, swing, zigs in rows:
         print(f"{ch}  {h:5d} {swing:10.2f} {zigs:4d}")

@@ -20,7 +20,6 @@ Statistics only, nothing here is used by the simulator.
 
 from __future__ import annotations
 
-import argparse
 import os
 import sys
 
@@ -135,12 +134,9 @@ def _line(st) -> float:
 
 
 def main(argv=None) -> int:
-    ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
-    ap.add_argument("chars")
-    ap.add_argument("--size", type=int, default=512)
-    ap.add_argument("--data", default="/tmp/chars/package")
-    a = ap.parse_args(argv)
-    rows = [r for ch in a.chars for r in measure(ch, a.size, a.data)]
+    from scripts.flick_eval import hook_rows
+
+    rows = hook_rows(__doc__, measure, argv)
     print("char st  visits  cross spread (travel)  cross spread (lines)")
     for ch, si, *f in rows:
         print(f"{ch}   {si:3d} {f[0]:7.1f} {f[1]:6.3f} {f[2]:7.1f} {f[3]:14.3f} {f[4]:7.1f}")
