@@ -30,6 +30,7 @@ from .lifts import (
     POINT_SAMPLES,
     _flick_travel,
     _heel_held,
+    _let_go_reach,
     _lets_go,
     _point_reach,
     _turned_back,
@@ -166,7 +167,7 @@ def plan(
             m0 = CORNER_SAMPLES if j else ENTRY_SAMPLES
             m1 = CORNER_SAMPLES if j < len(moves) - 1 else EXIT_SAMPLES
             if j == len(moves) - 1 and not hook and _lets_go(p, w, len(moves)):
-                m1 = POINT_SAMPLES  # a 撇's, a 提's let-go to its point: slower (``lifts``)
+                m1 = POINT_SAMPLES  # a let-go to its point: slower (``lifts``)
             if heel:  # into and out of the hook's heel
                 m0 = HEEL_SAMPLES
             if flick and j == len(moves) - 2:
@@ -378,7 +379,8 @@ def _enter_and_leave(
     comes down moving back up it, ``_landing``), the tip touching where the body begins, and
     lifts off moving on along the last direction (a flick, so that hooks and left-falling
     strokes end in a point, not a blot from a lift on the spot; ``ease``: the power the belly's
-    rise over a point's let-go goes as, ``POINT_EASE`` for a 撇's or a 提's). ``corner``:
+    rise over a point's let-go goes as, ``POINT_EASE`` for a let-go, ``lifts._lets_go``, which
+    sweeps only its ``_let_go_reach``). ``corner``:
     the base's height at the sharp corner the movement begins after / ends at
     (``median_pieces``; None: none). At a 折 the brush lifts only slightly (``ZHE_KEEP``), on
     the corner itself (a flick there overshoots the corner), and presses again (``ENTRY_TOUCH``):
@@ -417,7 +419,8 @@ def _enter_and_leave(
     z0 = samples[body[-1], 2]
     rise = z0 + (top - z0) * np.sqrt(f)
     dot = corner[0] is None and corner[1] is None and is_dot(pl.target[body], pl.width[body])
-    point = _point_reach(pl.target[body], pl.width[body]) if corner[1] is None else 0.0
+    reach = _let_go_reach if ease != 1.0 else _point_reach  # a let-go's (``lifts``)
+    point = reach(pl.target[body], pl.width[body]) if corner[1] is None else 0.0
     point = 0.0 if dot else point  # a dot ends in its heel (``_heel_held``), not a point
     if point > 0.0:  # 出锋: the belly lets go evenly as the brush sweeps on, out to the point
         g = np.clip(f / POINT_LIFT, 0.0, 1.0)
@@ -564,7 +567,7 @@ def _fill(
             keep = HOOK_KEEP * p[-1] if hook[r + 1] else 0.0
             heel = _heel(p, press[j1]) if flick[r + 1] else keep
             nxt = hair - (heel if hook[r + 1] else ZHE_KEEP * p[-1])
-        last = len(runs) == 1 and _lets_go(pl.target[run], pl.width[run], 1)  # a 撇, a 提
+        last = len(runs) == 1 and _lets_go(pl.target[run], pl.width[run], 1)  # a 撇, 提, 竖
         ease = POINT_EASE if last else 1.0
         _enter_and_leave(samples, pl, run, hover, hair, step_mm, (at, nxt), run_up, width_at, ease)
         if nxt is not None:
