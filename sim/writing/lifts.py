@@ -77,17 +77,18 @@ def _slants(path) -> bool:
     return bool(slant and chord[0] * chord[1] > 0.0)
 
 
-def _lets_go(path, width, movements: int) -> bool:
+def _lets_go(path, width, movements: int, vees: bool = True) -> bool:
     """Whether a stroke of ``movements`` movements, its last one's body samples' targets
     ``path`` (mm, y up) planned ``width`` wide, lets go to a point: one movement that ends in a
     point (``_point_reach``), not a dot: a 撇, a 提, or a 竖 that narrows to its end. Its
     lift-off takes ``POINT_SAMPLES`` and its belly rises as ``POINT_EASE``, so that paced by
     its shrinking marks (``_flick_travel``) the tip reaches the point before it is clear of
-    the paper (``_let_go_reach``: how far). (Added in issue 26 point 2: in 8 samples, rising
+    the paper (``_let_go_reach``: how far); without ``vees`` (a picture's stroke, which ends
+    where its ink does) a 竖 does not. (Added in issue 26 point 2: in 8 samples, rising
     evenly, the tip cleared the paper a third of the way out, and 撇 and 提 ended 4 px (at
     512) short of the font's point, blunt; a 竖 narrowing to its end, a round U where the
     font closes in a V.)"""
-    if movements != 1 or is_dot(path, width):
+    if movements != 1 or is_dot(path, width) or not (vees or _slants(path)):
         return False
     return _point_reach(path, width) > 0.0
 

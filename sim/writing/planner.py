@@ -80,6 +80,7 @@ class Plan:
     strokes: list  # (first, end) sample of every stroke: entry, writing, lift-off
     hooks: tuple = ()  # the first body sample of every movement that is a hook (the outline's
     # ``median_movements`` says which)
+    vees: bool = True  # a 竖 narrowing to its end lets go into the V (``lifts._lets_go``)
 
 
 def _timed(dense, width, step_mm: float, slow_corners: float):
@@ -121,6 +122,7 @@ def plan(
     origin=(0.0, 0.0),
     slow_corners: float = 0.7,
     joins: bool = True,
+    vees: bool = True,
 ) -> Plan:
     """The path of the writing: each median resampled every step_mm with the outline's width,
     one movement per piece of the median between its sharp corners (``median_pieces``: a
@@ -129,7 +131,9 @@ def plan(
     own, so that a corner stays a corner. The brush is dipped before the first stroke and, with
     ``dip_every_mm``, before a stroke that would take it past that much writing since the last
     dip (without, the writer dips when the brush runs low, ``writer.dips_when_low``). With
-    ``joins`` an end that joins another stroke goes on into it (``outline.median_movements``)."""
+    ``joins`` an end that joins another stroke goes on into it (``outline.median_movements``).
+    With ``vees`` a 竖 narrowing to its end lets go into the V the font's outline closes in
+    past its median (``lifts._lets_go``; not a picture's stroke, which ends where its ink does)."""
     scale = size_mm / EM
     dip_every = np.inf if dip_every_mm is None else dip_every_mm
     tg, wd, tn, ph, dips, strokes, hooks = [], [], [], [], [], [], []
@@ -166,7 +170,7 @@ def plan(
             # at a sharp corner the brush is already down: a shorter lift and entry
             m0 = CORNER_SAMPLES if j else ENTRY_SAMPLES
             m1 = CORNER_SAMPLES if j < len(moves) - 1 else EXIT_SAMPLES
-            if j == len(moves) - 1 and not hook and _lets_go(p, w, len(moves)):
+            if j == len(moves) - 1 and not hook and _lets_go(p, w, len(moves), vees):
                 m1 = POINT_SAMPLES  # a let-go to its point: slower (``lifts``)
             if heel:  # into and out of the hook's heel
                 m0 = HEEL_SAMPLES
@@ -188,6 +192,7 @@ def plan(
         dips,
         strokes,
         tuple(hooks),
+        vees,
     )
 
 
@@ -567,7 +572,7 @@ def _fill(
             keep = HOOK_KEEP * p[-1] if hook[r + 1] else 0.0
             heel = _heel(p, press[j1]) if flick[r + 1] else keep
             nxt = hair - (heel if hook[r + 1] else ZHE_KEEP * p[-1])
-        last = len(runs) == 1 and _lets_go(pl.target[run], pl.width[run], 1)  # a 撇, 提, 竖
+        last = len(runs) == 1 and _lets_go(pl.target[run], pl.width[run], 1, pl.vees)
         ease = POINT_EASE if last else 1.0
         _enter_and_leave(samples, pl, run, hover, hair, step_mm, (at, nxt), run_up, width_at, ease)
         if nxt is not None:
