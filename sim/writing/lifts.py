@@ -95,7 +95,15 @@ def _lets_go(path, width, movements: int, vees: bool = True) -> bool:
 
 VEE = 0.5  # share of its end's width a let-go that does not slant (a 竖) sweeps on past the
 # median's end: to the V the outline closes in there (``_point_reach``'s up to twice the width,
-# the tip held down: a hairline tail past the V; scripts/ends of 16 never-tuned characters)
+# the tip held down: a hairline tail past the V on 16 never-tuned characters at 384 px)
+VEE_EASE = 2.0  # a 竖's belly rises over its let-go as the let-go's share to this power (a
+# 撇's POINT_EASE 3 left a round bead past the V on 川's, 半's and 叶's 竖; 1.5: round as before)
+
+
+def _let_go_ease(path) -> float:
+    """The power a let-go's (``_lets_go``) belly rises as: a 撇's or a 提's ``POINT_EASE``,
+    a 竖's ``VEE_EASE``."""
+    return POINT_EASE if _slants(path) else VEE_EASE
 
 
 def _let_go_reach(path, width) -> float:

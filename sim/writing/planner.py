@@ -25,11 +25,11 @@ from .feet import (
 )
 from .lifts import (
     POINT_CLEAR,
-    POINT_EASE,
     POINT_LIFT,
     POINT_SAMPLES,
     _flick_travel,
     _heel_held,
+    _let_go_ease,
     _let_go_reach,
     _lets_go,
     _point_reach,
@@ -384,7 +384,7 @@ def _enter_and_leave(
     comes down moving back up it, ``_landing``), the tip touching where the body begins, and
     lifts off moving on along the last direction (a flick, so that hooks and left-falling
     strokes end in a point, not a blot from a lift on the spot; ``ease``: the power the belly's
-    rise over a point's let-go goes as, ``POINT_EASE`` for a let-go, ``lifts._lets_go``, which
+    rise over a point's let-go goes as, ``lifts._let_go_ease`` for a let-go (``_lets_go``), which
     sweeps only its ``_let_go_reach``). ``corner``:
     the base's height at the sharp corner the movement begins after / ends at
     (``median_pieces``; None: none). At a 折 the brush lifts only slightly (``ZHE_KEEP``), on
@@ -573,7 +573,7 @@ def _fill(
             heel = _heel(p, press[j1]) if flick[r + 1] else keep
             nxt = hair - (heel if hook[r + 1] else ZHE_KEEP * p[-1])
         last = len(runs) == 1 and _lets_go(pl.target[run], pl.width[run], 1, pl.vees)
-        ease = POINT_EASE if last else 1.0
+        ease = _let_go_ease(pl.target[run]) if last else 1.0
         _enter_and_leave(samples, pl, run, hover, hair, step_mm, (at, nxt), run_up, width_at, ease)
         if nxt is not None:
             heights.append(nxt)
