@@ -5,6 +5,8 @@ little way out of a wet stroke's edge along its fibres, a window of the paper at
 
 from __future__ import annotations
 
+import functools
+
 import numpy as np
 
 from ..core import exact
@@ -46,10 +48,11 @@ def wick_steps(capacity: float, ppm: float) -> tuple[int, float]:
     return passes, float(min(spread / passes, WICK_RATE))
 
 
+@functools.cache
 def _wick_pairs(colours: int) -> tuple:
     """The pixel pairs of wicking (``_wick``): down the rows, then along them, as (giver a,
     taker b) of the window and the same pixels' colours in its rows of ``colours`` w
-    numbers."""
+    numbers (made once for each number of colours: slices, no numpy call a step; issue 28)."""
     return (
         (np.s_[:-1], np.s_[1:], np.s_[:-1], np.s_[1:]),
         (np.s_[:, :-1], np.s_[:, 1:], np.s_[:, :-colours], np.s_[:, colours:]),
@@ -104,8 +107,9 @@ def _wick_colours(w, ink, draw, passes: int, rate: float) -> None:
             gave_b, gave_a = _colours(to_b, colours), _colours(to_a, colours)
             carried[ib] += gave_b * rows[ia]
             carried[ia] += gave_a * rows[ib]
-            np.maximum(darkest[ib], (gave_b > 0.0) * rows[ia], out=darkest[ib])
-            np.maximum(darkest[ia], (gave_a > 0.0) * rows[ib], out=darkest[ia])
+            # (only where it gave: elsewhere max(darkest, 0 x colour) is darkest, >= 0)
+            np.maximum(darkest[ib], rows[ia], out=darkest[ib], where=gave_b > 0.0)
+            np.maximum(darkest[ia], rows[ib], out=darkest[ia], where=gave_a > 0.0)
             w[a] -= flux
             w[b] += flux
         # the pigment the liquid carried in: the givers' colour, weighted by what each gave,
