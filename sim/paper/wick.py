@@ -107,9 +107,8 @@ def _wick_colours(w, ink, draw, passes: int, rate: float) -> None:
             gave_b, gave_a = _colours(to_b, colours), _colours(to_a, colours)
             carried[ib] += gave_b * rows[ia]
             carried[ia] += gave_a * rows[ib]
-            # (only where it gave: elsewhere max(darkest, 0 x colour) is darkest, >= 0)
-            np.maximum(darkest[ib], rows[ia], out=darkest[ib], where=gave_b > 0.0)
-            np.maximum(darkest[ia], rows[ib], out=darkest[ia], where=gave_a > 0.0)
+            np.maximum(darkest[ib], (gave_b > 0.0) * rows[ia], out=darkest[ib])
+            np.maximum(darkest[ia], (gave_a > 0.0) * rows[ib], out=darkest[ia])
             w[a] -= flux
             w[b] += flux
         # the pigment the liquid carried in: the givers' colour, weighted by what each gave,
