@@ -26,6 +26,7 @@ distance to a row's plane; S_i and hei_i the cut's bounding-box area and its dis
 from __future__ import annotations
 
 import math
+from collections import namedtuple
 from dataclasses import dataclass
 from typing import NamedTuple
 
@@ -609,7 +610,14 @@ class Entries(NamedTuple):
     pair: tuple | None  # (first, last) entries of the pixels in several slabs, or None
 
 
-class SlabQuadratics(NamedTuple):
+# |U|^2, |V|^2 and U.V as quadratics in lam (uu0 + lam uu1 + lam^2 uu2 ...): the fields
+# ``SlabQuadratics`` and ``IntervalQuadratics`` begin with
+_GRAM_FIELDS = "uu0 uu1 uu2 vv0 vv1 vv2 uv0 uv1 uv2 "
+_SLAB_FIELDS = "ux0 uy0 cu0 ux1 uy1 cu1 cu2 vx0 vy0 cv0 vx1 vy1 cv1 cv2"
+_INTERVAL_FIELDS = "ux0 du0 ux1 du1 cu2 vx0 dv0 vx1 dv1 cv2 tx0 h0 tx1 h1"
+
+
+class SlabQuadratics(namedtuple("SlabQuadratics", _GRAM_FIELDS + _SLAB_FIELDS)):
     """The section solve's dot products as quadratics in lam, one column per slab. Between rows
     j and j + 1 the section's centre V^ = c0 + lam dc, U = U0 + lam dU and V = V0 + lam dV, so
     with tau = (x, y, 0) on the paper:
@@ -617,59 +625,15 @@ class SlabQuadratics(NamedTuple):
     (tau - V^).U = x (ux0 + lam ux1) + y (uy0 + lam uy1) - (cu0 + lam cu1 + lam^2 cu2),
     (tau - V^).V likewise (vx, vy, cv)."""
 
-    uu0: np.ndarray
-    uu1: np.ndarray
-    uu2: np.ndarray
-    vv0: np.ndarray
-    vv1: np.ndarray
-    vv2: np.ndarray
-    uv0: np.ndarray
-    uv1: np.ndarray
-    uv2: np.ndarray
-    ux0: np.ndarray
-    uy0: np.ndarray
-    cu0: np.ndarray
-    ux1: np.ndarray
-    uy1: np.ndarray
-    cu1: np.ndarray
-    cu2: np.ndarray
-    vx0: np.ndarray
-    vy0: np.ndarray
-    cv0: np.ndarray
-    vx1: np.ndarray
-    vy1: np.ndarray
-    cv1: np.ndarray
-    cv2: np.ndarray
+    __slots__ = ()
 
 
-class IntervalQuadratics(NamedTuple):
+class IntervalQuadratics(namedtuple("IntervalQuadratics", _GRAM_FIELDS + _INTERVAL_FIELDS)):
     """``SlabQuadratics`` on one scanline (y fixed), one column per interval or per entry:
     (tau - V^).U = x ux0 + du0 + lam (x ux1 + du1 - lam cu2), likewise (tau - V^).V, and the
     planes of rows j and j + 1 on the scanline (Hd = x tx + h)."""
 
-    uu0: np.ndarray
-    uu1: np.ndarray
-    uu2: np.ndarray
-    vv0: np.ndarray
-    vv1: np.ndarray
-    vv2: np.ndarray
-    uv0: np.ndarray
-    uv1: np.ndarray
-    uv2: np.ndarray
-    ux0: np.ndarray
-    du0: np.ndarray
-    ux1: np.ndarray
-    du1: np.ndarray
-    cu2: np.ndarray
-    vx0: np.ndarray
-    dv0: np.ndarray
-    vx1: np.ndarray
-    dv1: np.ndarray
-    cv2: np.ndarray
-    tx0: np.ndarray
-    h0: np.ndarray
-    tx1: np.ndarray
-    h1: np.ndarray
+    __slots__ = ()
 
 
 class SectionSolve(NamedTuple):

@@ -5,6 +5,8 @@ little way out of a wet stroke's edge along its fibres, a window of the paper at
 
 from __future__ import annotations
 
+import functools
+
 import numpy as np
 
 from ..core import exact
@@ -46,10 +48,11 @@ def wick_steps(capacity: float, ppm: float) -> tuple[int, float]:
     return passes, float(min(spread / passes, WICK_RATE))
 
 
+@functools.cache
 def _wick_pairs(colours: int) -> tuple:
     """The pixel pairs of wicking (``_wick``): down the rows, then along them, as (giver a,
     taker b) of the window and the same pixels' colours in its rows of ``colours`` w
-    numbers."""
+    numbers (made once for each number of colours: slices, no numpy call a step; issue 28)."""
     return (
         (np.s_[:-1], np.s_[1:], np.s_[:-1], np.s_[1:]),
         (np.s_[:, :-1], np.s_[:, 1:], np.s_[:, :-colours], np.s_[:, colours:]),
