@@ -21,7 +21,7 @@ from ..core import exact
 from ..core.exact import matmul
 from ..core.frames import clip, cross, diff, norm, rotation_matrix, stack1, unit
 from ..core.params import REF_RATE
-from .bristles import contact_wetness
+from .bristles import HAIR_MM, contact_wetness
 from .bristles import draw as draw_bundles
 from .state import CONTACT_EPS, key_point_fields, take_primitives
 
@@ -95,8 +95,7 @@ def move(brush, pose6, vel6, dt: float):
     held = points.copy()
     held[..., :2] += SLIP * (carried[..., :2] - points[..., :2]) + dis[:, None, None] * lag
     new = np.where(contact[..., None], held, carried)
-    if speed > 1.0:
-        brush.travel = vxy / speed
+    _follow(brush, B1, vxy, speed)
     if lift > 0:  # Eq. 14: cz += gamma * |dsz| * tr(dsz), on the hair not held by the paper
         new[:, 1:, 2] += np.where(contact[:, 1:], 0.0, brush.gamma[:, None] * lift)
     new[:, 0] = B1
@@ -118,8 +117,7 @@ def _carry_one(brush, B1, R1, vel6, dt: float, lift: float) -> list:
     vxy = np.asarray(vel6[:2], dtype=float)
     speed = float(np.hypot(*vxy))
     lx, ly = (-vxy / speed).tolist() if speed > 1e-9 else (0.0, 0.0)
-    if speed > 1.0:
-        brush.travel = vxy / speed
+    _follow(brush, B1, vxy, speed)
     krec = min(1.0, q.e * REC_RATE * dt)  # elastic return of free hair (gap, see module doc)
     gamma = float(brush.gamma[0])
     dis = q.e * gamma * brush.r * (dt * REF_RATE)
@@ -148,6 +146,27 @@ def _carry_one(brush, B1, R1, vel6, dt: float, lift: float) -> list:
             cz += 0.0 if on else rise
         out.append([cx, cy, cz])
     return out
+
+
+def _follow(brush, B1, vxy, speed: float):
+    """The brush's direction of travel (``travel``, read where the hair is laid, Sec. 5.2.2's
+    drag, and a split's children, Sec. 5.5) from the base's velocity ``vxy`` (speed its
+    length) now at ``B1``. Added beyond the paper, which has no direction of travel: it turns
+    only with motion longer than a hair's width (HAIR_MM). ``travel_from`` trails the base on
+    a leash HAIR_MM long; the base sets ``travel`` only when it pulls the leash (moving on, or
+    turning by up to a right angle, does at every step: the same directions as the velocity's).
+    A creep back of less than twice HAIR_MM, the base nudged while it rests on the toe, leaves
+    it: a resting toe does not lay its hair lines backwards across the flick's (issue 26)."""
+    x, y = float(B1[0]), float(B1[1])
+    ax, ay = brush.travel_from.tolist()  # held where the base was at the free state at first
+    dx, dy = x - ax, y - ay
+    gone = math.hypot(dx, dy)
+    if gone <= HAIR_MM:  # within the leash: travel stays
+        return
+    # pulled: the leash's end follows at HAIR_MM behind the base
+    brush.travel_from = np.array([x - HAIR_MM * dx / gone, y - HAIR_MM * dy / gone])
+    if speed > 1.0:
+        brush.travel = vxy / speed
 
 
 def _active_point_one(brush, new: list):

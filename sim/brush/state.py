@@ -79,7 +79,7 @@ FIELDS = (
 INK = tuple(f for f in FIELDS if f.ink)
 # the whole brush's pose, kept with the fields in snapshots (``trail``: the recent path of the
 # hair's contact with the paper, ``bristles``)
-POSE = ("travel", "B", "R", "trail")
+POSE = ("travel", "travel_from", "B", "R", "trail")
 
 
 def _width(f: Field) -> int:
@@ -110,6 +110,7 @@ def blank(brush, m: int):
     for f in FIELDS:
         lead = (m, brush.n) if f.per == KEY else (m,)
         setattr(brush, f.name, np.full(lead + f.shape, f.fill, dtype=f.dtype))
+    brush.travel_from = brush.B[:2].copy()  # where the leash of ``travel`` is held (dynamics)
 
 
 def take_primitives(brush, src):
