@@ -81,7 +81,7 @@ def _lets_go(path, width, movements: int, vees: bool = True) -> bool:
     """Whether a stroke of ``movements`` movements, its last one's body samples' targets
     ``path`` (mm, y up) planned ``width`` wide, lets go to a point: one movement that ends in a
     point (``_point_reach``), not a dot: a 撇, a 提, or a 竖 that narrows to its end. Its
-    lift-off takes ``POINT_SAMPLES`` and its belly rises as ``POINT_EASE``, so that paced by
+    lift-off takes ``POINT_SAMPLES`` and its belly rises as ``_let_go_ease``, so that paced by
     its shrinking marks (``_flick_travel``) the tip reaches the point before it is clear of
     the paper (``_let_go_reach``: how far); without ``vees`` (a picture's stroke, which ends
     where its ink does) a 竖 does not. (Added in issue 26 point 2: in 8 samples, rising
