@@ -48,7 +48,7 @@ POINT_EASE = 3.0  # a 撇's or a 提's belly rises over its let-go as the let-go
 # linear, as a hook's still does: the tip cleared the paper a third of the way out and the
 # ink ended 4 px (at 512) short of the font's point, blunt; 2: 2 px short; 3: 0.0 px, 12 of
 # 16 ends within 2 px; scripts/ends_eval.py, issue 26 point 2)
-SLANT = 0.3  # share of its chord a 撇 or 提 runs across (``_slants``)
+SLANT = 0.3  # share of its chord a 撇 or 提 runs across (``_lets_go``)
 POINT_SAMPLES = 16  # samples of a 撇's or a 提's lift-off to its point (planner.EXIT_SAMPLES: 8)
 
 
@@ -69,48 +69,20 @@ def _point_reach(path, width) -> float:
     return float(np.clip(w / max(rate, 1e-6), 0.5 * w, 2.0 * w))
 
 
-def _slants(path) -> bool:
-    """Whether a movement (``path``: its body samples' targets, mm, y up) runs down to the
-    left or up to the right, at least ``SLANT`` of its chord across: a 撇, a 提."""
+def _lets_go(path, width, movements: int) -> bool:
+    """Whether a stroke of ``movements`` movements, its last one's body samples' targets
+    ``path`` (mm, y up) planned ``width`` wide, is a 撇 or a 提: one movement that ends in a
+    point (``_point_reach``), not a dot, running down to the left or up to the right, at least
+    ``SLANT`` of its chord across (not a 竖 that narrows to its end). Its lift-off takes
+    ``POINT_SAMPLES`` and its belly rises as ``POINT_EASE``, so that paced by its shrinking
+    marks (``_flick_travel``) the tip reaches the point before it is clear of the paper.
+    (Added in issue 26 point 2: in 8 samples, rising evenly, the tip cleared the paper a third
+    of the way out, and 撇 and 提 ended 4 px (at 512) short of the font's point, blunt.)"""
+    if movements != 1 or is_dot(path, width):
+        return False
     chord = np.asarray(path[-1], float) - np.asarray(path[0], float)
     slant = abs(chord[0]) >= SLANT * float(np.linalg.norm(chord))
-    return bool(slant and chord[0] * chord[1] > 0.0)
-
-
-def _lets_go(path, width, movements: int, vees: bool = True) -> bool:
-    """Whether a stroke of ``movements`` movements, its last one's body samples' targets
-    ``path`` (mm, y up) planned ``width`` wide, lets go to a point: one movement that ends in a
-    point (``_point_reach``), not a dot: a 撇, a 提, or a 竖 that narrows to its end. Its
-    lift-off takes ``POINT_SAMPLES`` and its belly rises as ``_let_go_ease``, so that paced by
-    its shrinking marks (``_flick_travel``) the tip reaches the point before it is clear of
-    the paper (``_let_go_reach``: how far); without ``vees`` (a picture's stroke, which ends
-    where its ink does) a 竖 does not. (Added in issue 26 point 2: in 8 samples, rising
-    evenly, the tip cleared the paper a third of the way out, and 撇 and 提 ended 4 px (at
-    512) short of the font's point, blunt; a 竖 narrowing to its end, a round U where the
-    font closes in a V.)"""
-    if movements != 1 or is_dot(path, width) or not (vees or _slants(path)):
-        return False
-    return _point_reach(path, width) > 0.0
-
-
-VEE = 0.5  # share of its end's width a let-go that does not slant (a 竖) sweeps on past the
-# median's end: to the V the outline closes in there (``_point_reach``'s up to twice the width,
-# the tip held down: a hairline tail past the V on 16 never-tuned characters at 384 px)
-VEE_EASE = 2.0  # a 竖's belly rises over its let-go as the let-go's share to this power (a
-# 撇's POINT_EASE 3 left a round bead past the V on 川's, 半's and 叶's 竖; 1.5: round as before)
-
-
-def _let_go_ease(path) -> float:
-    """The power a let-go's (``_lets_go``) belly rises as: a 撇's or a 提's ``POINT_EASE``,
-    a 竖's ``VEE_EASE``."""
-    return POINT_EASE if _slants(path) else VEE_EASE
-
-
-def _let_go_reach(path, width) -> float:
-    """How far (mm) past its median's end a let-go (``_lets_go``) sweeps: a 撇's or a 提's out
-    to its point (``_point_reach``), a 竖's only into the V of its end (``VEE``)."""
-    reach = _point_reach(path, width)
-    return reach if _slants(path) else min(reach, VEE * float(width[-1]))
+    return bool(slant and chord[0] * chord[1] > 0.0 and _point_reach(path, width) > 0.0)
 
 
 DOT_LENGTH = 3.4  # a movement alone in its stroke shorter than this many of its widest is a dot

@@ -25,12 +25,11 @@ from .feet import (
 )
 from .lifts import (
     POINT_CLEAR,
+    POINT_EASE,
     POINT_LIFT,
     POINT_SAMPLES,
     _flick_travel,
     _heel_held,
-    _let_go_ease,
-    _let_go_reach,
     _lets_go,
     _point_reach,
     _turned_back,
@@ -80,7 +79,6 @@ class Plan:
     strokes: list  # (first, end) sample of every stroke: entry, writing, lift-off
     hooks: tuple = ()  # the first body sample of every movement that is a hook (the outline's
     # ``median_movements`` says which)
-    vees: bool = True  # a 竖 narrowing to its end lets go into the V (``lifts._lets_go``)
 
 
 def _timed(dense, width, step_mm: float, slow_corners: float):
@@ -122,7 +120,6 @@ def plan(
     origin=(0.0, 0.0),
     slow_corners: float = 0.7,
     joins: bool = True,
-    vees: bool = True,
 ) -> Plan:
     """The path of the writing: each median resampled every step_mm with the outline's width,
     one movement per piece of the median between its sharp corners (``median_pieces``: a
@@ -131,9 +128,7 @@ def plan(
     own, so that a corner stays a corner. The brush is dipped before the first stroke and, with
     ``dip_every_mm``, before a stroke that would take it past that much writing since the last
     dip (without, the writer dips when the brush runs low, ``writer.dips_when_low``). With
-    ``joins`` an end that joins another stroke goes on into it (``outline.median_movements``).
-    With ``vees`` a 竖 narrowing to its end lets go into the V the font's outline closes in
-    past its median (``lifts._lets_go``; not a picture's stroke, which ends where its ink does)."""
+    ``joins`` an end that joins another stroke goes on into it (``outline.median_movements``)."""
     scale = size_mm / EM
     dip_every = np.inf if dip_every_mm is None else dip_every_mm
     tg, wd, tn, ph, dips, strokes, hooks = [], [], [], [], [], [], []
@@ -170,8 +165,8 @@ def plan(
             # at a sharp corner the brush is already down: a shorter lift and entry
             m0 = CORNER_SAMPLES if j else ENTRY_SAMPLES
             m1 = CORNER_SAMPLES if j < len(moves) - 1 else EXIT_SAMPLES
-            if j == len(moves) - 1 and not hook and _lets_go(p, w, len(moves), vees):
-                m1 = POINT_SAMPLES  # a let-go to its point: slower (``lifts``)
+            if j == len(moves) - 1 and not hook and _lets_go(p, w, len(moves)):
+                m1 = POINT_SAMPLES  # a 撇's, a 提's let-go to its point: slower (``lifts``)
             if heel:  # into and out of the hook's heel
                 m0 = HEEL_SAMPLES
             if flick and j == len(moves) - 2:
@@ -192,7 +187,6 @@ def plan(
         dips,
         strokes,
         tuple(hooks),
-        vees,
     )
 
 
@@ -384,8 +378,7 @@ def _enter_and_leave(
     comes down moving back up it, ``_landing``), the tip touching where the body begins, and
     lifts off moving on along the last direction (a flick, so that hooks and left-falling
     strokes end in a point, not a blot from a lift on the spot; ``ease``: the power the belly's
-    rise over a point's let-go goes as, ``lifts._let_go_ease`` for a let-go (``_lets_go``), which
-    sweeps only its ``_let_go_reach``). ``corner``:
+    rise over a point's let-go goes as, ``POINT_EASE`` for a 撇's or a 提's). ``corner``:
     the base's height at the sharp corner the movement begins after / ends at
     (``median_pieces``; None: none). At a 折 the brush lifts only slightly (``ZHE_KEEP``), on
     the corner itself (a flick there overshoots the corner), and presses again (``ENTRY_TOUCH``):
@@ -424,8 +417,7 @@ def _enter_and_leave(
     z0 = samples[body[-1], 2]
     rise = z0 + (top - z0) * np.sqrt(f)
     dot = corner[0] is None and corner[1] is None and is_dot(pl.target[body], pl.width[body])
-    reach = _let_go_reach if ease != 1.0 else _point_reach  # a let-go's (``lifts``)
-    point = reach(pl.target[body], pl.width[body]) if corner[1] is None else 0.0
+    point = _point_reach(pl.target[body], pl.width[body]) if corner[1] is None else 0.0
     point = 0.0 if dot else point  # a dot ends in its heel (``_heel_held``), not a point
     if point > 0.0:  # 出锋: the belly lets go evenly as the brush sweeps on, out to the point
         g = np.clip(f / POINT_LIFT, 0.0, 1.0)
@@ -572,8 +564,8 @@ def _fill(
             keep = HOOK_KEEP * p[-1] if hook[r + 1] else 0.0
             heel = _heel(p, press[j1]) if flick[r + 1] else keep
             nxt = hair - (heel if hook[r + 1] else ZHE_KEEP * p[-1])
-        last = len(runs) == 1 and _lets_go(pl.target[run], pl.width[run], 1, pl.vees)
-        ease = _let_go_ease(pl.target[run]) if last else 1.0
+        last = len(runs) == 1 and _lets_go(pl.target[run], pl.width[run], 1)  # a 撇, a 提
+        ease = POINT_EASE if last else 1.0
         _enter_and_leave(samples, pl, run, hover, hair, step_mm, (at, nxt), run_up, width_at, ease)
         if nxt is not None:
             heights.append(nxt)
