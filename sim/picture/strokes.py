@@ -122,6 +122,11 @@ def _prune_spurs(chains: list, nodes: list, mask, dist) -> tuple[list, set, dict
         _link(chains, nodes)
     hooked, loose = set(), {}
     for ni, spurs in pruned.items():
+        if not nodes[ni].chains:  # every chain of a piece of ink was a spur: a dot's blob
+            chains += _blob_stroke(spurs)
+            _link(chains, nodes)
+            hooked.add(ni)
+            continue
         if len(nodes[ni].chains) != 1:
             back = _overhangs(chains, nodes[ni], spurs)
             for c in back:
@@ -137,6 +142,23 @@ def _prune_spurs(chains: list, nodes: list, mask, dist) -> tuple[list, set, dict
             hooked.add(ni)
     _link(chains, nodes)
     return chains, hooked, loose
+
+
+def _blob_stroke(spurs: list) -> list:
+    """The two of a junction's spurs whose free ends lie farthest apart, when pruning took every
+    chain of a piece of ink: a heavy dot's skeleton is a small star of spurs round one junction,
+    each shorter than SPUR times its half-width, and the piece must still be written (光's and
+    并's dots in a scan of heavy kaishu were left out whole). The stroke runs from one free end
+    through the junction to the other (``find_strokes`` pairs them there)."""
+    if len(spurs) < 2:
+        return list(spurs)
+    free = [c.pts[0] if c.ends[0] < 0 else c.pts[-1] for c in spurs]
+    gap, a, b = max(
+        (float(np.hypot(*(free[i] - free[j]))), i, j)
+        for i in range(len(spurs))
+        for j in range(i + 1, len(spurs))
+    )
+    return [spurs[a], spurs[b]]
 
 
 def _dot(chains: list, c: Chain, node: Node, mask: np.ndarray, dist: np.ndarray) -> bool:

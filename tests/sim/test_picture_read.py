@@ -163,3 +163,19 @@ def test_a_hook_flicked_off_a_slanting_foot_is_one_stroke_with_its_leg():
     assert len(hook) == 1, [np.round(m[[0, -1]]) for m in meds]
     assert len(meds) == 1, [np.round(m[[0, -1]]) for m in meds]
     assert hook[0][0, 1] < 50 and hook[0][-1, 0] < 110, hook[0]  # from the top to the point
+
+
+def test_a_heavy_dot_whose_skeleton_is_all_spurs_is_still_written():
+    # a heavy kaishu dot in a scan (光's and 并's at 400 px): a blob with four lobes, whose
+    # skeleton is a star of spurs round one junction, each shorter than SPUR half-widths.
+    # Spur pruning took every chain and the whole dot was left out of the writing
+    yy, xx = np.mgrid[0:N, 0:N]
+    m = (xx - 128) ** 2 + (yy - 128) ** 2 <= 26**2
+    for deg, r in ((20, 11), (130, 9), (220, 12), (300, 8)):
+        a = np.radians(deg)
+        m |= (xx - 128 - 30 * np.cos(a)) ** 2 + (yy - 128 - 30 * np.sin(a)) ** 2 <= r * r
+    strokes, regions, char = read_strokes(Ink(m, m.astype(float), 0.5, 1.0))
+    assert len(strokes) == 1
+    line = _medians(char)[0]
+    assert np.hypot(*(line[-1] - line[0])) > 40  # from one lobe's end through the blob to another
+    assert regions[0].sum() >= 0.95 * m.sum()
