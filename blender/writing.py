@@ -10,7 +10,7 @@ import math
 
 import numpy as np
 
-from ..sim.picture.imitate import read_picture
+from ..sim.picture.imitate import read_picture, write_imitation
 from ..sim.writing.response import calibrate
 from ..sim.writing.writer import auto_size_mm, write_character
 from . import checks, images, jobs, keyframes, recordings, runtime, surfaces
@@ -61,23 +61,28 @@ class WriteJob(jobs.WorkerJob):
         checks.check_paper_pixels(w, w)
         return size
 
-    def _write(self, size_mm: float, passes: int, progress):
+    def _write(self, size_mm: float, passes: int, progress, im=None):
         progress(0.0, "calibrating the brush")
         response = calibrate(self.template, cache_dir=self.cache_dir)
         if not size_mm:  # the size follows from the brush's response
             size_mm = auto_size_mm(self.char, response)
         size = self._check(size_mm)
         flat = progress if self.on_surface is None else _share(progress, 0.0, WRITE_SHARE)
-        rec, _, sim = write_character(
-            self.char,
-            0,
-            self.template,
-            size_mm=size,
-            response=response,
-            passes=passes,
-            progress=flat,
-            px_per_mm=self.ppm,
-        )
+        if im is None:
+            rec, _, sim = write_character(
+                self.char,
+                0,
+                self.template,
+                size_mm=size,
+                response=response,
+                passes=passes,
+                progress=flat,
+                px_per_mm=self.ppm,
+            )
+        else:  # a picture's strokes, written as ``sim imitate`` writes them
+            rec, _, sim = write_imitation(
+                im, self.template, 0, size, passes, flat, self.ppm, response, self.piece
+            )
         if self.on_surface is not None:
             del sim  # the flat paper, before the surface's is simulated
             rec, sim = self.on_surface.lay(rec, size, _share(progress, WRITE_SHARE, 1.0))
@@ -124,7 +129,7 @@ class ImitateJob(WriteJob):
         self, scene, picture, name: str, size_mm: float, passes: int, detail: int, piece=False
     ):
         self._begin(scene, None, size_mm)
-        self.name, self.strokes = name, 0
+        self.name, self.strokes, self.piece = name, 0, piece
         self.picture = picture  # let go once read: a large picture is not kept while writing
         jobs.WorkerJob.__init__(
             self, lambda progress: self._imitate(detail, size_mm, passes, progress, piece)
@@ -141,7 +146,7 @@ class ImitateJob(WriteJob):
             progress(READ_SHARE + (1.0 - READ_SHARE) * frac, *details)
 
         writing(0.0, f"{self.strokes} strokes read")
-        return self._write(size_mm, passes, writing)
+        return self._write(size_mm, passes, writing, im)
 
     def finish(self, context):
         level, message = super().finish(context)

@@ -18,7 +18,8 @@ recording of the brush writing it.
    ink round it (the ink within its width of its median, the rest of the ink to the nearest
    stroke), traced into polygons; so ``writing.writer.write_character`` presses as wide as the
    picture's strokes and practises each stroke against the picture's ink.
-5. Optionally (``corrections``; off by default, see CORRECTIONS) the written ink read again
+5. Where the writing's shape agrees less than CORRECT_BELOW with the picture's (``corrections``
+   times at most, see CORRECTIONS) the written ink read again
    against the picture's (``correct``): stroke ends that overshoot or fall short moved, the
    character written again, the better writing kept.
 
@@ -37,8 +38,14 @@ from .ink import Ink, PictureError, find_ink, grey_of, load_picture
 from .outline import read_strokes
 from .piece import read_piece
 
-CORRECTIONS = 0  # the character written again this many times with its ends corrected (1: box IoU
-# +0.06, +0.01 and -0.15 on three tuning pictures, twice the time: not by default)
+CORRECTIONS = 1  # the character written again at most this many times with its ends corrected,
+# each time only while its shape agrees with the picture's less than CORRECT_BELOW; the better
+# writing stays (``shape_agreement``). Off (0) it was: a scan of heavy kaishu's thin 横 tip or
+# dot head written short moves the box, and every stroke against it. With it: scans of heavy
+# kaishu (30 characters of three copybook pages, never tuned on) box IoU 0.753 -> 0.775 (with
+# the heavy dot's reading), Kaiti pictures made scan- and photo-like (scripts/imitate_eval.py)
+# 0.845 -> 0.852, lowest 0.72 -> 0.81, no case lower; twice the time where it acts
+CORRECT_BELOW = 0.85  # a writing whose shape agrees this well (the moonshot) is kept as it is
 PASSES = 5  # practice passes per stroke: the picture's ink is the target (3: IoU 0.01 lower)
 MAX_DETAIL = 2048  # px a side: a picture is read at most this fine (Blender's Detail, the CLI)
 
@@ -92,33 +99,59 @@ def imitate(
     piece: bool = False,
     corrections: int = CORRECTIONS,
 ):
-    """Read a picture and write it with the brush (``write_character``: press from the
-    picture's widths, practice passes against the picture's own ink) on an n_px sheet; the
+    """Read a picture and write it with the brush (``write_imitation``) on an n_px sheet; the
     picture is read on an em box of n_px, at most MAX_DETAIL, px a side (the Imitation's ink is
     at that size). Returns the recording, the response, the finished simulation and the
-    Imitation. With ``corrections`` the written ink is read again against the picture's and
-    the character written again with its stroke ends moved (``correct.corrected``), up to that
-    many times; the writing whose ink's shape agrees best with the picture's stays
-    (``correct.shape_agreement``: both inks in their boxes, as imitations are measured; the
-    Imitation's character data stays the strokes as read)."""
-    from ..writing.writer import DIP_EVERY_STROKE, coverage_mask, write_character
-
+    Imitation."""
     if progress is not None:
         progress(0.0, "reading the picture")
     im = read_picture(source, min(n_px, MAX_DETAIL), piece=piece)  # the writing is n_px
     if progress is not None:
         progress(0.05, f"{len(im.strokes)} strokes found; writing")
 
+    def writing(frac, *details):
+        if progress is not None:
+            progress(0.05 + 0.95 * frac, *details)
+
+    rec, response, sim = write_imitation(
+        im, template, n_px, size_mm, passes, writing, px_per_mm, response, piece, corrections
+    )
+    return rec, response, sim, im
+
+
+def write_imitation(
+    im: Imitation,
+    template,
+    n_px: int = 512,
+    size_mm: float | None = None,
+    passes: int = PASSES,
+    progress=None,
+    px_per_mm: float | None = None,
+    response=None,
+    piece: bool = False,
+    corrections: int = CORRECTIONS,
+):
+    """Write a picture's strokes as read (``im``) with the brush (``write_character``: press
+    from the picture's widths, practice passes against the picture's own ink, each stroke
+    landing on its start and practised to its ends) on an n_px sheet (0: the sheet of size_mm
+    at px_per_mm, as Blender's Imitate Picture writes). While the written ink's shape agrees
+    less than CORRECT_BELOW with the picture's, it is read again against the picture's and the
+    character written again with its stroke ends moved (``correct.corrected``), up to
+    ``corrections`` times; the writing whose ink's shape agrees best with the picture's stays
+    (``correct.shape_agreement``: both inks in their boxes, as imitations are measured; the
+    Imitation's character data stays the strokes as read). Returns the recording, the
+    response and the finished simulation."""
+    from ..writing.writer import DIP_EVERY_STROKE, coverage_mask, write_character
+
     rounds = 1 + (corrections if not piece else 0)
 
     def writing(k):
         def report(frac, *details):
             if progress is not None:
-                progress(0.05 + 0.95 * (k + frac) / rounds, *details)
+                progress((k + frac) / rounds, *details)
 
         return report
 
-    target = ink_on(im.ink.mask, n_px)
     char, best = im.char, None
     for k in range(rounds):
         rec, response, sim = write_character(
@@ -134,13 +167,15 @@ def imitate(
             exact_ends=True,  # the picture shows where each stroke's ink begins and ends
         )
         written = coverage_mask(sim)
+        target = ink_on(im.ink.mask, len(written))  # the picture's ink on the written sheet
         score = shape_agreement(written, target)
         if best is None or score > best[0]:
-            best = (score, rec, sim, char)
-        if k + 1 < rounds:
-            char = corrected(char, im.strokes, written, target, n_px / len(im.ink.mask))
-    _, rec, sim, _ = best
-    return rec, response, sim, im
+            best = (score, rec, sim)
+        if k + 1 == rounds or score >= CORRECT_BELOW:
+            break  # the last round, or close enough: not written again
+        char = corrected(char, im.strokes, written, target, len(written) / len(im.ink.mask))
+    _, rec, sim = best
+    return rec, response, sim
 
 
 def ink_on(mask: np.ndarray, n: int) -> np.ndarray:

@@ -57,8 +57,12 @@ def test_imitate_a_png_keyframes_the_brush_and_replays(hb, tmp_path):
     write_png(path, picture())
     res = bpy.ops.hairy_brush.imitate_image(filepath=str(path), size_mm=90.0, passes=1, detail=128)
     assert res == {"FINISHED"}
-    written = np.array(json.loads(st.recording.as_string())["samples"])
+    stored = json.loads(st.recording.as_string())
+    written = np.array(stored["samples"])
     assert st.paper_width_mm == 90.0 and len(written) > 100
+    # written as ``sim imitate`` writes a picture (``write_imitation``): a dip before each of
+    # 王's four strokes, the picture's tone matched, not the brush's (it dipped once before)
+    assert len(stored["dips"]) == 4
     assert st.brush_object.animation_data.action is not None
     bpy.ops.hairy_brush.bake_samples()  # the keyframes give the same writing back
     baked = np.array(json.loads(st.recording.as_string())["samples"])

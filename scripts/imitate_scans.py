@@ -1,0 +1,79 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
+"""Measure ``sim imitate`` on scans or photographs of real brush writing (issue 26, point 4):
+every picture in a folder (one character each: cut them out of a copybook page with any image
+tool; the scans carry no licence, so they stay outside the repository) imitated with the
+command line's defaults at 512 px, and its box-normalised IoU with the picture's own ink
+(``picture_real.box_iou``). The picture's ink, the truth here, is read independently of the
+imitation's reader: the pixels whose largest of R, G, B is below ``--dark`` (a red grid or seal
+reads as paper), pieces under ``SPECK`` of the ink left out (dust, a printed label).
+
+    python scripts/imitate_scans.py DIR [--dark 140] [--out /tmp/scans] [--keep]
+
+Prints one line per picture and the mean; ``--keep`` keeps the written PNGs in ``--out``.
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import subprocess
+import sys
+import tempfile
+from pathlib import Path
+
+import numpy as np
+from PIL import Image
+from scipy import ndimage as ndi
+
+ROOT = Path(__file__).resolve().parent.parent
+sys.path.insert(0, str(ROOT))
+
+from scripts.picture_real import box_iou  # noqa: E402
+
+SPECK = 0.01  # of the picture's ink: a smaller piece is not writing
+PICTURES = (".png", ".jpg", ".jpeg", ".tif", ".tiff")
+
+
+def scan_ink(path: Path, dark: int) -> np.ndarray:
+    """The picture's ink: darker than ``dark`` in every channel, pieces under SPECK dropped."""
+    ink = np.asarray(Image.open(path).convert("RGB")).max(axis=-1) < dark
+    lab, _ = ndi.label(ink)
+    area = np.bincount(lab.ravel())
+    area[0] = 0
+    return (area >= SPECK * area.sum())[lab]
+
+
+def imitated(path: Path, out: Path) -> np.ndarray:
+    """The ink ``python -m sim imitate`` writes for the picture (its PNG saved at ``out``)."""
+    cmd = [sys.executable, "-m", "sim", "imitate", str(path), "-o", str(out), "-q"]
+    subprocess.run(cmd, cwd=ROOT, check=True)
+    return np.asarray(Image.open(out).convert("L")) < 128
+
+
+def main(argv=None) -> int:
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("folder", type=Path)
+    ap.add_argument("--dark", type=int, default=140, help="ink is darker than this (0-255)")
+    ap.add_argument("--out", type=Path, help="folder for the written PNGs (with --keep)")
+    ap.add_argument("--keep", action="store_true")
+    args = ap.parse_args(argv)
+    pictures = sorted(p for p in args.folder.iterdir() if p.suffix.lower() in PICTURES)
+    if not pictures:
+        ap.error(f"no pictures in {args.folder}")
+    out = args.out or Path(tempfile.mkdtemp(prefix="scans-"))
+    out.mkdir(parents=True, exist_ok=True)
+    rows = {}
+    for path in pictures:
+        written = imitated(path, out / f"{path.stem}-written.png")
+        rows[path.name] = round(box_iou(scan_ink(path, args.dark), written), 4)
+        print(f"{path.name:<24} box IoU {rows[path.name]:.3f}", flush=True)
+        if not args.keep:
+            (out / f"{path.stem}-written.png").unlink()
+    values = list(rows.values())
+    print(f"mean {np.mean(values):.4f}  lowest {min(values):.3f}  pictures {len(values)}")
+    print(json.dumps({"mean": round(float(np.mean(values)), 4), "rows": rows}))
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
