@@ -41,10 +41,11 @@ from .piece import read_piece
 CORRECTIONS = 1  # the character written again at most this many times with its ends corrected,
 # each time only while its shape agrees with the picture's less than CORRECT_BELOW; the better
 # writing stays (``shape_agreement``). Off (0) it was: a scan of heavy kaishu's thin 横 tip or
-# dot head written short moves the box, and every stroke against it. With it: scans of heavy
-# kaishu (30 characters of three copybook pages, never tuned on) box IoU 0.753 -> 0.775 (with
-# the heavy dot's reading), Kaiti pictures made scan- and photo-like (scripts/imitate_eval.py)
-# 0.845 -> 0.852, lowest 0.72 -> 0.81, no case lower; twice the time where it acts
+# dot head written short moves the box, and every stroke against it. With it (and the heavy dot's
+# reading, ``strokes._blob_stroke``): scans of heavy kaishu, 25 characters of two copybook pages
+# never looked at (scripts/imitate_scans.py) box IoU 0.764 -> 0.791; Kaiti pictures made scan-
+# and photo-like (scripts/imitate_eval.py) 0.845 -> 0.852, lowest 0.72 -> 0.81, no case lower;
+# twice the time where it acts
 CORRECT_BELOW = 0.85  # a writing whose shape agrees this well (the moonshot) is kept as it is
 PASSES = 5  # practice passes per stroke: the picture's ink is the target (3: IoU 0.01 lower)
 MAX_DETAIL = 2048  # px a side: a picture is read at most this fine (Blender's Detail, the CLI)
