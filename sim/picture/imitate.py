@@ -88,35 +88,22 @@ def read_picture(source, n: int = 512, name: str | None = None, piece: bool = Fa
     return Imitation(ink, strokes, regions, char, time.perf_counter() - t0)
 
 
-def imitate(
-    source,
-    template,
-    n_px: int = 512,
-    size_mm: float | None = None,
-    passes: int = PASSES,
-    progress=None,
-    px_per_mm: float | None = None,
-    response=None,
-    piece: bool = False,
-    corrections: int = CORRECTIONS,
-):
-    """Read a picture and write it with the brush (``write_imitation``) on an n_px sheet; the
-    picture is read on an em box of n_px, at most MAX_DETAIL, px a side (the Imitation's ink is
-    at that size). Returns the recording, the response, the finished simulation and the
-    Imitation."""
+def imitate(source, template, n_px: int = 512, progress=None, piece: bool = False, **how):
+    """Read a picture and write it with the brush (``write_imitation``, whose keywords ``how``
+    passes on: size_mm, passes, px_per_mm, response, corrections) on an n_px sheet; the picture
+    is read on an em box of n_px, at most MAX_DETAIL, px a side (the Imitation's ink is at that
+    size). Returns the recording, the response, the finished simulation and the Imitation."""
     if progress is not None:
         progress(0.0, "reading the picture")
     im = read_picture(source, min(n_px, MAX_DETAIL), piece=piece)  # the writing is n_px
     if progress is not None:
         progress(0.05, f"{len(im.strokes)} strokes found; writing")
 
-    def writing(frac, *details):
+    def report(frac, *details):
         if progress is not None:
             progress(0.05 + 0.95 * frac, *details)
 
-    rec, response, sim = write_imitation(
-        im, template, n_px, size_mm, passes, writing, px_per_mm, response, piece, corrections
-    )
+    rec, response, sim = write_imitation(im, template, n_px, progress=report, piece=piece, **how)
     return rec, response, sim, im
 
 
