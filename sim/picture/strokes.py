@@ -123,9 +123,11 @@ def _prune_spurs(chains: list, nodes: list, mask, dist) -> tuple[list, set, dict
     hooked, loose = set(), {}
     for ni, spurs in pruned.items():
         if not nodes[ni].chains:  # every chain of a piece of ink was a spur: a dot's blob
-            chains += _blob_stroke(spurs)
+            back = _blob_stroke(spurs)
+            chains += back
             _link(chains, nodes)
-            hooked.add(ni)
+            if len(back) == 2:  # the stroke runs on through the junction
+                hooked.add(ni)
             continue
         if len(nodes[ni].chains) != 1:
             back = _overhangs(chains, nodes[ni], spurs)
@@ -153,7 +155,7 @@ def _blob_stroke(spurs: list) -> list:
     if len(spurs) < 2:
         return list(spurs)
     free = [c.pts[0] if c.ends[0] < 0 else c.pts[-1] for c in spurs]
-    gap, a, b = max(
+    _, a, b = max(
         (float(np.hypot(*(free[i] - free[j]))), i, j)
         for i in range(len(spurs))
         for j in range(i + 1, len(spurs))
