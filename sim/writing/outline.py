@@ -12,6 +12,7 @@ import re
 import numpy as np
 
 from ..core import exact
+from .corners import CORNER_WINDOW, _clockwise, _heading_turn, _shoulders, _turn_at, corners
 from .feet import (
     HOOK_FROM_FOOT,
     HOOK_FROM_MIDDLE,
@@ -26,7 +27,7 @@ from .feet import (
     is_hook,
     narrows,
 )
-from .polygons import _ray_hits, distance_to_outline, fill
+from .polygons import _bands, _ray_hits, distance_to_outline, fill
 
 EM = 1024.0
 TOP = 900.0
@@ -209,104 +210,9 @@ def _tips_and_join(med, polys, others) -> tuple[np.ndarray, bool]:
     return np.concatenate([ends[0][None], m, ends[1][None]]), joins
 
 
-CUT_OVER_DISC = 1.3  # a cut across the median longer than this many times the inscribed disc
-# at its middle (diameter) runs along the stroke, as at a corner or the foot of a hook: there
-# the width is held to this many times the disc's diameter and the median point is the centre
-# (the "true discs" yardstick reads its radii off the same discs and reaches IoU 0.95)
-CORNER_TURN = 1.3  # rad of turn over +-CORNER_WINDOW: a hook's foot or a 折 is two movements
-CORNER_WINDOW = 60.0  # data units either side (a median's corner spreads over 2-3 vertices)
 FOOT_REACH = 0.58  # share of the way to the outline a movement goes on past a corner (the
 # foot; measured with issue 26's 折: 0.65 fills 永's and 口's shoulders further but presses a
 # round knob out past a pointed shoulder's sides, as 力's; 0.5 leaves more of them bare)
-
-
-def _bands(pts, polys) -> tuple[np.ndarray, np.ndarray]:
-    """Centres and full widths along points of a median (data units): the outline is cut
-    across the median's direction, the median point moved to the middle of the cut. A cut that
-    runs along the stroke (at a corner or an end: longer than ``CUT_OVER_DISC`` times the
-    diameter of the largest disc inside the outline at the cut's middle or the median point)
-    gives way to that disc, on the median point."""
-    r = np.maximum(distance_to_outline(pts, polys), 0.0)
-    if len(pts) > 1:
-        tan = np.gradient(pts, axis=0)
-        tan /= np.maximum(np.linalg.norm(tan, axis=1, keepdims=True), 1e-9)
-    else:
-        tan = np.array([[1.0, 0.0]])
-    nrm = np.stack([-tan[:, 1], tan[:, 0]], axis=1)
-    left = np.minimum(_ray_hits(pts, nrm, polys), 3.0 * r)
-    right = np.minimum(_ray_hits(pts, -nrm, polys), 3.0 * r)
-    inside = r > 0
-    left, right = np.where(inside, left, 0.0), np.where(inside, right, 0.0)
-    cut = left + right
-    centre = pts + (0.5 * (left - right))[:, None] * nrm
-    disc = 2.0 * np.maximum(distance_to_outline(centre, polys), r)
-    along = cut > CUT_OVER_DISC * disc  # the cut runs along the stroke: trust the disc
-    centre = np.where(along[:, None], pts, centre)
-    width = np.where(along, np.minimum(cut, CUT_OVER_DISC * disc), cut)
-    # nor more than CUT_OVER_DISC times the disc where the band is centred (a foot's cut
-    # slanting into a 折's outer corner)
-    held = CUT_OVER_DISC * 2.0 * np.maximum(distance_to_outline(centre, polys), 0.0)
-    return centre, np.minimum(width, held)
-
-
-def _heading_turn(a, b) -> np.ndarray:
-    """Unsigned angle (rad) between direction vectors a and b, row by row."""
-    return np.abs(exact.arctan2(a[:, 0] * b[:, 1] - a[:, 1] * b[:, 0], np.sum(a * b, axis=1)))
-
-
-def _sharpest(turn, sharp) -> list[int]:
-    """The index of the largest ``turn`` in each run of ``sharp``."""
-    step_of = np.diff(np.concatenate([[False], sharp, [False]]).astype(int))
-    starts, ends = np.flatnonzero(step_of == 1), np.flatnonzero(step_of == -1)
-    return [i + int(np.argmax(turn[i:j])) for i, j in zip(starts, ends, strict=True)]
-
-
-def corners(pts, step: float, chamfered: bool = True) -> list[int]:
-    """Indices of the sharp corners of a median resampled every ``step``: where its heading,
-    read off chords ``CORNER_WINDOW`` long before and after the point, turns more than
-    ``CORNER_TURN`` (the sharpest point of each such run; none within a window of the ends);
-    and (``chamfered``) the corners a median cuts across (``_chamfered``)."""
-    win = max(int(round(CORNER_WINDOW / step)), 1)
-    if len(pts) < 2 * win + 1:
-        return []
-    turn = _heading_turn(pts[win:-win] - pts[: -2 * win], pts[2 * win :] - pts[win:-win])
-    found = [win + i for i in _sharpest(turn, turn > CORNER_TURN)]
-    if chamfered:
-        more = _chamfered(pts, win)
-        found += [k for k in more if all(abs(k - f) > 2 * win for f in found)]
-    return sorted(found)
-
-
-LEG_STRAIGHT = 0.35  # rad: the most a leg of a chamfered corner may bend along its own length
-
-
-def _chamfered(pts, win: int) -> list[int]:
-    """Corners a median cuts across (a 横折's shoulder: the median runs along the horizontal,
-    a short diagonal, then down; 永, 口, 日, 墨's 罒): two straight legs, each two windows long
-    and bending less than ``LEG_STRAIGHT`` on its own, whose headings differ by more than
-    ``CORNER_TURN`` across a gap of one window at the corner (a gentle curve turns as much only
-    over a longer way, and its legs are not straight), turning clockwise as a 横折 does (a bend
-    the other way, down and on to the right, is a 竖弯's round turn, 转: one movement). The
-    corner is where the heading over one window either side turns most. Read over one window
-    either side such a shoulder turns less than ``CORNER_TURN``: it was written as one
-    movement, the pressed belly swept round the shoulder, a round knob. (Added in issue 26.)"""
-    n, gap = len(pts), max(win // 2, 1)
-    if n < 2 * (2 * win + gap) + 1:
-        return []
-    k = np.arange(2 * win + gap, n - 2 * win - gap)
-    in1, in2, in3 = pts[k - gap - 2 * win], pts[k - gap - win], pts[k - gap]
-    out1, out2, out3 = pts[k + gap], pts[k + gap + win], pts[k + gap + 2 * win]
-    turn = _heading_turn(in3 - in1, out3 - out1)
-    straight = (_heading_turn(in2 - in1, in3 - in2) < LEG_STRAIGHT) & (
-        _heading_turn(out2 - out1, out3 - out2) < LEG_STRAIGHT
-    )
-    sharp = (turn > CORNER_TURN) & straight
-    a, b = in3 - in1, out3 - out1
-    sharp &= a[:, 0] * b[:, 1] - a[:, 1] * b[:, 0] < 0.0  # clockwise (y up)
-    if not sharp.any():
-        return []
-    local = _heading_turn(pts[k] - pts[k - win], pts[k + win] - pts[k])
-    return [int(k[i]) for i in _sharpest(local, sharp)]
 
 
 FOOT_FAN = 1.0  # rad the foot may turn from the way in, away from the turn, towards the
@@ -485,113 +391,3 @@ def baseline_masks(char: dict, n: int) -> dict:
         "round_pen": discs(centres, np.full(len(radii), mean_r), n),
         "true_discs": discs(centres, radii, n),
     }
-
-
-SHOULDER_OVER = 1.15  # a 折's shoulder is at most this many times the leg's width (the font's
-# is a knob 1.5-2 times it)
-SHOULDER_SWELL = 2.0  # shoulder widths before a 折's corner over which the 横 swells from its
-# own width to the shoulder's (issue 26.2: held at the shoulder's over them, its belly stood
-# out above the 横, a knob: ink outside the font near 10 unseen corners 92 -> 58 px; 1.0: the
-# 横's thinner end left the font bare, 口's IoU -0.012)
-
-
-def _shoulders(pts, polys, step: float, edges, pieces) -> list:
-    """The movements either side of every 折 (a sharp corner not into a hook) made again
-    so that the shoulder is an angular corner about the leg's width plus a little: the movement
-    into the corner ends on the median's corner (no foot: the 顿 goes on from there, pressed,
-    to ``_dun_point``), the leg sets off from the 顿's end (``_from_the_shoulder``), and both
-    are held to ``SHOULDER_OVER`` times the leg's width (``_body_width``) within two such widths
-    of the corner (the movement into it to its own, if wider, only on the corner: it swells to
-    that evenly from its own over ``SHOULDER_SWELL`` such widths; beyond the paper, which
-    presses to the outline's width, here the font's round knob). Only a clockwise corner
-    (``_clockwise``: a 横折, a 横撇; a 竖折's stays as it was). (Added in issue 26: the font's
-    shoulder is a round knob up to twice as wide as the leg, and the belly pressed into it, up
-    to the calibration's deepest press, left a ball; pressed into a foot along the way in and
-    the leg set off back on the corner, it left a round knob: SHOULDER_FAN 0, turned down the
-    diagonal, -0.6, left 口's outer corner bare, IoU 0.916 -> 0.879, fanned up, FOOT_FAN, it
-    pressed a ball.)"""
-    out = list(pieces)
-    for k in range(len(pieces) - 1):
-        i0, i1 = edges[k], edges[k + 1]
-        if pieces[k + 1][2] or not _clockwise(pts, i1, step):
-            continue  # a hook's foot, or a 竖折's corner (down, then on to the right)
-        centre, width = _bands(pts[i0 : i1 + 1], polys)
-        if k:
-            _past_the_corner(width, step)
-        leg_c, leg_w, leg_h = out[k + 1]
-        cap = SHOULDER_OVER * _body_width(leg_w)
-        dun = _dun_point(pts, i1, polys, step, _body_width(leg_w))
-        leg_c = _from_the_shoulder(leg_c, dun, DUN_SPAN * cap)
-        corner = pts[i1]
-        own = SHOULDER_OVER * _body_width(width)
-        d = np.linalg.norm(centre - corner, axis=1)  # swelling to the shoulder on the corner
-        near = d < SHOULDER_SWELL * cap
-        swell = own + (max(own, cap) - own) * np.clip(1.0 - d / (SHOULDER_SWELL * cap), 0.0, 1.0)
-        width = np.where(near, np.minimum(width, swell), width)
-        near = np.linalg.norm(leg_c - corner, axis=1) < 2.0 * cap
-        out[k] = (centre, width, out[k][2])
-        out[k + 1] = (leg_c, np.where(near, np.minimum(leg_w, cap), leg_w), leg_h)
-    return out
-
-
-DUN_REACH = 0.7  # share of the way from the median's corner to where the belly, half the leg's
-# width round the base, would reach the outline that the 顿 presses to (``_dun_point``)
-DUN_FAN = 0.5  # rad past the way in, away from the turn, the 顿 may aim (from the turn's bisector)
-DUN_SPAN = 1.0  # shoulder widths (SHOULDER_OVER times the leg's) over which a 折's leg, set off
-# from the 顿's end, comes back to its band's centres (``_from_the_shoulder``)
-
-
-def _dun_point(pts, k: int, polys, step: float, leg_width: float) -> np.ndarray:
-    """Where the 顿 at a 折's corner ``k`` presses to: from the median's corner toward the
-    outline's farthest point among the ways from the turn's bisector (the way in and the way
-    out, each a chord of ``CORNER_WINDOW``, added: down and to the right at a 横折) round past
-    the way in by ``DUN_FAN`` (the font's shoulder: a facet down-right, or a knob up-right),
-    ``DUN_REACH`` of the way to where the belly, half the leg's width round the base, would
-    reach the outline. The calligrapher runs the horizontal into the corner, lifts a little and
-    presses on out into the shoulder, and sets the leg off from there: the shoulder is the
-    corner of that pressed move, not a disc pressed on the spot. (Added in issue 26: aimed
-    down the bisector alone, 口's knob up-right of its corner was left bare, held-out IoU
-    0.924 -> 0.901.)"""
-    win = max(int(round(CORNER_WINDOW / step)), 1)
-    d = pts[k] - pts[max(k - win, 0)]
-    e = pts[min(k + win, len(pts) - 1)] - pts[k]
-    way = d / max(float(np.linalg.norm(d)), 1e-9) + e / max(float(np.linalg.norm(e)), 1e-9)
-    a0 = exact.arctan2(way[1], way[0])
-    a1 = exact.arctan2(d[1], d[0])
-    a1 = a0 + np.remainder(a1 - a0 + np.pi, 2.0 * np.pi) - np.pi  # the way in, from the bisector
-    ang = a0 + (a1 - a0 + np.sign(a1 - a0) * DUN_FAN) * np.linspace(0.0, 1.0, 11)
-    dirs = np.stack(exact.sin_cos(ang)[::-1], axis=1)
-    hits = _ray_hits(np.repeat(pts[k][None], len(dirs), axis=0), dirs, polys)
-    hits = np.where(np.isfinite(hits), hits, 0.0)
-    j = int(np.argmax(hits))
-    return pts[k] + DUN_REACH * max(float(hits[j]) - 0.5 * leg_width, 0.0) * dirs[j]
-
-
-def _from_the_shoulder(leg, dun, span: float) -> np.ndarray:
-    """A 折's leg (its centres) set off from ``dun`` (``_dun_point``) instead of the median's
-    corner: its points over its first ``span`` data units on a straight line from there to
-    the leg's point at ``span`` (the band's centres round the corner wander with the font's
-    knob), the rest as they were."""
-    s = np.concatenate([[0.0], np.cumsum(np.linalg.norm(np.diff(leg, axis=0), axis=1))])
-    j = min(int(np.searchsorted(s, span)), len(leg) - 1)
-    if j < 1:
-        return leg
-    t = (np.arange(j) / j)[:, None]
-    out = leg.copy()
-    out[:j] = np.asarray(dun)[None, :] * (1.0 - t) + leg[j][None, :] * t
-    return out
-
-
-def _clockwise(pts, k: int, step: float) -> bool:
-    """Whether a median turns clockwise (y up) at corner ``k``, read over ``CORNER_WINDOW``
-    either side: a 横折's shoulder (right, then down), not a 竖折's corner."""
-    return bool(_turn_at(pts, k, step)[1] < 0.0)
-
-
-def _turn_at(pts, k: int, step: float) -> tuple[np.ndarray, float]:
-    """A median's way into point ``k`` (its chord over ``CORNER_WINDOW``) and how it turns
-    there: the cross product of the chords in and out (> 0 anticlockwise, y up)."""
-    win = max(int(round(CORNER_WINDOW / step)), 1)
-    d = pts[k] - pts[max(k - win, 0)]
-    e = pts[min(k + win, len(pts) - 1)] - pts[k]
-    return d, float(d[0] * e[1] - d[1] * e[0])

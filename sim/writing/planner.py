@@ -432,7 +432,7 @@ def _enter_and_leave(
 
 def _onto_the_dun(pl: Plan, run, leg) -> bool:
     """Whether the movement ``run`` (body samples) ends at a 折's shoulder the outline made a
-    顿 of (``outline._dun_point``): the next movement, ``leg``, sets off ahead of its end, not
+    顿 of (``corners._dun_point``): the next movement, ``leg``, sets off ahead of its end, not
     back on the corner behind a foot it pressed into (a 竖折's corner, a picture's)."""
     ahead = pl.target[leg[0]] - pl.target[run[-1]]
     return float(ahead @ pl.tangent[run[-1]]) >= 0.0
@@ -472,7 +472,7 @@ def _turn_on_the_tip(samples, pl: Plan, span, heights, dun=()) -> None:
     (``heights``, one per corner in order): the belly lifted slightly at a 折 (``ZHE_KEEP``),
     pressed at a hook's foot (``HOOK_KEEP``). At a 折 (``dun``: per corner, whether it is one)
     the lift, the turn and the entry are one move (the 顿): the base goes on evenly from the
-    movement's end to where the leg sets off (the outline's ``_dun_point``), lifting a little
+    movement's end to where the leg sets off (``corners._dun_point``), lifting a little
     and pressing again as it goes, never at rest while pressed. (Issue 26: lifted and entered
     on the spot, and the turn dragged back across the shoulder, it laid a round knob.)"""
     a, b = span

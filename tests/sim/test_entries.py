@@ -7,7 +7,6 @@ import pytest
 
 from sim.writing.hanzi import find_char
 from sim.writing.outline import (
-    CUT_OVER_DISC,
     EM,
     TOP,
     corners,
@@ -17,6 +16,7 @@ from sim.writing.outline import (
     stroke_polygons,
 )
 from sim.writing.planner import WRITING, plan
+from sim.writing.polygons import CUT_OVER_DISC
 from sim.writing.response import calibrate
 from tests.sim.builders import stiff_template
 

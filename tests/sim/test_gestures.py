@@ -213,7 +213,7 @@ def test_a_zhe_shoulder_is_planned_about_the_leg_wide(char):
     # the 横折's shoulder (issue 26, part 2): the font's is a round knob up to twice as wide as
     # the leg, and the belly pressed to fill it left a ball; the movements either side of the
     # corner are planned no wider near it than the leg plus a little
-    from sim.writing.outline import SHOULDER_OVER
+    from sim.writing.corners import SHOULDER_OVER
 
     (head, head_w), (leg, leg_w) = median_pieces(find_char(char))[1][:2]
     body = float(np.median(leg_w[len(leg_w) // 4 : 3 * len(leg_w) // 4]))

@@ -58,8 +58,8 @@ def test_the_way_into_a_zhe_swells_only_on_the_corner(char):
     # SHOULDER_SWELL shoulder widths before the corner and swells to the shoulder's from there:
     # a little more than a shoulder width before the corner it is no wider than halfway (main:
     # pressed to the shoulder's over both widths, its belly stood up out of the font there)
+    from sim.writing.corners import SHOULDER_OVER, SHOULDER_SWELL
     from sim.writing.feet import _body_width
-    from sim.writing.outline import SHOULDER_OVER, SHOULDER_SWELL
 
     (head, head_w), (leg, leg_w) = median_pieces(find_char(char))[1][:2]
     own = SHOULDER_OVER * _body_width(head_w)
