@@ -295,22 +295,23 @@ def median_pieces(char: dict, step: float = 4.0) -> list[list[tuple[np.ndarray, 
     return [pieces for pieces, _ in median_movements(char, step)]
 
 
-def median_movements(char: dict, step: float = 4.0, joins: bool = True) -> list[tuple[list, bool]]:
-    """``median_pieces`` of every stroke, with whether its last movement is a hook; with
-    ``joins`` an end that joins another stroke goes on into it (``_tips_and_join``). (Not for a
-    picture's strokes, read as pieces that meet everywhere: its imitation practises its joins,
-    ``practice._join_error``.)"""
+def median_movements(char: dict, step: float = 4.0, font: bool = True) -> list[tuple[list, bool]]:
+    """``median_pieces`` of every stroke, with whether its last movement is a hook. With
+    ``font`` (stroke data, not a picture's strokes) an end that joins another stroke goes on
+    into it (``_tips_and_join``; a picture's strokes are read as pieces that meet everywhere:
+    its imitation practises its joins, ``practice._join_error``), and a 折's shoulder is the
+    calligrapher's, not the typeface's knob (``corners._shoulders``)."""
     out = []
     strokes = stroke_polygons(char)
     for i, (med, polys) in enumerate(zip(char["medians"], strokes, strict=True)):
-        others = strokes[:i] + strokes[i + 1 :] if joins else []
+        others = strokes[:i] + strokes[i + 1 :] if font else []
         tipped, joined = _tips_and_join(med, polys, others)
         pts, _ = resample(tipped, step)
         edges = [0, *corners(pts, step), len(pts) - 1]
-        pieces = _pieces(pts, polys, step, edges)
+        pieces = _pieces(pts, polys, step, edges, font=font)
         curl = None if len(pieces) > 1 and pieces[-1][2] else _curled_end(pts, step, edges[-2])
         if curl is not None:  # a hook off a curve, if the piece after it is one
-            curled = _pieces(pts, polys, step, [*edges[:-1], curl, edges[-1]], curl=True)
+            curled = _pieces(pts, polys, step, [*edges[:-1], curl, edges[-1]], True, font)
             pieces = curled if curled[-1][2] else pieces
         if joined:
             centre, width, hook = pieces[-1]
@@ -319,7 +320,7 @@ def median_movements(char: dict, step: float = 4.0, joins: bool = True) -> list[
     return out
 
 
-def _pieces(pts, polys, step: float, edges, curl: bool = False) -> list:
+def _pieces(pts, polys, step: float, edges, curl: bool = False, font: bool = True) -> list:
     """``median_pieces`` of one median (``pts``) cut at ``edges`` (``curl``: the last cut is
     where its end curls off a curve): (centres, widths, whether it is a hook) per movement."""
     pieces = []
@@ -356,7 +357,7 @@ def _pieces(pts, polys, step: float, edges, curl: bool = False) -> list:
         centre, width, _ = pieces[-2]
         k = edges[-2] - edges[-3]  # the corner, in the movement into it
         pieces[-2] = (centre, _gathered_foot(width, k, step), False)
-    return _shoulders(pts, polys, step, edges, pieces)
+    return _shoulders(pts, polys, step, edges, pieces, font)
 
 
 def discs(centres_img, radii_img, n: int) -> np.ndarray:

@@ -119,7 +119,7 @@ def plan(
     dip_every_mm: float | None = None,
     origin=(0.0, 0.0),
     slow_corners: float = 0.7,
-    joins: bool = True,
+    font: bool = True,
 ) -> Plan:
     """The path of the writing: each median resampled every step_mm with the outline's width,
     one movement per piece of the median between its sharp corners (``median_pieces``: a
@@ -127,15 +127,15 @@ def plan(
     movements of a stroke, travel in the air between strokes. Each movement is smoothed on its
     own, so that a corner stays a corner. The brush is dipped before the first stroke and, with
     ``dip_every_mm``, before a stroke that would take it past that much writing since the last
-    dip (without, the writer dips when the brush runs low, ``writer.dips_when_low``). With
-    ``joins`` an end that joins another stroke goes on into it (``outline.median_movements``)."""
+    dip (without, the writer dips when the brush runs low, ``writer.dips_when_low``). ``font``:
+    the character is stroke data, not a picture's strokes (``outline.median_movements``)."""
     scale = size_mm / EM
     dip_every = np.inf if dip_every_mm is None else dip_every_mm
     tg, wd, tn, ph, dips, strokes, hooks = [], [], [], [], [], [], []
     since_dip, prev = np.inf, None
     fine = max(step_mm / scale / 4.0, 0.25)
     k = max(int(round(3.0 / fine / scale)), 1)  # +-1.5 mm: the cut's jitter smoothed
-    for pieces, hook in median_movements(char, step=fine, joins=joins):
+    for pieces, hook in median_movements(char, step=fine, font=font):
         moves = []
         for pts_d, width_d in pieces:
             dense = np.stack(
@@ -273,33 +273,6 @@ def _ramp_length(s, width) -> float:
     quarter of the movement (``s``: distance along it per sample)."""
     w = np.max(width[: max(len(width) // 3, 1)])
     return float(np.clip(ENTRY_RAMP * w, 0.5, 0.25 * s[-1]))
-
-
-def entry_zone(pl: Plan, body) -> np.ndarray:
-    """For each body sample of a stroke, whether it lies in a movement's entry, where the belly
-    is still pressing down (``_entry_ramp``): the planned gesture (起笔), not yet the stroke's
-    band. A hook, which sets off pressed, has none."""
-    runs = _movements(body)
-    zone = [np.zeros(len(r), dtype=bool) for r in runs]
-    for r, (run, hook) in enumerate(zip(runs, _is_hook(pl, runs), strict=True)):
-        if not hook:
-            s = _along(pl.target[run])
-            zone[r] = s < _ramp_length(s, pl.width[run])
-    return np.concatenate(zone)
-
-
-def point_zone(pl: Plan, body) -> np.ndarray:
-    """For each body sample of a stroke, whether it lies in the last stretch of a movement that
-    ends in a point (``_point_reach``), as long as the stroke is wide there: where the belly
-    lets go, and the band read there narrows because the brush lifts off, not because it is
-    pressed too little."""
-    runs = _movements(body)
-    zone = [np.zeros(len(r), dtype=bool) for r in runs]
-    for r, run in enumerate(runs):
-        if r == len(runs) - 1 and _point_reach(pl.target[run], pl.width[run]) > 0.0:
-            s = _along(pl.target[run])
-            zone[r] = s > s[-1] - float(pl.width[run][-1])
-    return np.concatenate(zone)
 
 
 def _turn_ease(path, s) -> np.ndarray:

@@ -133,7 +133,7 @@ def write_character(
     _, geometry, _, ink = template.resolve()
     hair = geometry.hair_length_mm
     step_mm = response.speed_mm_s / template.sample_rate_hz
-    pl = plan(char, size, step_mm, dip_every_mm, joins=not exact_ends)
+    pl = plan(char, size, step_mm, dip_every_mm, font=not exact_ends)
     N = len(pl.target)
     samples = np.zeros((N, 6))
     dips = [Dip(i, ink.depth, tuple(ink.color), ink.wetness) for i in pl.dips]

@@ -243,7 +243,8 @@ def test_a_movements_entry_is_the_stretch_the_belly_presses_down_over():
     # 永's 竖钩: the foot movement's entry is the first samples, as far along the path as
     # _entry_ramp presses over (half the width, at least 0.5 mm); the hook, which sets off
     # pressed from the foot, has no entry; an L's 折 gives both its movements one
-    from sim.writing.planner import _along, _movements, _ramp_length, entry_zone
+    from sim.writing.planner import _along, _movements, _ramp_length
+    from sim.writing.zones import entry_zone
 
     for ch, hooks in ((find_char("永"), [False, False, True]), (L_CHAR, [False, False])):
         pl = plan(ch, 100.0, 0.5)
@@ -279,7 +280,12 @@ def test_practice_keeps_an_entrys_sideways_placement():
     ceiling = np.full(n, float(resp.press_mm[-1]))
     pointing = np.arange(n) >= n - 10
     new_press, side = _correct(
-        resp, (press, np.zeros(n)), want, (got, centre, valid), ceiling, (entering, pointing)
+        resp,
+        (press, np.zeros(n)),
+        want,
+        (got, centre, valid),
+        ceiling,
+        (entering, pointing, ~valid),
     )
     assert np.all(side[:8] == 0.0)  # the smoothing reaches two samples in from the far side
     assert np.allclose(side[14:], -PRACTICE_SIDE_GAIN * 0.4)
@@ -301,8 +307,8 @@ def test_a_movement_that_narrows_to_its_end_sweeps_on_out_to_its_point(response)
         _fill,
         _movements,
         _point_reach,
-        point_zone,
     )
+    from sim.writing.zones import point_zone
 
     ch = find_char("永")
     pl = plan(ch, 100.0, 0.5)

@@ -6,7 +6,8 @@ import numpy as np
 
 from sim.core.params import HOVER_MM
 from sim.writing.hanzi import find_char
-from sim.writing.planner import RUN_UP, WRITING, _fill, _movements, entry_zone, plan
+from sim.writing.planner import RUN_UP, WRITING, _fill, _movements, plan
+from sim.writing.zones import entry_zone
 from tests.sim.builders import stiff_template
 
 
