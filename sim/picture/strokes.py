@@ -166,24 +166,48 @@ def _blob_stroke(spurs: list) -> list:
 def _dot(chains: list, c: Chain, node: Node, mask: np.ndarray, dist: np.ndarray) -> bool:
     """Whether a short chain from a free end into a junction is a dot touching the stroke
     there (宀's or 亠's dot sitting on its horizontal in a scan), not a bump: its ink stands
-    out DOT[0] of the junction's half-width or more past the stroke's edge (the chain, and the
-    ink on along its way past the skeleton's end), and it is DOT[1] of that thick or more (a
-    stroke's pointed tip reaching past a corner is thin), where a stroke runs on through the
-    junction (two of its other chains leave it nearly opposite ways: at a corner where strokes
-    start or end, a spur is a stroke's tip, ``_tips``)."""
-    ways = [_exit(chains[i], e, node)[1] for i, e in node.chains if chains[i] is not c]
-    if not any(
-        float(matmul(u, v)) < CONTINUE_COS for i, u in enumerate(ways) for v in ways[i + 1 :]
-    ):
+    out DOT[0] of the crossing stroke's half-width or more past the junction's edge (the chain,
+    and the ink on along its way past the skeleton's end), and it is DOT[1] of that thick or
+    more (a stroke's pointed tip reaching past a corner is thin), where a stroke runs on
+    through the junction (two of its other chains leave it nearly opposite ways: at a corner
+    where strokes start or end, a spur is a stroke's tip, ``_tips``). Beyond the paper, which
+    reads no pictures: the scale is the crossing stroke's own half-width (``_crossing_radius``)
+    where it is thinner than the junction - a heavy stroke's head pressed onto a thin one (丰's
+    vertical in a heavy 害) makes the junction as wide as the head, and measured by it the head
+    read as a bump and its stroke was left unwritten."""
+    ways = [(i, e, _exit(chains[i], e, node)[1]) for i, e in node.chains if chains[i] is not c]
+    through = [
+        (a[:2], b[:2])
+        for k, a in enumerate(ways)
+        for b in ways[k + 1 :]
+        if float(matmul(a[2], b[2])) < CONTINUE_COS
+    ]
+    if not through:
         return False
+    r = min(node.radius, min(_crossing_radius(chains, node, pair, dist) for pair in through))
     end = 0 if c.ends[0] >= 0 else 1
     pts = _outward(c, end)
     run = len(_extend(pts, mask, node.radius, 0.0)[0])
     iy, ix = np.round(pts[len(pts) // 2 :, ::-1]).astype(int).T
     thick = float(dist[iy, ix].max())
-    return (
-        _length(pts) + run - node.radius >= DOT[0] * node.radius and thick >= DOT[1] * node.radius
-    )
+    return _length(pts) + run - node.radius >= DOT[0] * r and thick >= DOT[1] * r
+
+
+def _crossing_radius(chains: list, node: Node, pair: tuple, dist: np.ndarray) -> float:
+    """The half-width of the stroke running on through a junction by the two chain ends
+    ``pair``: the median of the ink's half-width along either chain just out of the junction's
+    zone (as far again as the zone reaches); the junction's own where either chain ends inside
+    the zone (a heavy dot's lobes, ``_blob_stroke``: no stroke runs through)."""
+    rads = []
+    for ci, e in pair:
+        pts = _outward(chains[ci], e)
+        if np.linalg.norm(pts[-1] - node.centre, axis=-1) <= ZONE * node.radius + 1.0:
+            return node.radius
+        k = _exit(chains[ci], e, node)[0]
+        seg = pts[k : k + max(int(ZONE * node.radius), 3)]
+        iy, ix = np.round(seg[:, ::-1]).astype(int).T
+        rads.append(dist[iy, ix])
+    return float(np.median(np.concatenate(rads)))
 
 
 def _tips(chains: list, nodes: list, loose: dict, partner: dict, mask) -> None:
@@ -401,10 +425,38 @@ def _trace(ci: int, end: int, chains, nodes, partner, used, dist) -> _Trace:
                 t.add(np.vstack([_line(seg[-1], c1), c1]), False, dist)
             return t
         t.through.add(node)
+        tip = _is_tip(chains[ci], nodes[node]) or _is_tip(chains[nxt[0]], nodes[node])
         ci, end = nxt
         nseg = _cut(chains[ci], end, nodes)
-        t.add(_line(seg[-1], nseg[0]), False, dist)
+        t.add(_across(seg[-1], nseg[0], nodes[node], dist, tip), False, dist)
         seg = nseg
+
+
+def _is_tip(c: Chain, node: Node) -> bool:
+    """Whether a chain is a stroke's tip at the junction: it runs from a free end and is no
+    longer than a spur (SPUR times the junction's half-width)."""
+    return min(c.ends) < 0 and _length(c.pts) < SPUR * node.radius + 3
+
+
+def _across(a: np.ndarray, b: np.ndarray, node: Node, dist: np.ndarray, tip: bool) -> np.ndarray:
+    """The way across a junction a stroke runs through, from ``a`` to ``b``: the chord, or,
+    where one side is a stroke's tip (``_is_tip``) and the chord leaves the ink while the way
+    by the junction's centre does not, that way. Beyond the paper (which reads no pictures):
+    a dot that lands on its tip, presses into a head and turns back (礻's) thins to a short
+    spur turning sharply in the head, and the chord across the turn cut the corner over the
+    paper, the head left unwritten. Between two long chains (a V's corner in 長) the chord
+    stays: the writer's turn there reads the picture better."""
+    chord = _line(a, b)
+    if not tip or _in_ink(chord, dist):
+        return chord
+    bent = np.vstack([_line(a, node.centre), node.centre, _line(node.centre, b)])
+    return bent if _in_ink(bent, dist) else chord
+
+
+def _in_ink(pts: np.ndarray, dist: np.ndarray) -> bool:
+    iy = np.clip(np.round(pts[:, 1]).astype(int), 0, dist.shape[0] - 1)
+    ix = np.clip(np.round(pts[:, 0]).astype(int), 0, dist.shape[1] - 1)
+    return bool((dist[iy, ix] > 0).all())
 
 
 def _extend(pts: np.ndarray, mask: np.ndarray, r_end: float, short: float) -> tuple:
