@@ -425,38 +425,10 @@ def _trace(ci: int, end: int, chains, nodes, partner, used, dist) -> _Trace:
                 t.add(np.vstack([_line(seg[-1], c1), c1]), False, dist)
             return t
         t.through.add(node)
-        tip = _is_tip(chains[ci], nodes[node]) or _is_tip(chains[nxt[0]], nodes[node])
         ci, end = nxt
         nseg = _cut(chains[ci], end, nodes)
-        t.add(_across(seg[-1], nseg[0], nodes[node], dist, tip), False, dist)
+        t.add(_line(seg[-1], nseg[0]), False, dist)
         seg = nseg
-
-
-def _is_tip(c: Chain, node: Node) -> bool:
-    """Whether a chain is a stroke's tip at the junction: it runs from a free end and is no
-    longer than a spur (SPUR times the junction's half-width)."""
-    return min(c.ends) < 0 and _length(c.pts) < SPUR * node.radius + 3
-
-
-def _across(a: np.ndarray, b: np.ndarray, node: Node, dist: np.ndarray, tip: bool) -> np.ndarray:
-    """The way across a junction a stroke runs through, from ``a`` to ``b``: the chord, or,
-    where one side is a stroke's tip (``_is_tip``) and the chord leaves the ink while the way
-    by the junction's centre does not, that way. Beyond the paper (which reads no pictures):
-    a dot that lands on its tip, presses into a head and turns back (礻's) thins to a short
-    spur turning sharply in the head, and the chord across the turn cut the corner over the
-    paper, the head left unwritten. Between two long chains (a V's corner in 長) the chord
-    stays: the writer's turn there reads the picture better."""
-    chord = _line(a, b)
-    if not tip or _in_ink(chord, dist):
-        return chord
-    bent = np.vstack([_line(a, node.centre), node.centre, _line(node.centre, b)])
-    return bent if _in_ink(bent, dist) else chord
-
-
-def _in_ink(pts: np.ndarray, dist: np.ndarray) -> bool:
-    iy = np.clip(np.round(pts[:, 1]).astype(int), 0, dist.shape[0] - 1)
-    ix = np.clip(np.round(pts[:, 0]).astype(int), 0, dist.shape[1] - 1)
-    return bool((dist[iy, ix] > 0).all())
 
 
 def _extend(pts: np.ndarray, mask: np.ndarray, r_end: float, short: float) -> tuple:
