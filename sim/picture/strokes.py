@@ -166,24 +166,48 @@ def _blob_stroke(spurs: list) -> list:
 def _dot(chains: list, c: Chain, node: Node, mask: np.ndarray, dist: np.ndarray) -> bool:
     """Whether a short chain from a free end into a junction is a dot touching the stroke
     there (宀's or 亠's dot sitting on its horizontal in a scan), not a bump: its ink stands
-    out DOT[0] of the junction's half-width or more past the stroke's edge (the chain, and the
-    ink on along its way past the skeleton's end), and it is DOT[1] of that thick or more (a
-    stroke's pointed tip reaching past a corner is thin), where a stroke runs on through the
-    junction (two of its other chains leave it nearly opposite ways: at a corner where strokes
-    start or end, a spur is a stroke's tip, ``_tips``)."""
-    ways = [_exit(chains[i], e, node)[1] for i, e in node.chains if chains[i] is not c]
-    if not any(
-        float(matmul(u, v)) < CONTINUE_COS for i, u in enumerate(ways) for v in ways[i + 1 :]
-    ):
+    out DOT[0] of the crossing stroke's half-width or more past the junction's edge (the chain,
+    and the ink on along its way past the skeleton's end), and it is DOT[1] of that thick or
+    more (a stroke's pointed tip reaching past a corner is thin), where a stroke runs on
+    through the junction (two of its other chains leave it nearly opposite ways: at a corner
+    where strokes start or end, a spur is a stroke's tip, ``_tips``). Beyond the paper, which
+    reads no pictures: the scale is the crossing stroke's own half-width (``_crossing_radius``)
+    where it is thinner than the junction - a heavy stroke's head pressed onto a thin one (丰's
+    vertical in a heavy 害) makes the junction as wide as the head, and measured by it the head
+    read as a bump and its stroke was left unwritten."""
+    ways = [(i, e, _exit(chains[i], e, node)[1]) for i, e in node.chains if chains[i] is not c]
+    through = [
+        (a[:2], b[:2])
+        for k, a in enumerate(ways)
+        for b in ways[k + 1 :]
+        if float(matmul(a[2], b[2])) < CONTINUE_COS
+    ]
+    if not through:
         return False
+    r = min(node.radius, min(_crossing_radius(chains, node, pair, dist) for pair in through))
     end = 0 if c.ends[0] >= 0 else 1
     pts = _outward(c, end)
     run = len(_extend(pts, mask, node.radius, 0.0)[0])
     iy, ix = np.round(pts[len(pts) // 2 :, ::-1]).astype(int).T
     thick = float(dist[iy, ix].max())
-    return (
-        _length(pts) + run - node.radius >= DOT[0] * node.radius and thick >= DOT[1] * node.radius
-    )
+    return _length(pts) + run - node.radius >= DOT[0] * r and thick >= DOT[1] * r
+
+
+def _crossing_radius(chains: list, node: Node, pair: tuple, dist: np.ndarray) -> float:
+    """The half-width of the stroke running on through a junction by the two chain ends
+    ``pair``: the median of the ink's half-width along either chain just out of the junction's
+    zone (as far again as the zone reaches); the junction's own where either chain ends inside
+    the zone (a heavy dot's lobes, ``_blob_stroke``: no stroke runs through)."""
+    rads = []
+    for ci, e in pair:
+        pts = _outward(chains[ci], e)
+        if np.linalg.norm(pts[-1] - node.centre, axis=-1) <= ZONE * node.radius + 1.0:
+            return node.radius
+        k = _exit(chains[ci], e, node)[0]
+        seg = pts[k : k + max(int(ZONE * node.radius), 3)]
+        iy, ix = np.round(seg[:, ::-1]).astype(int).T
+        rads.append(dist[iy, ix])
+    return float(np.median(np.concatenate(rads)))
 
 
 def _tips(chains: list, nodes: list, loose: dict, partner: dict, mask) -> None:

@@ -165,6 +165,25 @@ def test_a_hook_flicked_off_a_slanting_foot_is_one_stroke_with_its_leg():
     assert hook[0][0, 1] < 50 and hook[0][-1, 0] < 110, hook[0]  # from the top to the point
 
 
+def test_a_heavy_head_pressed_onto_a_thin_stroke_is_a_stroke_of_its_own():
+    # 丰's vertical in a heavy 害 (a scan, issue 26.4): its head, far thicker than the
+    # horizontal it presses onto, makes the junction as wide as itself, and measured by that
+    # width it read as a bump: pruned, its stroke left unwritten. The scale is the crossing
+    # stroke's own half-width; a bump of a pressed entry on the same stroke stays pruned
+    for hw, top in ((14, 104), (16, 100), (18, 95)):
+        strokes, _, char = read_strokes(
+            _ink(((40, 128), (216, 128), 7, 7), ((128, top), (128, 124), hw, hw))
+        )
+        assert len(strokes) == 2, (hw, [np.round(m[[0, -1]]) for m in _medians(char)])
+        head = [m for m in _medians(char) if np.ptp(m[:, 0]) < 20]
+        assert len(head) == 1 and head[0][:, 1].min() < top, head
+    for hw, top in ((9, 120), (12, 114)):
+        strokes, _, _ = read_strokes(
+            _ink(((40, 128), (216, 128), 7, 7), ((128, top), (128, 127), hw, hw))
+        )
+        assert len(strokes) == 1, hw
+
+
 def test_a_heavy_dot_whose_skeleton_is_all_spurs_is_still_written():
     # a heavy kaishu dot in a scan (光's and 并's at 400 px): a blob with four lobes, whose
     # skeleton is a star of spurs round one junction, each shorter than SPUR half-widths.
