@@ -149,9 +149,7 @@ def _dun_point(pts, k: int, polys, step: float, leg_width: float) -> np.ndarray:
     aimed down the bisector, 口's knob up-right was left bare, held-out IoU 0.924 -> 0.901;
     aimed at the outline farthest from the bisector round past the way in, the peak stayed
     bare, 7-12 px from the ink, a round knob pressed beside it: issue 26 point 2.)"""
-    d, _ = _turn_at(pts, k, step)
-    win = max(int(round(CORNER_WINDOW / step)), 1)
-    e = pts[min(k + win, len(pts) - 1)] - pts[k]
+    d, e = _chords(pts, k, step)
     outer = d / max(float(np.linalg.norm(d)), 1e-9) - e / max(float(np.linalg.norm(e)), 1e-9)
     edge = np.concatenate(polys)
     near = edge[np.linalg.norm(edge - pts[k], axis=1) < DUN_NEAR * leg_width]
@@ -179,9 +177,7 @@ def _dun_toward_the_knob(pts, k: int, polys, step: float, leg_width: float) -> n
     since imitating, it is the shoulder to match. (Issue 26: the stroke data's own aim,
     ``_dun_point``, at the outline's outer corner, pressed a knob out past 为's facet, box IoU
     0.891 -> 0.755; kept from 6 px off the outline, 0.869, with 福 0.833 -> 0.777.)"""
-    win = max(int(round(CORNER_WINDOW / step)), 1)
-    d = pts[k] - pts[max(k - win, 0)]
-    e = pts[min(k + win, len(pts) - 1)] - pts[k]
+    d, e = _chords(pts, k, step)
     way = d / max(float(np.linalg.norm(d)), 1e-9) + e / max(float(np.linalg.norm(e)), 1e-9)
     a0 = exact.arctan2(way[1], way[0])
     a1 = exact.arctan2(d[1], d[0])
@@ -218,7 +214,11 @@ def _clockwise(pts, k: int, step: float) -> bool:
 def _turn_at(pts, k: int, step: float) -> tuple[np.ndarray, float]:
     """A median's way into point ``k`` (its chord over ``CORNER_WINDOW``) and how it turns
     there: the cross product of the chords in and out (> 0 anticlockwise, y up)."""
-    win = max(int(round(CORNER_WINDOW / step)), 1)
-    d = pts[k] - pts[max(k - win, 0)]
-    e = pts[min(k + win, len(pts) - 1)] - pts[k]
+    d, e = _chords(pts, k, step)
     return d, float(d[0] * e[1] - d[1] * e[0])
+
+
+def _chords(pts, k: int, step: float) -> tuple[np.ndarray, np.ndarray]:
+    """A median's chords over ``CORNER_WINDOW`` into point ``k`` and out of it."""
+    win = max(int(round(CORNER_WINDOW / step)), 1)
+    return pts[k] - pts[max(k - win, 0)], pts[min(k + win, len(pts) - 1)] - pts[k]

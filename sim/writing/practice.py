@@ -514,7 +514,7 @@ def _practise_stroke(sim, a, b, passes, fill, own, ctx, whole=None, exact=True) 
         sim.run(until=b)
         return
     held = np.zeros(len(body), dtype=bool) if exact else shoulder_zone(pl, body)  # a picture's
-    # band below its shoulder is its own (imitating 为: box IoU 0.882 -> 0.869 held)
+    # band below its shoulder is its own (为's, with stroke data's 顿: box IoU 0.882 -> 0.869 held)
     zones = (entry_zone(pl, body), point_zone(pl, body), held)
     steady = ~zones[0] & ~zones[1] & ~zones[2]
     taught = want if lesson is None else lesson.widen(want, steady)
