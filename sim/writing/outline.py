@@ -263,7 +263,7 @@ def _hooks_back(way_in, piece, before, step: float, width, curl: bool = False) -
     )
     length = float(np.linalg.norm(np.diff(piece, axis=0), axis=1).sum())
     back = curl or _rises_back(d, e)
-    return is_hook(cos, length, float(before[1].max()), narrows(width), back)
+    return is_hook(cos, length, before[1], narrows(width), back)
 
 
 def _curled_end(pts, step: float, after: int) -> int | None:

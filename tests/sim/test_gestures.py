@@ -332,6 +332,19 @@ def test_a_hook_flicked_back_up_off_a_slanting_leg_is_a_hook(char, k):
         assert not any(hook for _, hook in median_movements(find_char(zhe)))
 
 
+@pytest.mark.parametrize(("char", "k"), [("浮", 7), ("存", 3), ("子", 0), ("寒", 2), ("安", 2)])
+def test_a_long_leg_turned_back_down_off_a_heng_is_a_leg_not_a_hook(char, k):
+    # 子's 横撇 and 宀's 横钩 (issue 26.2): the way out turns back down-left off the 横, 3.6-6.6
+    # times the stroke's own width long; read as hooks (short against the 横's widest, its
+    # pressed head) they were gathered to a point from the corner: 浮's 撇 a thin tail (IoU
+    # 0.859), 寒's corner a round knob. A 折 into a leg; a 竖钩's hook (子's own, 家's 豕's, 写's
+    # and 存's) stays a hook.
+    pieces, hook = median_movements(find_char(char))[k]
+    assert len(pieces) >= 2 and not hook
+    for c, j in (("子", 1), ("家", 5), ("写", 3), ("存", 4), ("永", 1), ("小", 0)):
+        assert median_movements(find_char(c))[j][1], c
+
+
 @pytest.mark.parametrize(("char", "k"), [("永", 1), ("我", 2), ("月", 1), ("刀", 0)])
 def test_a_hook_foot_is_planned_no_wider_than_the_stroke(char, k):
     # the movement into a hook's foot: the font's foot, where the hook's triangle joins, is cut
