@@ -21,20 +21,25 @@ HOOK_POINT = 0.6  # a hook's end is narrower than this share of its widest (a po
 # pressed end: a short leg after a 折 ends as wide as it began)
 HOOK_LENGTH = 3.0  # a hook is at most this many times as long as the stroke before it is wide
 # (a 竖折's leg turning back as much is a long stroke of its own)
-HOOK_LENGTH_OWN = 3.4  # ... and, turned back down (not ``curl``), at most this many times the
-# stroke's own width before it (``_body_width``: its middle half's; the widest is often its
-# pressed head or the foot). A 竖钩's hook is 2.0-3.0 such widths (写 存 学 子 家 了 孕); 子's 横撇
-# (浮 学 存 孕 子: 3.9-6.6) and 宀's and 冖's 横钩 (3.6-5.6: 寒 家 宝 安 军 冗 写) were read as
-# hooks, gathered from the corner to a point: 子's 撇 a thin tail, 宀's corner a round knob
-# pressed as wide as the font's triangle (2.4-3 times the 横) with the hook's point lost in it.
-# As a 折 into a leg (a shoulder, ``corners._shoulders``, then the leg's own widths) both keep
-# the outline's shape: the leg narrows to its point as the outline does (issue 26.2).
+HOOK_LENGTH_OWN = 3.4  # ... and, turned back down off a 横 (a level way in, ``is_level``, and
+# a way out going down), at most this many times the stroke's own width before it
+# (``_body_width``: its middle half's; the widest is often its pressed head). 子's 横撇 (浮 学
+# 存 孕 子: 3.9-6.6 such widths) and 宀's and 冖's 横钩 (寒 家 宝 安 军 冗 写: 3.6-5.6) were read
+# as hooks, gathered from the corner to a point: 子's 撇 a thin tail under a knob, 宀's corner a
+# round knob pressed as wide as the font's triangle (2.4-3 times the 横) with the hook's point
+# lost in it. As a 折 into a leg (a shoulder, ``corners._shoulders``, then the leg's own
+# widths) both keep the outline's shape (issue 26.2). Other hooks keep the one test: a 斜钩's
+# (戎 4.0), a 竖提's (以 6.3), a 撇折's (纟) or a 横折提's (讠) flick is short against the
+# stroke's widest only.
+LEVEL_SINE = 0.5  # a way into a corner is a 横's (level) when the sine of its slope is below this
 
 
-def is_hook(cos: float, length: float, before, narrows: bool, curl: bool) -> bool:
+def is_hook(
+    cos: float, length: float, before, narrows: bool, curl: bool, off_heng: bool = False
+) -> bool:
     """Whether a stroke's last movement, after a corner, is a hook (钩): short (at most
-    ``HOOK_LENGTH`` times the widest of ``before``, the stroke's widths before the corner, and
-    ``HOOK_LENGTH_OWN`` times its own width, ``_body_width``) and turned
+    ``HOOK_LENGTH`` times the widest of ``before``, the stroke's widths before the corner, and,
+    turned back down off a 横 (``off_heng``), ``HOOK_LENGTH_OWN`` times its own width) and turned
     back on the way in (``cos`` of the turn below ``HOOK_COS``: a 竖钩, a 斜钩), or, after an
     end that curls off a curve or a leg going down that it leaves back upwards (``curl``:
     ``_curled_end``, ``_rises_back``), turned about square to it (below ``HOOK_UP_COS``) and
@@ -42,7 +47,7 @@ def is_hook(cos: float, length: float, before, narrows: bool, curl: bool) -> boo
     only square into a short narrowing leg going down stays a 折 (墨's 罒, 口's shoulder)."""
     before = np.asarray(before, dtype=float)
     short = length <= HOOK_LENGTH * before.max()
-    short = short and (curl or length <= HOOK_LENGTH_OWN * _body_width(before))
+    short = short and (not off_heng or length <= HOOK_LENGTH_OWN * _body_width(before))
     return short and (cos < HOOK_COS or (curl and cos < HOOK_UP_COS and narrows))
 
 
@@ -127,6 +132,11 @@ FOOT_HOLD = 0.85  # a clockwise hook's foot goes on only while the outline holds
 # least this share of the stroke's own half-width round it (measured at 512 px, default
 # brush, 地 鸟 雹 也 句 刀 书 力 月 勺 包 场 阳: ink outside the outline near the hook feet
 # 1192 -> 523 px, the outline left bare there 2118 -> 2343; 0.8: 734 and 2185, 0.9: 377, 2650)
+
+
+def is_level(way) -> bool:
+    """Whether a way into a corner (a vector) is a 横's: its slope's sine below ``LEVEL_SINE``."""
+    return abs(float(way[1])) < LEVEL_SINE * float(np.hypot(way[0], way[1]))
 
 
 def _held_foot(foot, room, width: float) -> np.ndarray:

@@ -25,6 +25,7 @@ from .feet import (
     _rooted,
     flicks,
     is_hook,
+    is_level,
     narrows,
 )
 from .polygons import _bands, _ray_hits, distance_to_outline, fill
@@ -263,7 +264,8 @@ def _hooks_back(way_in, piece, before, step: float, width, curl: bool = False) -
     )
     length = float(np.linalg.norm(np.diff(piece, axis=0), axis=1).sum())
     back = curl or _rises_back(d, e)
-    return is_hook(cos, length, before[1], narrows(width), back)
+    off_heng = is_level(d) and float(e[1]) < 0.0  # turned back down off a 横 (宀's, 子's)
+    return is_hook(cos, length, before[1], narrows(width), back, off_heng)
 
 
 def _curled_end(pts, step: float, after: int) -> int | None:

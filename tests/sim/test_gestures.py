@@ -338,10 +338,11 @@ def test_a_long_leg_turned_back_down_off_a_heng_is_a_leg_not_a_hook(char, k):
     # times the stroke's own width long; read as hooks (short against the 横's widest, its
     # pressed head) they were gathered to a point from the corner: 浮's 撇 a thin tail (IoU
     # 0.859), 寒's corner a round knob. A 折 into a leg; a 竖钩's hook (子's own, 家's 豕's, 写's
-    # and 存's) stays a hook.
+    # and 存's), a 斜钩's (戎's, 4.0 own widths), a 竖提's (以's) and a 撇折's (细's) stay hooks.
     pieces, hook = median_movements(find_char(char))[k]
     assert len(pieces) >= 2 and not hook
-    for c, j in (("子", 1), ("家", 5), ("写", 3), ("存", 4), ("永", 1), ("小", 0)):
+    kept = (("子", 1), ("家", 5), ("写", 3), ("存", 4), ("永", 1), ("小", 0), ("戎", 3), ("以", 0))
+    for c, j in (*kept, ("细", 0), ("细", 1)):
         assert median_movements(find_char(c))[j][1], c
 
 
