@@ -57,6 +57,11 @@ runs dry first) lay ink, and those lay it as a brush offering O_DARK would (``ri
 lines along the stroke with white between, as real ink does (飞白), not into grey; a dry mark's
 pale outer rim, laid where the font has no ink, is left bare rather than darkened.
 
+A gathered point leaves as one (model addition, issue 26.2): the lines of hair are HAIR_MM
+wide where the hair lies across GATHER of the belly (a / 2) or more and narrow with a
+narrower contact (``_hair_lines``): as a hook's or a 撇's point lifts they converge with
+its outline.
+
 All draws come from the brush's one seeded generator; a split primitive's children draw
 their own (Sec. 5.5)."""
 
@@ -106,6 +111,8 @@ class BristleState(NamedTuple):
     trail: np.ndarray  # (k, 2) mm: the contact's recent path, oldest first (``across``)
     travel: np.ndarray  # (2,) the brush's last direction of motion over the paper
     speed: float  # mm/s, the brush's speed over the paper
+    belly: np.ndarray | None = None  # (m,) mm: a / 2 (Eq. 6, 16), the span the hair has
+    # when the belly lies flat (``_gather``); None: ``radius`` (the hair not gathered)
 
 
 def draw(rng: np.random.Generator, m: int) -> dict:
@@ -135,6 +142,7 @@ def state(brush, speed: float) -> BristleState:
         brush.trail[np.isfinite(brush.trail[:, 0])],
         brush.travel.copy(),
         float(speed),
+        0.5 * brush.a,
     )
 
 
@@ -153,6 +161,14 @@ def spread(brush, speed: float) -> np.ndarray:
         return half.copy()
     width = brush.sweep / speed
     return np.where(width > 0.0, np.minimum(0.5 * width, half), half)
+
+
+def _gather(st: BristleState, i: int) -> float:
+    """How far primitive ``i``'s hair is gathered: its contact's half width (``spread``) over
+    the belly's a / 2, in (0, 1] (1: the hair lies as wide as the belly)."""
+    if st.belly is None or not st.belly[i] > 0.0:
+        return 1.0
+    return float(min(st.radius[i] / st.belly[i], 1.0))
 
 
 def contact_wetness(brush):
@@ -294,7 +310,7 @@ def lay(marks, st: BristleState, ppm: float) -> list:
         beside = np.where(near == b, 0.0, _in_gap(u, h, centre[near], gap[near], px))
         share = np.clip(1.0 - own - beside, 0.0, 1.0)
         wet = mk.wet * st.bundle[i, b].astype(np.float32) * pool
-        bare, rich = _hairs(wet, mk.lateral, mk.depth, np.int64(i))
+        bare, rich = _hairs(wet, mk.lateral, mk.depth, np.int64(i), *_hair_lines(_gather(st, i)))
         share = np.where(bare, 0.0, share)
         out.append(
             replace(
@@ -351,7 +367,9 @@ def lay_steps(marks_per_step, states, ppm: float) -> list:
     wet = np.concatenate([mk.wet for _, mk in live]) * bundle * pool_k[mark]
     # (wet * bundle) * pool, as ``lay`` multiplies
     depth = np.concatenate([mk.depth for _, mk in live])
-    bare, rich = _hairs(wet, lateral, depth, np.array(prim, dtype=np.int64)[mark])
+    scale = [_hair_lines(_gather(st, i)) for st, i in zip(st_of, prim, strict=True)]
+    lines, closed = (np.array(v, dtype=np.float32)[mark] for v in zip(*scale, strict=True))
+    bare, rich = _hairs(wet, lateral, depth, np.array(prim, dtype=np.int64)[mark], lines, closed)
     share = np.where(bare, 0.0, share)
     shares = np.split(share.astype(np.float32), cut)
     skips = np.split(share <= 0.0, cut)
@@ -364,7 +382,21 @@ def lay_steps(marks_per_step, states, ppm: float) -> list:
     return [[next(laid) if mk.rows.size else mk for mk in marks] for marks in marks_per_step]
 
 
-def _hairs(offer, lateral, depth, prim) -> tuple[np.ndarray, np.ndarray]:
+def _hair_lines(g: float) -> tuple[np.float32, np.float32]:
+    """The lines of hair per mm across the path, and the share of the bare ones closed, for
+    hair gathered to ``g`` of the belly's width (``_gather``). Model addition (issue 26.2,
+    beyond Eq. 27): every hair runs to the tip (``spread``), so as the hair gathers to a point
+    (a contact narrower than GATHER of the belly, as ``step`` takes it) the lines converge
+    with the contact, a line HAIR_MM * g / GATHER wide: the same hair at the same place
+    across the section however narrow the contact; and the gathered hair is held together by
+    the ink between its hairs (as its bundles are, ``step``): the share 1 - g / GATHER of its
+    bare lines closes. HAIR_MM wide whatever the contact, the lines of a lifting point stayed
+    parallel while its outline narrowed, and a hook's or a 撇's point broke into them."""
+    gathered = min(g / GATHER, 1.0)
+    return np.float32(1.0 / (HAIR_MM * gathered)), np.float32(1.0 - gathered)
+
+
+def _hairs(offer, lateral, depth, prim, lines=None, closed=None) -> tuple[np.ndarray, np.ndarray]:
     """Which pixels the hair running dry leaves bare, and the pigment per unit of liquid of
     the others (model change, see the module's docstring). A pixel offered ``offer`` below
     O_DARK (full = offer / O_DARK below 1) is covered by c = full ** COVER_POWER of the lines
@@ -372,12 +404,15 @@ def _hairs(offer, lateral, depth, prim) -> tuple[np.ndarray, np.ndarray]:
     path, at ``lateral`` mm, and of the primitive ``prim``), drawn later the farther out in
     the section the pixel lies (Eq. 23's f, ``depth``; OUTER_FIRST) - is not below c. The
     covered pixels' pigment is that of O_DARK (``rich`` = 1 / full). Only the pixels offered
-    less than O_DARK are drawn (a loaded brush covers its mark whole: the draw is below 1)."""
+    less than O_DARK are drawn (a loaded brush covers its mark whole: the draw is below 1).
+    ``lines`` (1 / HAIR_MM if None) and ``closed`` (none if None), scalars or per pixel:
+    ``_hair_lines``."""
     full = np.minimum(offer * np.float32(1.0 / O_DARK), np.float32(1.0))
     bare = np.zeros(full.shape, dtype=bool)
     low = np.flatnonzero(full < 1.0)
     if low.size:
-        line = np.floor(lateral[low] * np.float32(1.0 / HAIR_MM)).astype(np.int64)
+        per = np.float32(1.0 / HAIR_MM) if lines is None else lines
+        line = np.floor(lateral[low] * (per[low] if np.ndim(per) else per)).astype(np.int64)
         line += (np.take(prim, low) if np.ndim(prim) else prim) * 4099
         x = (line & 0xFFFFFFFF).astype(np.uint32)  # a 32-bit integer hash of the line
         x *= np.uint32(0x9E3779B1)
@@ -387,7 +422,11 @@ def _hairs(offer, lateral, depth, prim) -> tuple[np.ndarray, np.ndarray]:
         draw = x.astype(np.float32) * np.float32(1.0 / 4294967296.0)
         draw += np.float32(OUTER_FIRST) * depth[low].astype(np.float32)
         draw *= np.float32(1.0 / (1.0 + OUTER_FIRST))
-        bare[low] = draw >= full[low] ** np.float32(COVER_POWER)
+        cover = full[low] ** np.float32(COVER_POWER)
+        if closed is not None:  # a gathered point's bare lines close (``_hair_lines``)
+            shut = (closed[low] if np.ndim(closed) else closed) * full[low]  # by its ink
+            cover += (np.float32(1.0) - cover) * shut
+        bare[low] = draw >= cover
     rich = np.float32(1.0) / np.maximum(full, np.float32(1e-6))
     return bare, rich.astype(np.float32)
 
