@@ -57,10 +57,13 @@ runs dry first) lay ink, and those lay it as a brush offering O_DARK would (``ri
 lines along the stroke with white between, as real ink does (飞白), not into grey; a dry mark's
 pale outer rim, laid where the font has no ink, is left bare rather than darkened.
 
-A gathered point leaves as one (model addition, issue 26.2): the lines of hair are HAIR_MM
-wide where the hair lies across GATHER of the belly (a / 2) or more and narrow with a
-narrower contact (``_hair_lines``): as a hook's or a 撇's point lifts they converge with
-its outline.
+A gathered point leaves as one (model addition, issue 26.2): where the hair lies across less
+than GATHER of the belly (a / 2) the share 1 - g / GATHER of its bare lines closes
+(``_closed``): the hair of a lifting hook's or 撇's point lies pressed together, held by
+the ink between its hairs, and leaves one point, not parallel lines. And no line lies past
+the hair (``_hairs``'s ``past``): a running-dry pixel farther from the path than the
+bundles' span (``spread``) is bare, as the hair lays its ink on its lines only; a 折's
+pressed shoulder (``sim.writing.corners``' 顿) left a grey fringe of lines there.
 
 All draws come from the brush's one seeded generator; a split primitive's children draw
 their own (Sec. 5.5)."""
@@ -113,6 +116,8 @@ class BristleState(NamedTuple):
     speed: float  # mm/s, the brush's speed over the paper
     belly: np.ndarray | None = None  # (m,) mm: a / 2 (Eq. 6, 16), the span the hair has
     # when the belly lies flat (``_gather``); None: ``radius`` (the hair not gathered)
+    pressed: np.ndarray | None = None  # (m,) the contact's area S_i (Eq. 10) over the middle
+    # control ellipse's, pi a b / 4 (Eq. 6, 16): how flat the belly lies (``_gather``)
 
 
 def draw(rng: np.random.Generator, m: int) -> dict:
@@ -134,15 +139,17 @@ def draw(rng: np.random.Generator, m: int) -> dict:
 
 def state(brush, speed: float) -> BristleState:
     """The bundles as they are now (copies: the brush moves on before the paper takes them)."""
+    radius = spread(brush, speed)
     return BristleState(
         brush.bundle.copy(),
         brush.gap.copy(),
         brush.edge.copy(),
-        spread(brush, speed),
+        radius,
         brush.trail[np.isfinite(brush.trail[:, 0])],
         brush.travel.copy(),
         float(speed),
         0.5 * brush.a,
+        brush.contact / np.maximum(0.25 * np.pi * brush.a * brush.b, 1e-12),
     )
 
 
@@ -164,11 +171,18 @@ def spread(brush, speed: float) -> np.ndarray:
 
 
 def _gather(st: BristleState, i: int) -> float:
-    """How far primitive ``i``'s hair is gathered: its contact's half width (``spread``) over
-    the belly's a / 2, in (0, 1] (1: the hair lies as wide as the belly)."""
+    """How far primitive ``i``'s hair is gathered, in (0, 1] (1: the hair lies as wide as the
+    belly): the contact's half width across the way (``spread``) over the belly's a / 2, or
+    if larger the square root of its area over the middle control ellipse's (``pressed``).
+    A lifting point's contact is narrow and small; a belly pressed flat and drawn along its
+    length is narrow across but as large as the ellipse, and its dry hair lays its lines
+    (measured across alone, a dry brush's last strokes closed to dark,
+    tests/sim/test_bristles.py::test_the_ink_runs_out_along_a_long_stroke)."""
     if st.belly is None or not st.belly[i] > 0.0:
         return 1.0
-    return float(min(st.radius[i] / st.belly[i], 1.0))
+    across = st.radius[i] / st.belly[i]
+    flat = 0.0 if st.pressed is None else float(np.sqrt(max(st.pressed[i], 0.0)))
+    return float(min(max(across, flat), 1.0))
 
 
 def contact_wetness(brush):
@@ -310,7 +324,8 @@ def lay(marks, st: BristleState, ppm: float) -> list:
         beside = np.where(near == b, 0.0, _in_gap(u, h, centre[near], gap[near], px))
         share = np.clip(1.0 - own - beside, 0.0, 1.0)
         wet = mk.wet * st.bundle[i, b].astype(np.float32) * pool
-        bare, rich = _hairs(wet, mk.lateral, mk.depth, np.int64(i), *_hair_lines(_gather(st, i)))
+        past = np.abs(mk.lateral) > np.float32(st.radius[i])  # beyond the bundles' span
+        bare, rich = _hairs(wet, mk.lateral, mk.depth, np.int64(i), _closed(_gather(st, i)), past)
         share = np.where(bare, 0.0, share)
         out.append(
             replace(
@@ -367,9 +382,10 @@ def lay_steps(marks_per_step, states, ppm: float) -> list:
     wet = np.concatenate([mk.wet for _, mk in live]) * bundle * pool_k[mark]
     # (wet * bundle) * pool, as ``lay`` multiplies
     depth = np.concatenate([mk.depth for _, mk in live])
-    scale = [_hair_lines(_gather(st, i)) for st, i in zip(st_of, prim, strict=True)]
-    lines, closed = (np.array(v, dtype=np.float32)[mark] for v in zip(*scale, strict=True))
-    bare, rich = _hairs(wet, lateral, depth, np.array(prim, dtype=np.int64)[mark], lines, closed)
+    closed = np.array([_closed(_gather(st, i)) for st, i in zip(st_of, prim, strict=True)])
+    past = np.abs(lateral) > radius.astype(np.float32)[mark]  # beyond the bundles' span
+    prim_px = np.array(prim, dtype=np.int64)[mark]
+    bare, rich = _hairs(wet, lateral, depth, prim_px, closed.astype(np.float32)[mark], past)
     share = np.where(bare, 0.0, share)
     shares = np.split(share.astype(np.float32), cut)
     skips = np.split(share <= 0.0, cut)
@@ -382,21 +398,19 @@ def lay_steps(marks_per_step, states, ppm: float) -> list:
     return [[next(laid) if mk.rows.size else mk for mk in marks] for marks in marks_per_step]
 
 
-def _hair_lines(g: float) -> tuple[np.float32, np.float32]:
-    """The lines of hair per mm across the path, and the share of the bare ones closed, for
-    hair gathered to ``g`` of the belly's width (``_gather``). Model addition (issue 26.2,
-    beyond Eq. 27): every hair runs to the tip (``spread``), so as the hair gathers to a point
-    (a contact narrower than GATHER of the belly, as ``step`` takes it) the lines converge
-    with the contact, a line HAIR_MM * g / GATHER wide: the same hair at the same place
-    across the section however narrow the contact; and the gathered hair is held together by
-    the ink between its hairs (as its bundles are, ``step``): the share 1 - g / GATHER of its
-    bare lines closes. HAIR_MM wide whatever the contact, the lines of a lifting point stayed
-    parallel while its outline narrowed, and a hook's or a 撇's point broke into them."""
-    gathered = min(g / GATHER, 1.0)
-    return np.float32(1.0 / (HAIR_MM * gathered)), np.float32(1.0 - gathered)
+def _closed(g: float) -> np.float32:
+    """The share of the bare lines of hair that close for hair gathered to ``g`` of the
+    belly's width (``_gather``). Model addition (issue 26.2, beyond Eq. 27): every hair runs
+    to the tip (``spread``), so a contact narrower than GATHER of the belly (as ``step``
+    takes it: a lifting point) holds the hair pressed together, held by the ink between its
+    hairs as its bundles are (``step``): 1 - g / GATHER of its bare lines close, whatever
+    the ink, and the point leaves as one. The lines stay HAIR_MM wide: narrowed with the
+    contact (branch tips26) they fell below a pixel and a dry flick's point turned to a
+    stipple (tests/sim/test_flicks.py) and a pressed stroke's streaks to grey."""
+    return np.float32(1.0 - min(g / GATHER, 1.0))
 
 
-def _hairs(offer, lateral, depth, prim, lines=None, closed=None) -> tuple[np.ndarray, np.ndarray]:
+def _hairs(offer, lateral, depth, prim, closed=None, past=None) -> tuple[np.ndarray, np.ndarray]:
     """Which pixels the hair running dry leaves bare, and the pigment per unit of liquid of
     the others (model change, see the module's docstring). A pixel offered ``offer`` below
     O_DARK (full = offer / O_DARK below 1) is covered by c = full ** COVER_POWER of the lines
@@ -405,14 +419,17 @@ def _hairs(offer, lateral, depth, prim, lines=None, closed=None) -> tuple[np.nda
     the section the pixel lies (Eq. 23's f, ``depth``; OUTER_FIRST) - is not below c. The
     covered pixels' pigment is that of O_DARK (``rich`` = 1 / full). Only the pixels offered
     less than O_DARK are drawn (a loaded brush covers its mark whole: the draw is below 1).
-    ``lines`` (1 / HAIR_MM if None) and ``closed`` (none if None), scalars or per pixel:
-    ``_hair_lines``."""
+    ``closed`` (none if None), a scalar or per pixel: the share of the bare lines that close
+    (``_closed``). ``past`` (per pixel, or None): the pixel lies farther from the path than
+    the bundles' span (``spread``); no line of hair lies there, so if it is drawn (offered
+    less than O_DARK) it is bare (model addition, issue 26.2: Eq. 27's Cr = 0 past the hair;
+    the outermost bundle's lines, measured from a path that turns at a 折's pressed shoulder,
+    ran on past the hair in pale arcs round it, a grey fringe off the corner)."""
     full = np.minimum(offer * np.float32(1.0 / O_DARK), np.float32(1.0))
     bare = np.zeros(full.shape, dtype=bool)
     low = np.flatnonzero(full < 1.0)
     if low.size:
-        per = np.float32(1.0 / HAIR_MM) if lines is None else lines
-        line = np.floor(lateral[low] * (per[low] if np.ndim(per) else per)).astype(np.int64)
+        line = np.floor(lateral[low] * np.float32(1.0 / HAIR_MM)).astype(np.int64)
         line += (np.take(prim, low) if np.ndim(prim) else prim) * 4099
         x = (line & 0xFFFFFFFF).astype(np.uint32)  # a 32-bit integer hash of the line
         x *= np.uint32(0x9E3779B1)
@@ -423,10 +440,12 @@ def _hairs(offer, lateral, depth, prim, lines=None, closed=None) -> tuple[np.nda
         draw += np.float32(OUTER_FIRST) * depth[low].astype(np.float32)
         draw *= np.float32(1.0 / (1.0 + OUTER_FIRST))
         cover = full[low] ** np.float32(COVER_POWER)
-        if closed is not None:  # a gathered point's bare lines close (``_hair_lines``)
-            shut = (closed[low] if np.ndim(closed) else closed) * full[low]  # by its ink
+        if closed is not None:  # a gathered point's bare lines close (``_closed``)
+            shut = closed[low] if np.ndim(closed) else closed
             cover += (np.float32(1.0) - cover) * shut
         bare[low] = draw >= cover
+        if past is not None:  # no line of hair lies past the bundles' span
+            bare[low] |= past[low]
     rich = np.float32(1.0) / np.maximum(full, np.float32(1e-6))
     return bare, rich.astype(np.float32)
 
