@@ -57,6 +57,14 @@ runs dry first) lay ink, and those lay it as a brush offering O_DARK would (``ri
 lines along the stroke with white between, as real ink does (飞白), not into grey; a dry mark's
 pale outer rim, laid where the font has no ink, is left bare rather than darkened.
 
+A gathered point leaves as one (model addition, issue 26.2): where the hair lies across less
+than GATHER of the belly (a / 2) the share 1 - g / GATHER of its bare lines closes
+(``_closed``): the hair of a lifting hook's or 撇's point lies pressed together, held by
+the ink between its hairs, and leaves one point, not parallel lines. And no line lies past
+the hair (``_hairs``'s ``past``): a running-dry pixel farther from the path than the
+bundles' span (``spread``) is bare, as the hair lays its ink on its lines only; a 折's
+pressed shoulder (``sim.writing.corners``' 顿) left a grey fringe of lines there.
+
 All draws come from the brush's one seeded generator; a split primitive's children draw
 their own (Sec. 5.5)."""
 
@@ -106,6 +114,10 @@ class BristleState(NamedTuple):
     trail: np.ndarray  # (k, 2) mm: the contact's recent path, oldest first (``across``)
     travel: np.ndarray  # (2,) the brush's last direction of motion over the paper
     speed: float  # mm/s, the brush's speed over the paper
+    belly: np.ndarray | None = None  # (m,) mm: a / 2 (Eq. 6, 16), the span the hair has
+    # when the belly lies flat (``_gather``); None: ``radius`` (the hair not gathered)
+    pressed: np.ndarray | None = None  # (m,) the contact's area S_i (Eq. 10) over the middle
+    # control ellipse's, pi a b / 4 (Eq. 6, 16): how flat the belly lies (``_gather``)
 
 
 def draw(rng: np.random.Generator, m: int) -> dict:
@@ -127,14 +139,17 @@ def draw(rng: np.random.Generator, m: int) -> dict:
 
 def state(brush, speed: float) -> BristleState:
     """The bundles as they are now (copies: the brush moves on before the paper takes them)."""
+    radius = spread(brush, speed)
     return BristleState(
         brush.bundle.copy(),
         brush.gap.copy(),
         brush.edge.copy(),
-        spread(brush, speed),
+        radius,
         brush.trail[np.isfinite(brush.trail[:, 0])],
         brush.travel.copy(),
         float(speed),
+        0.5 * brush.a,
+        brush.contact / np.maximum(0.25 * np.pi * brush.a * brush.b, 1e-12),
     )
 
 
@@ -153,6 +168,21 @@ def spread(brush, speed: float) -> np.ndarray:
         return half.copy()
     width = brush.sweep / speed
     return np.where(width > 0.0, np.minimum(0.5 * width, half), half)
+
+
+def _gather(st: BristleState, i: int) -> float:
+    """How far primitive ``i``'s hair is gathered, in (0, 1] (1: the hair lies as wide as the
+    belly): the contact's half width across the way (``spread``) over the belly's a / 2, or
+    if larger the square root of its area over the middle control ellipse's (``pressed``).
+    A lifting point's contact is narrow and small; a belly pressed flat and drawn along its
+    length is narrow across but as large as the ellipse, and its dry hair lays its lines
+    (measured across alone, a dry brush's last strokes closed to dark,
+    tests/sim/test_bristles.py::test_the_ink_runs_out_along_a_long_stroke)."""
+    if st.belly is None or not st.belly[i] > 0.0:
+        return 1.0
+    across = st.radius[i] / st.belly[i]
+    flat = 0.0 if st.pressed is None else float(np.sqrt(max(st.pressed[i], 0.0)))
+    return float(min(max(across, flat), 1.0))
 
 
 def contact_wetness(brush):
@@ -294,7 +324,8 @@ def lay(marks, st: BristleState, ppm: float) -> list:
         beside = np.where(near == b, 0.0, _in_gap(u, h, centre[near], gap[near], px))
         share = np.clip(1.0 - own - beside, 0.0, 1.0)
         wet = mk.wet * st.bundle[i, b].astype(np.float32) * pool
-        bare, rich = _hairs(wet, mk.lateral, mk.depth, np.int64(i))
+        past = np.abs(mk.lateral) > np.float32(st.radius[i])  # beyond the bundles' span
+        bare, rich = _hairs(wet, mk.lateral, mk.depth, np.int64(i), _closed(_gather(st, i)), past)
         share = np.where(bare, 0.0, share)
         out.append(
             replace(
@@ -351,7 +382,10 @@ def lay_steps(marks_per_step, states, ppm: float) -> list:
     wet = np.concatenate([mk.wet for _, mk in live]) * bundle * pool_k[mark]
     # (wet * bundle) * pool, as ``lay`` multiplies
     depth = np.concatenate([mk.depth for _, mk in live])
-    bare, rich = _hairs(wet, lateral, depth, np.array(prim, dtype=np.int64)[mark])
+    closed = np.array([_closed(_gather(st, i)) for st, i in zip(st_of, prim, strict=True)])
+    past = np.abs(lateral) > radius.astype(np.float32)[mark]  # beyond the bundles' span
+    prim_px = np.array(prim, dtype=np.int64)[mark]
+    bare, rich = _hairs(wet, lateral, depth, prim_px, closed.astype(np.float32)[mark], past)
     share = np.where(bare, 0.0, share)
     shares = np.split(share.astype(np.float32), cut)
     skips = np.split(share <= 0.0, cut)
@@ -364,7 +398,19 @@ def lay_steps(marks_per_step, states, ppm: float) -> list:
     return [[next(laid) if mk.rows.size else mk for mk in marks] for marks in marks_per_step]
 
 
-def _hairs(offer, lateral, depth, prim) -> tuple[np.ndarray, np.ndarray]:
+def _closed(g: float) -> np.float32:
+    """The share of the bare lines of hair that close for hair gathered to ``g`` of the
+    belly's width (``_gather``). Model addition (issue 26.2, beyond Eq. 27): every hair runs
+    to the tip (``spread``), so a contact narrower than GATHER of the belly (as ``step``
+    takes it: a lifting point) holds the hair pressed together, held by the ink between its
+    hairs as its bundles are (``step``): 1 - g / GATHER of its bare lines close, whatever
+    the ink, and the point leaves as one. The lines stay HAIR_MM wide: narrowed with the
+    contact (branch tips26) they fell below a pixel and a dry flick's point turned to a
+    stipple (tests/sim/test_flicks.py) and a pressed stroke's streaks to grey."""
+    return np.float32(1.0 - min(g / GATHER, 1.0))
+
+
+def _hairs(offer, lateral, depth, prim, closed=None, past=None) -> tuple[np.ndarray, np.ndarray]:
     """Which pixels the hair running dry leaves bare, and the pigment per unit of liquid of
     the others (model change, see the module's docstring). A pixel offered ``offer`` below
     O_DARK (full = offer / O_DARK below 1) is covered by c = full ** COVER_POWER of the lines
@@ -372,7 +418,13 @@ def _hairs(offer, lateral, depth, prim) -> tuple[np.ndarray, np.ndarray]:
     path, at ``lateral`` mm, and of the primitive ``prim``), drawn later the farther out in
     the section the pixel lies (Eq. 23's f, ``depth``; OUTER_FIRST) - is not below c. The
     covered pixels' pigment is that of O_DARK (``rich`` = 1 / full). Only the pixels offered
-    less than O_DARK are drawn (a loaded brush covers its mark whole: the draw is below 1)."""
+    less than O_DARK are drawn (a loaded brush covers its mark whole: the draw is below 1).
+    ``closed`` (none if None), a scalar or per pixel: the share of the bare lines that close
+    (``_closed``). ``past`` (per pixel, or None): the pixel lies farther from the path than
+    the bundles' span (``spread``); no line of hair lies there, so if it is drawn (offered
+    less than O_DARK) it is bare (model addition, issue 26.2: Eq. 27's Cr = 0 past the hair;
+    the outermost bundle's lines, measured from a path that turns at a 折's pressed shoulder,
+    ran on past the hair in pale arcs round it, a grey fringe off the corner)."""
     full = np.minimum(offer * np.float32(1.0 / O_DARK), np.float32(1.0))
     bare = np.zeros(full.shape, dtype=bool)
     low = np.flatnonzero(full < 1.0)
@@ -387,7 +439,13 @@ def _hairs(offer, lateral, depth, prim) -> tuple[np.ndarray, np.ndarray]:
         draw = x.astype(np.float32) * np.float32(1.0 / 4294967296.0)
         draw += np.float32(OUTER_FIRST) * depth[low].astype(np.float32)
         draw *= np.float32(1.0 / (1.0 + OUTER_FIRST))
-        bare[low] = draw >= full[low] ** np.float32(COVER_POWER)
+        cover = full[low] ** np.float32(COVER_POWER)
+        if closed is not None:  # a gathered point's bare lines close (``_closed``)
+            shut = closed[low] if np.ndim(closed) else closed
+            cover += (np.float32(1.0) - cover) * shut
+        bare[low] = draw >= cover
+        if past is not None:  # no line of hair lies past the bundles' span
+            bare[low] |= past[low]
     rich = np.float32(1.0) / np.maximum(full, np.float32(1e-6))
     return bare, rich.astype(np.float32)
 
