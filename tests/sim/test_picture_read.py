@@ -165,6 +165,23 @@ def test_a_hook_flicked_off_a_slanting_foot_is_one_stroke_with_its_leg():
     assert hook[0][0, 1] < 50 and hook[0][-1, 0] < 110, hook[0]  # from the top to the point
 
 
+def test_a_vertical_pressed_into_a_level_heel_runs_on_to_its_foot():
+    # 東's vertical in a copybook scan (issue 26.4): the brush presses at the foot (顿) and the
+    # heel bulges level to the left, farther than the foot below it. Taken for a hook, the
+    # stroke turned into the heel and stopped short of its foot by a sixteenth of the height,
+    # and box-normalised IoU fell to 0.50. A hook's tip rises (竖钩); a level bump is a heel
+    ink = _ink(
+        ((128, 30), (128, 200), 9, 11),
+        ((128, 200), (100, 201), 11, 7),  # the heel, level to the left
+        ((128, 200), (129, 218), 12, 9),  # the foot, straight on
+    )
+    _, _, char = read_strokes(ink)
+    meds = _medians(char)
+    leg = max(meds, key=lambda m: np.ptp(m[:, 1]))
+    low = leg[np.argmax(leg[:, 1])]
+    assert low[1] > 208 and low[0] > 115, np.round(leg[[0, -1]])  # down to the foot
+
+
 def test_a_heavy_head_pressed_onto_a_thin_stroke_is_a_stroke_of_its_own():
     # 丰's vertical in a heavy 害 (a scan, issue 26.4): its head, far thicker than the
     # horizontal it presses onto, makes the junction as wide as itself, and measured by that
