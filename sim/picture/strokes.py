@@ -27,7 +27,7 @@ HOOK_COS = 0.0  # ... and a hook's two ways out lie within 90 degrees of each ot
 HOOK_SPUR = 1.5  # ... but the farthest of a junction's spurs this long (times its half-width)
 OVERHANG_REACH = 1.3  # ... and a spur this long (times its half-width) straight on from a chain
 HOOK_CLEAR = 1.2  # ... and this many times as long as the next is a hook's tip, kept
-HOOK_RISE = 0.3  # a standing stroke's way out of its foot rises by this share or more
+STAND_RISE = 0.3  # a standing stroke's way out of its foot rises by this share or more
 HEEL_FLAT = 0.3  # ... and a spur off its foot within this share of level is its heel (_heel_foot)
 TIP = 0.5  # a free end runs on to this times the stroke's half-width short of where the ink
 # ends: where stroke data's medians end (hanzi-writer's, which the writer's reach to the tips
@@ -162,7 +162,7 @@ def _heel_foot(chains: list, node: Node, spurs: list, far: Chain) -> Chain | Non
     ci, e = node.chains[0]
     up = _exit(chains[ci], e, node)[1]
     side = _exit(far, 0 if far.ends[0] >= 0 else 1, node)[1]
-    if up[1] > -HOOK_RISE or abs(float(side[1])) > HEEL_FLAT:
+    if up[1] > -STAND_RISE or abs(float(side[1])) > HEEL_FLAT:
         return None
     for spur in spurs:
         way = _exit(spur, 0 if spur.ends[0] >= 0 else 1, node)[1]

@@ -255,7 +255,9 @@ def _hooks_back(way_in, piece, before, step: float, width, curl: bool = False) -
     (``way_in``: the median's points over the second half of the movement up to the corner;
     nearer the corner it already bends into the hook), and it is short against the width of
     the piece ``before`` it (centres, widths) (a 竖钩, a 斜钩, a 卧钩; not a 折 into a long
-    leg). The planner takes it from ``median_movements``."""
+    leg), and, turned back down off a 横 (a level way in, ``is_level``), short against that
+    piece's own width too (``feet.HOOK_LENGTH_OWN``: 宀's 横钩, 子's 横撇 are legs). The
+    planner takes it from ``median_movements``."""
     win = max(int(round(CORNER_WINDOW / step)), 1)
     d = way_in[-1] - way_in[0]
     e = piece[min(win, len(piece) - 1)] - piece[0]

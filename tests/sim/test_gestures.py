@@ -337,13 +337,31 @@ def test_a_long_leg_turned_back_down_off_a_heng_is_a_leg_not_a_hook(char, k):
     # 子's 横撇 and 宀's 横钩 (issue 26.2): the way out turns back down-left off the 横, 3.6-6.6
     # times the stroke's own width long; read as hooks (short against the 横's widest, its
     # pressed head) they were gathered to a point from the corner: 浮's 撇 a thin tail (IoU
-    # 0.859), 寒's corner a round knob. A 折 into a leg; a 竖钩's hook (子's own, 家's 豕's, 写's
-    # and 存's), a 斜钩's (戎's, 4.0 own widths), a 竖提's (以's) and a 撇折's (细's) stay hooks.
+    # 0.859), 寒's corner a round knob. A 折 into a leg.
     pieces, hook = median_movements(find_char(char))[k]
     assert len(pieces) >= 2 and not hook
-    kept = (("子", 1), ("家", 5), ("写", 3), ("存", 4), ("永", 1), ("小", 0), ("戎", 3), ("以", 0))
-    for c, j in (*kept, ("细", 0), ("细", 1)):
-        assert median_movements(find_char(c))[j][1], c
+
+
+@pytest.mark.parametrize(
+    ("char", "k"),
+    [
+        ("子", 1),
+        ("家", 5),
+        ("写", 3),
+        ("存", 4),
+        ("永", 1),
+        ("小", 0),
+        ("戎", 3),
+        ("以", 0),
+        ("细", 0),
+    ],
+)
+def test_other_hooks_stay_hooks_whatever_their_own_width(char, k):
+    # the own-width test is only for a way turned back down off a 横: a 竖钩's hook (子's own,
+    # 家's 豕's, 写's, 存's), a 斜钩's (戎's, 4.0 own widths), a 竖提's (以's, 6.3) and a
+    # 撇折's (细's) stay hooks (applied to every hook, 124 strokes of 400 random characters
+    # changed, 戎's and 以's among them)
+    assert median_movements(find_char(char))[k][1]
 
 
 @pytest.mark.parametrize(("char", "k"), [("永", 1), ("我", 2), ("月", 1), ("刀", 0)])
