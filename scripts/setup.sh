@@ -21,8 +21,8 @@ fi
 stamp=".venv/.installed-$(sha256sum requirements-dev.txt | cut -c1-16)"
 if [ ! -f "$stamp" ]; then
   echo "setup: installing requirements-dev.txt (bpy is about 1 GB the first time)" >&2
-  .venv/bin/python -m pip install --quiet --upgrade pip
-  .venv/bin/python -m pip install --quiet -r requirements-dev.txt
+  .venv/bin/python -m pip install --quiet --no-cache-dir --upgrade pip
+  .venv/bin/python -m pip install --quiet --no-cache-dir -r requirements-dev.txt
   rm -f .venv/.installed-*
   touch "$stamp"
 fi

@@ -5,8 +5,16 @@
 # .venv-bpy42 and .venv-bpy45 (made the first time, about 400 MB each; kept afterwards).
 #   bash scripts/smoke.sh                 4.2.23 and 4.5.15
 #   bash scripts/smoke.sh 4.2.23 ...      the given bpy versions
+#   bash scripts/smoke.sh --drop ...      each venv removed after its run (CI: a clean clone makes
+#                                         them anyway, and the two need not be on disk at once)
+# pip keeps no copy of the wheels (--no-cache-dir): a bpy wheel is about 300 MB.
 set -euo pipefail
 cd "$(dirname "$0")/.."
+drop=0
+if [ "${1:-}" = "--drop" ]; then
+  drop=1
+  shift
+fi
 pick_python() {
   for c in "${PYTHON:-}" python3.11 python3; do
     [ -n "$c" ] || continue
@@ -28,11 +36,14 @@ for version in "$@"; do
     rm -rf "$venv"
     "$PY" -m venv "$venv"
     # numpy 1.26, as Blender 4.2 and 4.5 ship it
-    "$venv/bin/python" -m pip install --quiet "bpy==$version" "numpy>=1.24,<2"
+    "$venv/bin/python" -m pip install --quiet --no-cache-dir "bpy==$version" "numpy>=1.24,<2"
     touch "$stamp"
   fi
   if ! "$venv/bin/python" scripts/smoke.py; then
     failed+=("$version")
+  fi
+  if [ "$drop" = 1 ]; then
+    rm -rf "$venv"
   fi
 done
 if [ ${#failed[@]} -gt 0 ]; then

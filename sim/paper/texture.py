@@ -17,6 +17,7 @@ threads in mm at any resolution. No generator is drawn, so the brush's draws are
 
 from __future__ import annotations
 
+import contextlib
 import hashlib
 import os
 import tempfile
@@ -40,6 +41,9 @@ TONE_TILES = 2048  # tiles of tone kept (``sheet_tone``; 16 KB each at 64 px: 32
 # tiles a process writes to the folder of ``keep_tiles_in`` at most (32 MB at 64 px: a sheet
 # rendered whole at 600 dpi does not fill the cache with its every tile)
 DISK_TILES = 2048
+# tiles kept in the cache folder at most, over every version's subfolder (256 MB at 64 px); the
+# oldest go first when a command starts (a cache that only grows fills a user's disk)
+KEPT_TILES = 16384
 _OCTAVE = 1 << 40  # index offsets that keep the noises' lattices apart
 _HALF = 1 << 19  # lattice indices are offset by this to stay positive (sheets < 2**19 cells)
 
@@ -117,6 +121,33 @@ def keep_tiles_in(cache_dir) -> None:
     for name in ("texture.py", "grain.py"):
         digest.update((here / name).read_bytes())
     _tile_folder = Path(cache_dir) / f"paper-tone-{digest.hexdigest()[:16]}"
+    _prune_kept_tiles(Path(cache_dir), KEPT_TILES - DISK_TILES)
+
+
+def _prune_kept_tiles(cache_dir: Path, keep: int) -> None:
+    """Remove the oldest kept tiles (by when they were written) of every ``paper-tone-*``
+    subfolder of ``cache_dir`` down to ``keep``, and the subfolders left empty; a file another
+    process removes first, or a folder that cannot be read, is passed over."""
+    try:
+        folders = [f for f in cache_dir.glob("paper-tone-*") if f.is_dir()]
+        entries = [e for f in folders for e in os.scandir(f) if e.name.endswith(".npy")]
+    except OSError:
+        return
+    if len(entries) <= keep:
+        return
+    dated = []
+    for entry in entries:
+        try:
+            dated.append((entry.stat().st_mtime_ns, entry.path))
+        except OSError:
+            continue
+    dated.sort()
+    for _, path in dated[: max(len(dated) - keep, 0)]:
+        with contextlib.suppress(OSError):
+            os.remove(path)
+    for folder in folders:
+        with contextlib.suppress(OSError):
+            folder.rmdir()  # only when empty
 
 
 def _tile_file(ty: int, tx: int, tile: int, ppm: float, texture: float, seed: int):

@@ -115,6 +115,8 @@ def _shoulders(pts, polys, step: float, edges, pieces, font: bool = True) -> lis
             _past_the_corner(width, step)
         leg_c, leg_w, leg_h = out[k + 1]
         cap = over * _body_width(leg_w)
+        if not cap > 0.0:
+            continue  # a leg of no width (a degenerate outline): no shoulder to press
         dun = dun_at(pts, i1, polys, step, _body_width(leg_w))
         leg_c = _from_the_shoulder(leg_c, dun, DUN_SPAN * cap)
         corner = pts[i1]

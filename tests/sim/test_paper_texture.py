@@ -108,3 +108,26 @@ def test_the_draw_from_kept_tiles_is_the_draw_of_the_windows_tone():
     want = np.clip(DRAW_BASE + DRAW_SPREAD * 0.62 * (tone - 1.0), DRAW_MIN, 1.0)
     got = sheet_draw(slice(3, 70), slice(20, 41), 6.0, 5, 16, 0.62)
     assert got.dtype == np.float32 and got.tobytes() == want.astype(np.float32).tobytes()
+
+
+def test_the_kept_tiles_are_bounded_oldest_first_over_every_version(tmp_path):
+    """A cache that only grows fills a user's disk: when a command starts, the oldest kept tiles
+    of every version's folder go first, down to the bound, and an emptied folder goes too."""
+    import os
+
+    from sim.paper import texture
+
+    old, new = tmp_path / "paper-tone-0000", tmp_path / "paper-tone-1111"
+    for folder, count, start in ((old, 3, 0), (new, 4, 100)):
+        folder.mkdir()
+        for k in range(count):
+            path = folder / f"{k}.npy"
+            np.save(path, np.zeros((2, 2), np.float32))
+            os.utime(path, ns=((start + k) * 10**9, (start + k) * 10**9))
+    (tmp_path / "response-x.json").write_text("{}")  # not a tile: never touched
+    texture._prune_kept_tiles(tmp_path, 2)
+    assert not old.exists()  # every tile in it older than the newest two
+    assert sorted(p.name for p in new.iterdir()) == ["2.npy", "3.npy"]
+    assert (tmp_path / "response-x.json").exists()
+    texture._prune_kept_tiles(tmp_path, 5)  # under the bound: nothing goes
+    assert len(list(new.iterdir())) == 2
