@@ -149,3 +149,43 @@ def test_a_stroke_is_begun_on_two_thirds_of_a_load_and_written_grey():
     half = _last_half(ch, 2, masks[2], sim.paper.H)
     assert _density(sim, half) < 0.9 * _density(sim, masks[0])
     assert _inked_median(sim, half) < 0.92 * _inked_median(sim, masks[0])
+
+
+def test_a_soak_dips_the_whole_hair_as_wet_as_the_dip_was():
+    from sim.core.recording import Dip
+    from sim.writing.writer import SOAK_DEPTH, soaked
+
+    dip = Dip(7, 0.5, (0.1, 0.1, 0.1), 0.5)
+    soak = soaked(dip)
+    assert soak.depth == SOAK_DEPTH == 1.0 and soak.wetness == 0.5  # a dry ink stays dry
+    assert (soak.before_sample, soak.color) == (7, dip.color) and dip.depth == 0.5
+
+
+@pytest.mark.slow
+def test_a_stroke_that_runs_dry_on_a_fresh_dip_is_written_again_on_a_soak(monkeypatch):
+    """As a calligrapher loads the brush fully for a stroke one dip does not carry (issue 26:
+    飞's imitated hook, a dry broom on a solid picture): a stroke begun on a fresh dip that ends
+    below RUN_DRY of a full load is taken back and written again on a soak. 永 runs dry nowhere.
+    With RUN_DRY raised every stroke 'runs dry' (and is dipped for) and each dip becomes a
+    soak: the brush ends holding more ink and the long 横折钩 darker than when the soak is no
+    deeper than the dip, and both recordings replay to their ink, bit for bit."""
+    import sim.writing.writer as writer
+
+    template = Recording(np.zeros((1, 6)))
+    response = calibrate(template)
+    ch = find_char("永")
+    rec, _, _ = write_character(ch, 120, template, response=response, passes=1)
+    assert all(d.depth == 0.7 for d in rec.dips)  # ordinary dips
+    monkeypatch.setattr(writer, "RUN_DRY", 0.99)
+    monkeypatch.setattr(writer, "SOAK_DEPTH", 0.7)  # taken back, written again the same
+    same, _, plain = write_character(ch, 120, template, response=response, passes=1)
+    monkeypatch.setattr(writer, "SOAK_DEPTH", 1.0)
+    soak, _, wet = write_character(ch, 120, template, response=response, passes=1)
+    assert len(same.dips) > len(rec.dips) and len(soak.dips) <= len(same.dips)  # carries further
+    assert all(d.depth == 0.7 for d in same.dips) and all(d.depth == 1.0 for d in soak.dips)
+    assert brush_load(wet.brush) > 1.08 * brush_load(plain.brush)  # more ink left in it
+    masks = _stroke_masks(ch, wet.paper.H, wet.paper.W)
+    hook = _last_half(ch, 1, masks[1], wet.paper.H)
+    assert _density(wet, hook) > _density(plain, hook)
+    for r, s in ((same, plain), (soak, wet)):
+        assert np.array_equal(Simulation(r).run().paper.ink, s.paper.ink)
