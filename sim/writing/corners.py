@@ -163,19 +163,20 @@ DUN_SPAN = 1.0  # shoulder widths (SHOULDER_OVER times the leg's) over which a �
 
 def _dun_point(pts, k: int, polys, step: float, leg_width: float) -> np.ndarray:
     """Where the 顿 at a 折's corner ``k`` presses to: the point within ``DUN_NEAR`` leg widths
-    of the median's corner farthest along the corner's outer bisector (the way in less the way
-    out, each a chord of ``CORNER_WINDOW``: up and to the right at a 横折) at which a belly of
+    of the median's corner farthest along the way in less ``DUN_UP`` of the way out (each a
+    chord of ``CORNER_WINDOW``: to the right and a little up at a 横折) at which a belly of
     ``DUN_BELLY`` half leg widths stays inside the outline: the press's belly set into the
     outline's outer corner, touching both its outer edges, so the shoulder is inked out to its
     corner and squared, not a disc pressed short of it. The calligrapher runs the horizontal
     into the corner, lifts a little and presses on out into the shoulder, and sets the leg off
-    from there. (The paper's 6-DOF samples, Sec. 4, plan no 顿, and its footprint, Eq. 1's
-    ellipse about the base, is only pressed, never placed: added here. Issue 26: aimed at the
+    from there. (The paper takes the brush's samples, S^t of Eq. 9 in Sec. 4, from the
+    writer's hand and plans no 顿: where it presses is added here. Issue 26: aimed at the
     outline's point farthest along the bisector, 0.75 of the way to where the belly would meet
     the outline along that ray, the ray met the outline's upper edge short of a font's knob
     standing out to the right (贝, 且), the shoulder's outer side was bare and the press stood
     up out of the 横 as a knob: shoulders_eval's bare 433 px, corner 4.98 px on 巴 贝 页 西 酉
-    且 旦 亚; aimed down the bisector, 口's knob up-right was left bare, held-out IoU 0.924 ->
+    且 旦 亚, now 255 px and 2.61 px; aimed down the bisector, 口's knob up-right was left
+    bare, held-out IoU 0.924 ->
     0.901.)"""
     d, e = _chords(pts, k, step)
     way_out = e / max(float(np.linalg.norm(e)), 1e-9)
