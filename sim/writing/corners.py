@@ -129,7 +129,7 @@ def _shoulders(pts, polys, step: float, edges, pieces, font: bool = True) -> lis
         out[k] = (centre, width, out[k][2])
         leg_w = np.where(near, np.minimum(leg_w, cap), leg_w)
         if font:
-            leg_w = _belly_in(leg_c, leg_w, near, polys, _body_width(leg_w))
+            leg_w = _belly_in(leg_c, leg_w, DUN_SPAN * cap, polys, _body_width(leg_w))
         out[k + 1] = (leg_c, leg_w, leg_h)
     return out
 
@@ -137,16 +137,18 @@ def _shoulders(pts, polys, step: float, edges, pieces, font: bool = True) -> lis
 DUN_WAIST = 0.7  # leg widths the leg set off from the 顿 is planned at least (``_belly_in``)
 
 
-def _belly_in(leg_c, leg_w, near, polys, body: float) -> np.ndarray:
+def _belly_in(leg_c, leg_w, span: float, polys, body: float) -> np.ndarray:
     """A 折's leg widths (``leg_w``, centres ``leg_c``) past its first point (the 顿's, whose
-    belly ``_dun_point`` set inside) and ``near`` the corner held to where their belly, half
-    their width round the centre, stays inside the outline, but at least ``DUN_WAIST`` of
+    belly ``_dun_point`` set inside) and within ``span`` of it (the leg's set-off from there,
+    ``_from_the_shoulder``; on, a 横折钩's foot goes out to the hook) held to where their
+    belly, half their width round the centre, stays inside the outline, but at least
+    ``DUN_WAIST`` of
     the leg's ``body`` width: set off from the 顿 out in the corner, the leg's outer edge
     otherwise stood out past the font's leg, narrower under its knob (墨's 罒: 3.2 px at 256
     px, 2.8 before). Beyond the paper, which presses to the outline's width along the median."""
     room = 2.0 * np.maximum(distance_to_outline(leg_c, polys), 0.0)
-    held = near.copy()
-    held[:1] = False
+    s = np.concatenate([[0.0], np.cumsum(np.linalg.norm(np.diff(leg_c, axis=0), axis=1))])
+    held = (s > 0.0) & (s < span)
     return np.where(held, np.minimum(leg_w, np.maximum(room, DUN_WAIST * body)), leg_w)
 
 
