@@ -9,7 +9,7 @@ import numpy as np
 
 from ..core import exact
 from .feet import _body_width, _past_the_corner
-from .polygons import _bands, _ray_hits
+from .polygons import _bands, _ray_hits, distance_to_outline
 
 CORNER_TURN = 1.3  # rad of turn over +-CORNER_WINDOW: a hook's foot or a 折 is two movements
 CORNER_WINDOW = 60.0  # data units either side (a median's corner spreads over 2-3 vertices)
@@ -127,41 +127,73 @@ def _shoulders(pts, polys, step: float, edges, pieces, font: bool = True) -> lis
         width = np.where(near, np.minimum(width, swell), width)
         near = np.linalg.norm(leg_c - corner, axis=1) < 2.0 * cap
         out[k] = (centre, width, out[k][2])
-        out[k + 1] = (leg_c, np.where(near, np.minimum(leg_w, cap), leg_w), leg_h)
+        leg_w = np.where(near, np.minimum(leg_w, cap), leg_w)
+        if font:
+            leg_w = _belly_in(leg_c, leg_w, DUN_SPAN * cap, polys, _body_width(leg_w))
+        out[k + 1] = (leg_c, leg_w, leg_h)
     return out
 
 
-DUN_REACH = 0.75  # share of the way to where the belly, half the leg's width round the base,
-# reaches the outline's outer corner the 顿 presses to (``_dun_point``; 0.85: 墨's 3.2 px out)
-DUN_NEAR = 1.5  # leg widths round a 折's corner the outline's outer corner is looked for in
+DUN_WAIST = 0.7  # leg widths the leg set off from the 顿 is planned at least (``_belly_in``)
+
+
+def _belly_in(leg_c, leg_w, span: float, polys, body: float) -> np.ndarray:
+    """A 折's leg widths (``leg_w``, centres ``leg_c``) past its first point (the 顿's, whose
+    belly ``_dun_point`` set inside) and within ``span`` of it (the leg's set-off from there,
+    ``_from_the_shoulder``; on, a 横折钩's foot goes out to the hook) held to where their
+    belly, half their width round the centre, stays inside the outline, but at least
+    ``DUN_WAIST`` of
+    the leg's ``body`` width: set off from the 顿 out in the corner, the leg's outer edge
+    otherwise stood out past the font's leg, narrower under its knob (墨's 罒: 3.2 px at 256
+    px, 2.8 before). Beyond the paper, which presses to the outline's width along the median."""
+    room = 2.0 * np.maximum(distance_to_outline(leg_c, polys), 0.0)
+    s = np.concatenate([[0.0], np.cumsum(np.linalg.norm(np.diff(leg_c, axis=0), axis=1))])
+    held = (s > 0.0) & (s < span)
+    return np.where(held, np.minimum(leg_w, np.maximum(room, DUN_WAIST * body)), leg_w)
+
+
+DUN_BELLY = 0.8  # the 顿's belly, in half leg widths, that stays inside the outline at its
+# press (``_dun_point``: the base goes out into the corner till the belly meets the outline)
+DUN_NEAR = 1.5  # leg widths round a 折's corner the 顿 may press to
+DUN_UP = 0.5  # weight of the way out, reversed, in the way the 顿 presses along: 1 the
+# bisector (贝, 且: it pressed a ball up out of the 横), 0 straight on along the way in
+DUN_GRID = 25  # candidate points a side of the square round the corner ``_dun_point`` reads
 DUN_MIN = 0.3  # leg widths the 顿 goes on at least (the base never stands pressed on the spot)
 DUN_SPAN = 1.0  # shoulder widths (SHOULDER_OVER times the leg's) over which a 折's leg, set off
 # from the 顿's end, comes back to its band's centres (``_from_the_shoulder``)
 
 
 def _dun_point(pts, k: int, polys, step: float, leg_width: float) -> np.ndarray:
-    """Where the 顿 at a 折's corner ``k`` presses to: from the median's corner toward the
-    outline's outer corner (the point of the outline within ``DUN_NEAR`` leg widths farthest
-    along the corner's outer bisector, the way in less the way out, each a chord of
-    ``CORNER_WINDOW``: up and to the right at a 横折), ``DUN_REACH`` of the way to where the
-    belly, half the leg's width round the base, would reach the outline. The calligrapher runs
-    the horizontal into the corner, lifts a little and presses on out into the shoulder, and
-    sets the leg off from there: the shoulder is the corner of that pressed move, not a disc
-    pressed on the spot. (The paper's 6-DOF samples, Sec. 4, plan no 顿: added here. Issue 26:
-    aimed down the bisector, 口's knob up-right was left bare, held-out IoU 0.924 -> 0.901;
-    aimed at the outline farthest from the bisector round past the way in, the peak stayed
-    bare, 7-12 px from the ink, a round knob pressed beside it: issue 26 point 2.)"""
+    """Where the 顿 at a 折's corner ``k`` presses to: the point within ``DUN_NEAR`` leg widths
+    of the median's corner farthest along the way in less ``DUN_UP`` of the way out (each a
+    chord of ``CORNER_WINDOW``: to the right and a little up at a 横折) at which a belly of
+    ``DUN_BELLY`` half leg widths stays inside the outline: the press's belly set into the
+    outline's outer corner, touching both its outer edges, so the shoulder is inked out to its
+    corner and squared, not a disc pressed short of it. The calligrapher runs the horizontal
+    into the corner, lifts a little and presses on out into the shoulder, and sets the leg off
+    from there. (The paper takes the brush's samples, S^t of Eq. 9 in Sec. 4, from the
+    writer's hand and plans no 顿: where it presses is added here. Issue 26: aimed at the
+    outline's point farthest along the bisector, 0.75 of the way to where the belly would meet
+    the outline along that ray, the ray met the outline's upper edge short of a font's knob
+    standing out to the right (贝, 且), the shoulder's outer side was bare and the press stood
+    up out of the 横 as a knob: shoulders_eval's bare 433 px, corner 4.98 px on 巴 贝 页 西 酉
+    且 旦 亚, now 255 px and 2.61 px; aimed down the bisector, 口's knob up-right was left
+    bare, held-out IoU 0.924 ->
+    0.901.)"""
     d, e = _chords(pts, k, step)
-    outer = d / max(float(np.linalg.norm(d)), 1e-9) - e / max(float(np.linalg.norm(e)), 1e-9)
-    edge = np.concatenate(polys)
-    near = edge[np.linalg.norm(edge - pts[k], axis=1) < DUN_NEAR * leg_width]
+    way_out = e / max(float(np.linalg.norm(e)), 1e-9)
+    outer = d / max(float(np.linalg.norm(d)), 1e-9) - DUN_UP * way_out
+    reach = DUN_NEAR * leg_width
+    g = np.linspace(-reach, reach, DUN_GRID)
+    near = np.stack(np.meshgrid(g, g), axis=-1).reshape(-1, 2)
+    near = pts[k] + near[np.linalg.norm(near, axis=1) <= reach]
+    near = near[distance_to_outline(near, polys) >= DUN_BELLY * 0.5 * leg_width]
     if not len(near):
         return pts[k]
-    tip = near[int(np.argmax((near - pts[k]) @ outer))] - pts[k]  # the outline's outer corner
-    way = tip / max(float(np.linalg.norm(tip)), 1e-9)
-    hit = float(_ray_hits(pts[k][None], way[None], polys)[0])
-    hit = hit if np.isfinite(hit) else float(np.linalg.norm(tip))
-    return pts[k] + max(DUN_REACH * (hit - 0.5 * leg_width), DUN_MIN * leg_width) * way
+    off = near[int(np.argmax((near - pts[k]) @ outer))] - pts[k]
+    far = float(np.linalg.norm(off))
+    way = off / far if far > 1e-9 else outer / max(float(np.linalg.norm(outer)), 1e-9)
+    return pts[k] + max(far, DUN_MIN * leg_width) * way
 
 
 PICTURE_DUN_REACH = 0.7  # a picture's 折 (``_dun_toward_the_knob``): share of the way to where the

@@ -46,17 +46,20 @@ def test_a_zhe_shoulder_is_one_move_never_at_rest_pressed(response, char, k):
 @pytest.mark.parametrize("char", ["口", "日", "月", "田"])
 def test_a_zhe_leg_sets_off_toward_the_outlines_outer_corner(char):
     # the leg sets off where the 顿 pressed to: on from the median's corner (the horizontal's
-    # end), not on it, so that no back-drag crosses the shoulder, and toward the outline's
-    # outer corner (scripts/shoulders_eval.py's), up and to the right, within 14 degrees (issue
-    # 26 point 2; main aimed down and to the right, 17-45 degrees off it: the peak stayed bare)
+    # end), not on it, so that no back-drag crosses the shoulder, and with the belly there,
+    # half the leg's width round its first centre, over the outline's outer corner
+    # (scripts/shoulders_eval.py's) (issue 26 point 2: aimed down and to the right, 17-45
+    # degrees off it, the peak stayed bare; then aimed at it, 0.75 of the way, the belly
+    # stopped 0.06-0.15 leg widths short of it on these four, a round press beside the corner;
+    # since its squared shoulder, corners._dun_point, the belly is set into the corner)
     from scripts.shoulders_eval import corner_points
 
     ch = find_char(char)
     (head, _), (leg, leg_w) = median_pieces(ch)[1][:2]
-    tip = [c[2] for c in corner_points(ch) if c[0] == "zhe" and c[4] == 1][0] - head[-1]
+    tip = [c[2] for c in corner_points(ch) if c[0] == "zhe" and c[4] == 1][0]
     off = leg[0] - head[-1]
     assert off[0] > 0.1 * float(np.median(leg_w))
-    assert off @ tip > 0.97 * np.linalg.norm(off) * np.linalg.norm(tip)
+    assert np.linalg.norm(tip - leg[0]) < 0.5 * leg_w[0]
 
 
 def test_practice_holds_a_zhe_legs_press_below_the_shoulder(response):
@@ -94,7 +97,9 @@ def test_a_pictures_zhe_keeps_the_pictures_shoulder():
     # corner's outer edge as a picture's is (``picture.outline.into_corners``): the 顿 presses
     # into the picture's own shoulder, its belly not out past the ink (issue 26: stroke data's
     # aim, at the outline's outer corner, goes on at least DUN_MIN leg widths, here onto the
-    # corner itself: on 为's picture it pressed a knob out, box IoU 0.891 -> 0.755)
+    # corner itself: on 为's picture it pressed a knob out, box IoU 0.891 -> 0.755; since the
+    # squared shoulder, corners._dun_point, stroke data's 顿 too sets its belly inside the
+    # corner, touching both outer edges)
     outline = [(200, 550), (700, 550), (700, 200), (650, 200), (650, 500), (200, 500)]
     path = "M " + " L ".join(f"{x} {y}" for x, y in outline) + " Z"
     ch = {"strokes": [path], "medians": [[[220, 525], [690, 540], [675, 220]]]}
@@ -104,7 +109,7 @@ def test_a_pictures_zhe_keeps_the_pictures_shoulder():
         (head, _), (leg, leg_w) = median_movements(ch, font=font)[0][0][:2]
         room[font] = float(distance_to_outline(leg[:1], polys)[0])
     assert room[False] > 0.15 * 50.0  # in the ink (the leg 50 wide), room for the belly
-    assert room[True] < 0.05 * 50.0  # stroke data's 顿 goes on out onto the corner
+    assert room[True] > 0.15 * 50.0  # stroke data's too (before: out onto the corner, 0)
 
 
 @pytest.mark.parametrize("char", ["口", "马", "月"])
@@ -136,3 +141,19 @@ def test_a_written_zhe_stands_no_knob_out_of_the_font():
     rows = [r for r in measure(("月", DEFAULT_BRUSH, 512, None, None)) if r[2] == "zhe"]
     assert len(rows) == 1
     assert rows[0][4] < 110
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("char", ["四", "见"])
+def test_a_written_zhe_inks_the_outlines_outer_corner(char):
+    # the 顿 presses its belly into the outline's outer corner (corners._dun_point, issue 26
+    # point 2): written with the kaishu brush at 512 px, the font's pixels left bare within 1.5
+    # widths of the corner are under 350 px (before: the way along the bisector met the
+    # outline's upper edge short of the knob, 481 and 476 px bare) and no ball stands out of
+    # the font there (outside under 200 px: 四 136 -> 1, 见 469 -> 187)
+    from scripts.shoulders_eval import measure
+
+    rows = [r for r in measure((char, "wolf_kaishu", 512, None, None)) if r[2] == "zhe"]
+    assert len(rows) == 1
+    assert rows[0][5] < 350
+    assert rows[0][4] < 200
