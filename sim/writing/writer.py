@@ -178,6 +178,8 @@ def write_character(
             rec.dips.append(Dip(a, ink.depth, tuple(ink.color), ink.wetness))
             sim.dips = rec.dips
             since = (full, 0.0)
+            if fresh is not None:  # a hold left open would keep every later tile's copy
+                sim.let_go(fresh[0])
             fresh = (sim.hold(), len(rec.dips) - 1)
         since = (since[0], since[1] + areas[n_stroke])
         own = masks[n_stroke] if passes > 1 else None
