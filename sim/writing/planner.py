@@ -485,7 +485,16 @@ def _ends_moved(path, tangent, width, moves) -> np.ndarray:
 
 
 def _fill(
-    samples, pl: Plan, response: Response, span, press, side, brush, ends=None, run_up=RUN_UP
+    samples,
+    pl: Plan,
+    response: Response,
+    span,
+    press,
+    side,
+    brush,
+    ends=None,
+    run_up=RUN_UP,
+    lift=None,
 ):
     """Samples a..b (``span``) of one stroke of plan ``pl``: for each of its movements, come
     down, write with the given press and sideways placement per body sample (the press eased at
@@ -493,7 +502,9 @@ def _fill(
     (``_enter_and_leave``), and turn on the tip between them (``_turn_on_the_tip``). ``brush``
     is (hover, hair length, step) in mm; ``ends`` (movements, 2): how far each movement's start
     and end are carried on along its way out (``_ends_moved``; practice's reach correction);
-    ``run_up``: the entries' (``_enter_and_leave``). Returns the body samples."""
+    ``run_up``: the entries' (``_enter_and_leave``); ``lift`` (mm per body sample, or None):
+    taken off the press as it is finally shaped (practice's ``_lifted``: a hook's root).
+    Returns the body samples."""
     a, b = span
     hover, hair, step_mm = brush
     body = np.flatnonzero(pl.phase[a:b] == WRITING) + a
@@ -531,7 +542,7 @@ def _fill(
         if r == 0:  # the head; a leg sets off from the corner (a hook pressed from its foot)
             placed = _entry_side(placed, pl.target[run], pl.width[run])
         samples[run, :2] += placed[:, None] * normal[run]
-        samples[run, 2] = hair - p
+        samples[run, 2] = hair - (p if lift is None else np.maximum(p - lift[j0:j1], 0.0))
         nxt = None
         if r < len(runs) - 1:  # into a corner: a 折 lifts slightly, a hook's foot stays pressed
             keep = HOOK_KEEP * p[-1] if hook[r + 1] else 0.0

@@ -30,8 +30,8 @@ from .zones import entry_zone, point_zone, shoulder_zone
 class Pass(NamedTuple):
     """One practice pass of a stroke: how far its ink is from the outline (lower is better),
     the press, sideways placement and end moves (``_reach_moves``) it was written with, its
-    number, and the simulation as
-    the pass left it (a snapshot; None for a pass the simulation is still at)."""
+    number, the simulation as the pass left it (a snapshot; None for a pass the simulation is
+    still at), and the press its hooks' roots were lifted by (``_lifted``)."""
 
     error: float
     press: np.ndarray
@@ -39,6 +39,7 @@ class Pass(NamedTuple):
     moves: np.ndarray
     number: int
     state: dict | None
+    lift: np.ndarray | None = None
 
 
 def _probes(sim: Simulation, points, tangents, reach_mm: float):
@@ -186,6 +187,16 @@ def _practise(sim, start, rd: _Reading, probes, band, holds) -> None:
             holds[t] = sim.hold(kept[t])
 
 
+def _slope(response, press) -> np.ndarray:
+    """The response's slope (band width per press, mm/mm) at each ``press``: of its monotone
+    envelope, no less than half its mean slope over the measured presses."""
+    w_env = np.maximum.accumulate(response.width_mm)
+    slope_tab = np.gradient(w_env, response.press_mm)
+    p_max = float(response.press_mm[-1])
+    mean_slope = 0.5 * (w_env[-1] - w_env[0]) / max(p_max - float(response.press_mm[0]), 1e-6)
+    return np.maximum(np.interp(press, response.press_mm, slope_tab), mean_slope)
+
+
 def _correct(response, placed, want, band, ceiling, zones):
     """The next pass's press and sideways placement: where the reading is this stroke's own,
     a share of the width error through the response's slope, and of the band's offset; smoothed
@@ -199,11 +210,7 @@ def _correct(response, placed, want, band, ceiling, zones):
     press, side = placed
     got, centre, valid = band
     entering, pointing, shoulder = zones
-    w_env = np.maximum.accumulate(response.width_mm)
-    slope_tab = np.gradient(w_env, response.press_mm)
-    p_max = float(response.press_mm[-1])
-    mean_slope = 0.5 * (w_env[-1] - w_env[0]) / max(p_max - float(response.press_mm[0]), 1e-6)
-    slope = np.maximum(np.interp(press, response.press_mm, slope_tab), mean_slope)
+    slope = _slope(response, press)
     dp = np.where(valid, PRACTICE_GAIN * (want - got) / slope, 0.0)
     dp = np.where(valid & (got == 0) & (want > 0), 0.5, dp)
     dp = np.where(pointing, np.minimum(dp, 0.0), dp)
@@ -248,6 +255,73 @@ def _one_flick(pl: Plan, body, placed, first) -> tuple[np.ndarray, np.ndarray]:
             t = np.clip(1.0 - (s[-1] - s) / wide, 0.0, 1.0)
             out[foot] *= 1.0 - t * t * (3.0 - 2.0 * t)
     return press, out
+
+
+LIFT_GAIN = 1.0  # share of a hook's spill past the outline (``_spill``) lifted off its press
+LIFT_MAX = 0.5  # share of its planned press a hook sample is lifted by at most
+
+
+def _hook_samples(pl: Plan, body) -> np.ndarray:
+    """Which body samples are a hook flicked up to a point's (``planner._flicks``)."""
+    hook = np.zeros(len(body), dtype=bool)
+    runs, moves = _movements(np.arange(len(body)), body), _movements(body)
+    for run, f in zip(runs, _flicks(pl, moves, _is_hook(pl, moves)), strict=True):
+        hook[run] = f
+    return hook
+
+
+def _spill(sim, pl: Plan, body, whole, before) -> np.ndarray:
+    """How much wider (mm) than the character's outline (``whole``) the brush laid a hook
+    flicked up to a point, per body sample (0 elsewhere): the new ink outside every outline
+    round the hook (``before``: the paper's coverage, bottom rows first, before the stroke),
+    each pixel counted to the hook sample whose base (the brush's handle: the belly lies under
+    it, the tip trails) is nearest it, as an area over the step between samples."""
+    out = np.zeros(len(body))
+    hook = _hook_samples(pl, body)
+    if not hook.any():
+        return out
+    ppm, base = sim.paper.ppm, sim.rec.samples[body[hook], :2]
+    reach = float(pl.width[body[hook]].max())
+    lo = np.maximum(((base.min(axis=0) - reach) * ppm).astype(int), 0)
+    hi = np.minimum(((base.max(axis=0) + reach) * ppm).astype(int) + 1, (sim.paper.W, sim.paper.H))
+    rows, cols = slice(lo[1], hi[1]), slice(lo[0], hi[0])
+    new = _coverage(sim, rows, cols) & ~before[rows, cols] & ~whole[rows, cols]
+    ys, xs = np.nonzero(new)
+    if ys.size == 0:
+        return out
+    px = (np.stack([xs + lo[0], ys + lo[1]], axis=1) + 0.5) / ppm
+    d = np.linalg.norm(px[:, None, :] - base[None, :, :], axis=2)
+    near = d.argmin(axis=1)
+    own = d[np.arange(len(near)), near] <= reach  # the hook's own spill, not a far stroke's
+    step = max(float(np.median(np.linalg.norm(np.diff(base, axis=0), axis=1))), 1e-6)
+    out[hook] = np.bincount(near[own], minlength=len(base)) / ppm**2 / step
+    return out
+
+
+def _root_unread(pl: Plan, body, valid) -> np.ndarray:
+    """The body samples of a hook's root whose band is read in the leg's ink (not ``valid``,
+    ``measure_band``): from where the hook sets off up to its first reading of its own."""
+    out = np.zeros(len(body), dtype=bool)
+    runs, moves = _movements(np.arange(len(body)), body), _movements(body)
+    for run, f in zip(runs, _flicks(pl, moves, _is_hook(pl, moves)), strict=True):
+        if f:
+            out[run] = np.cumprod(~valid[run]).astype(bool)
+    return out
+
+
+def _lifted(response, lift, spill, press, unread) -> np.ndarray:
+    """The next pass's lift off a hook's press (mm per body sample; ``planner._fill`` takes it
+    off the press as finally shaped): this pass's ``lift`` and ``LIFT_GAIN`` of the spill
+    (``_spill``) through the response's slope, where the band is ``unread`` (no reading of the
+    stroke's own: ``measure_band``), smoothed along the stroke, at most ``LIFT_MAX`` of the
+    ``press``. As the belly swings from the leg's way onto the flick's, the hair splayed in the
+    heel sweeps out past the triangle's lower edge in a round lobe below the hook's root (同,
+    永, 月). There the band across the hook is read in the leg's ink, so ``_correct`` never saw
+    it; and it could not have lightened it, the hook's press being held to its heel's taper
+    (``feet._flicked``), the hook's whole width. (Model addition, issue 26 point 2: the
+    student sees the lobe and lifts the brush a little as the flick sets off.)"""
+    more = _smooth(np.where(unread, LIFT_GAIN * spill / _slope(response, press), 0.0), 5)
+    return np.clip(lift + more, 0.0, LIFT_MAX * press)
 
 
 END_GAIN = 0.7  # share of an end's reach error corrected for the next pass
@@ -520,6 +594,7 @@ def _practise_stroke(sim, a, b, passes, fill, own, ctx, whole=None, exact=True) 
     taught = want if lesson is None else lesson.widen(want, steady)
     press = np.minimum(response.press_for(taught), ceiling)
     inked_before = _coverage(sim, own.rows, own.cols)
+    inked_all = _coverage(sim) if whole is not None else None  # for the hooks' spill
     probes = _probes(sim, pl.target[body], pl.tangent[body], reach)
     rd = _reading(a, b, body, want, step_mm, pl)
     band = (np.zeros(probes[0].shape, dtype=bool), np.zeros(probes[0].shape, dtype=bool))
@@ -532,7 +607,8 @@ def _practise_stroke(sim, a, b, passes, fill, own, ctx, whole=None, exact=True) 
         length = max(float(np.linalg.norm(np.diff(pl.target[body], axis=0), axis=1).sum()), 1e-6)
     holds = {a: sim.hold()}  # sample -> the simulation held there (the tiles changed since)
     best, start, first = None, a, press.copy()
-    fill(a, b, press, side, moves)
+    lift = np.zeros(len(body))  # a hook's root lifted off its spill (``_lifted``)
+    fill(a, b, press, side, moves, lift)
     for k in range(passes):
         if start is not None:  # (None: the pass is the last one again, sample for sample)
             _practise(sim, start, rd, probes, band, holds)
@@ -549,7 +625,7 @@ def _practise_stroke(sim, a, b, passes, fill, own, ctx, whole=None, exact=True) 
             err += float(np.abs(reach_err).sum()) / length
         gain = np.inf if best is None else best.error - err  # how much nearer than the best
         if best is None or err < best.error:
-            best = Pass(err, press.copy(), side.copy(), moves.copy(), k, None)
+            best = Pass(err, press.copy(), side.copy(), moves.copy(), k, None, lift.copy())
         elif start is None and best.number == k - 1:
             best = best._replace(number=k)  # the same pass: the simulation is where it left off
         if k == passes - 1:
@@ -560,10 +636,13 @@ def _practise_stroke(sim, a, b, passes, fill, own, ctx, whole=None, exact=True) 
             moves = _reach_moves(ends, reach_err, moves)
         elif whole is not None:
             moves = _join_moves(ends, reach_err, way, moves)
+        if whole is not None:
+            spill = _spill(sim, pl, body, whole, inked_all)
+            lift = _lifted(response, lift, spill, press, _root_unread(pl, body, valid))
         press, side = _correct(response, (press, side), want, (got, centre, valid), ceiling, zones)
         press, side = _one_flick(pl, body, (press, side), first)
         was = sim.rec.samples[a:b].copy()
-        fill(a, b, press, side, moves)
+        fill(a, b, press, side, moves, lift)
         changed = np.flatnonzero(np.any(sim.rec.samples[a:b] != was, axis=1))
         if changed.size == 0:
             start = None  # the next pass is this one again: nothing to write
@@ -577,4 +656,4 @@ def _practise_stroke(sim, a, b, passes, fill, own, ctx, whole=None, exact=True) 
         lesson.learn(response, best.press, want, steady & (best.press < ceiling))
     if best.number != k:  # the last pass was not the best: back to where the best left off
         sim.restore(best.state)
-        fill(a, b, best.press, best.side, best.moves)
+        fill(a, b, best.press, best.side, best.moves, best.lift)

@@ -162,8 +162,8 @@ def write_character(
     brush = (hover, hair, step_mm)
     run_up = 0.0 if exact_ends else RUN_UP
 
-    def fill(a, b, press, side, ends=None):
-        return _fill(samples, pl, response, (a, b), press, side, brush, ends, run_up)
+    def fill(a, b, press, side, ends=None, lift=None):
+        return _fill(samples, pl, response, (a, b), press, side, brush, ends, run_up, lift)
 
     full = full_load(template)
     areas = stroke_areas(pl, step_mm)
