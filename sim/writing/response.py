@@ -259,3 +259,13 @@ def _coverage(sim: Simulation, rows=slice(None), cols=slice(None)) -> np.ndarray
     full = np.maximum(1.0 - np.asarray(sim.ink.color, dtype=np.float32), 1e-6)
     dens = np.clip(sim.paper.ink[rows, cols], 0.0, 1.0)
     return np.mean(dens / full, axis=-1) > 0.5
+
+
+def _slope(response, press) -> np.ndarray:
+    """The response's slope (band width per press, mm/mm) at each ``press``: of its monotone
+    envelope, no less than half its mean slope over the measured presses."""
+    w_env = np.maximum.accumulate(response.width_mm)
+    slope_tab = np.gradient(w_env, response.press_mm)
+    p_max = float(response.press_mm[-1])
+    mean_slope = 0.5 * (w_env[-1] - w_env[0]) / max(p_max - float(response.press_mm[0]), 1e-6)
+    return np.maximum(np.interp(press, response.press_mm, slope_tab), mean_slope)

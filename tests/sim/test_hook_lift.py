@@ -10,11 +10,11 @@ import numpy as np
 import pytest
 
 from sim.core.recording import Recording
-from sim.writing import practice
+from sim.writing import hook_lift
 from sim.writing.hanzi import find_char
+from sim.writing.hook_lift import LIFT_MAX, _lifted, _root_unread
 from sim.writing.outline import rasterise, to_image
 from sim.writing.planner import TURNING, WRITING, Plan
-from sim.writing.practice import LIFT_MAX, _lifted, _root_unread
 from sim.writing.response import Response
 from sim.writing.writer import coverage_mask, write_character
 from tests.sim.builders import stiff_template
@@ -54,7 +54,7 @@ def test_the_lift_grows_with_the_spill_where_unread_and_is_bounded():
     unread[8:17] = True
     once = _lifted(response, np.zeros(n), spill, press, unread)
     assert once[12] > 0.0 and np.all(once[:5] == 0.0) and np.all(once[20:] == 0.0)
-    assert once[12] == pytest.approx(practice.LIFT_GAIN * 0.4, rel=0.01)  # slope 1 mm/mm
+    assert once[12] == pytest.approx(hook_lift.LIFT_GAIN * 0.4, rel=0.01)  # slope 1 mm/mm
     twice = _lifted(response, once, spill, press, unread)
     assert twice[12] > once[12]  # the lobe still there: lifted further
     many = once
@@ -77,8 +77,8 @@ def test_practice_lifts_a_hooks_lobe_in(monkeypatch, char, stroke):
     hi = (foot_tip.max(axis=0) + 0.08 * n).astype(int)
     template: Recording = stiff_template()
     outside = []
-    for gain in (0.0, practice.LIFT_GAIN):
-        monkeypatch.setattr(practice, "LIFT_GAIN", gain)
+    for gain in (0.0, hook_lift.LIFT_GAIN):
+        monkeypatch.setattr(hook_lift, "LIFT_GAIN", gain)
         _, _, sim = write_character(c, n, template)
         out = coverage_mask(sim) & ~font
         outside.append(int(out[lo[1] : hi[1], lo[0] : hi[0]].sum()))
