@@ -189,11 +189,29 @@ def contact_wetness(brush):
     """(on, wet_on): which key points lie on the paper (m, n) - the active point (Eq. 13), or
     the lowest one, always - and the mean wetness of each primitive's (m,)."""
     m = brush.m
+    if m == 1:
+        on_one, wet_one = contact_wetness_one(brush)
+        return np.array([on_one]), np.array([wet_one])
     act = np.where(brush.active >= 0, brush.active, brush.cc[..., 2].argmin(axis=1))
     on = brush.cc[..., 2] <= CONTACT_EPS
     on[:, 0] = False
     on[np.arange(m), act] = True
     return on, np.where(on, brush.wet, 0.0).sum(axis=1) / on.sum(axis=1)
+
+
+def contact_wetness_one(brush) -> tuple[list, float]:
+    """``contact_wetness`` of the one primitive, (on, wet_on) as a list and a float: which
+    key points lie on the paper found on Python floats, their mean wetness summed by
+    np.add.reduce as the arrays' row is (numpy's own order; issue 28)."""
+    z = brush.cc[0, :, 2]
+    act = int(brush.active[0])
+    if act < 0:
+        act = int(z.argmin())
+    on = [v <= CONTACT_EPS for v in z.tolist()]
+    on[0] = False
+    on[act] = True
+    held = [w if o else 0.0 for o, w in zip(on, brush.wet[0].tolist(), strict=True)]
+    return on, float(np.add.reduce(np.array(held))) / sum(on)
 
 
 def step(brush, speed: float, dt: float):

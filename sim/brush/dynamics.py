@@ -21,7 +21,7 @@ from ..core import exact
 from ..core.exact import matmul
 from ..core.frames import clip, cross, diff, norm, rotation_matrix, stack1, unit
 from ..core.params import REF_RATE
-from .bristles import HAIR_MM, contact_wetness
+from .bristles import HAIR_MM, contact_wetness, contact_wetness_one
 from .bristles import draw as draw_bundles
 from .state import CONTACT_EPS, key_point_fields, take_primitives
 
@@ -522,11 +522,11 @@ def _lose_one(brush, shares: list, dt: float) -> list:
     loss = [
         ab * gamma / sh * per * _min(w / W_SQUEEZE, 1.0) for sh, w in zip(shares, wet, strict=True)
     ]
-    on, wet_on = contact_wetness(brush)
-    held = [w if o else 0.0 for o, w in zip(on[0].tolist(), wet, strict=True)]
+    on, wet_on = contact_wetness_one(brush)
+    held = [w if o else 0.0 for o, w in zip(on, wet, strict=True)]
     total = _max(float(np.add.reduce(np.array(held))), 1e-12)
     sweep, contact = float(brush.sweep[0]), float(brush.contact[0])
-    spend = (SPEND * sweep + SOAK * contact) * ab * float(wet_on[0]) * dt
+    spend = (SPEND * sweep + SOAK * contact) * ab * wet_on * dt
     return [_max(w - (x + spend * h / total), 0.0) for w, x, h in zip(wet, loss, held, strict=True)]
 
 

@@ -310,10 +310,11 @@ def _reflection_factors(c, out) -> None:
     np.divide(2.0, c, out=out, where=c > 1e-18)
 
 
-def _products(a, b):
+def _products(a, b, out=None):
     """``exact.matmul`` of stacks of matrices (..., n, k) @ (..., k, m), m > 1, without its
-    checks (the same products and sums)."""
-    return np.add.reduce(a[..., :, :, None] * b[..., None, :, :], axis=-2)
+    checks (the same products and sums), into ``out`` when given (it may be ``a`` or ``b``:
+    the products are all made before the sums are written)."""
+    return np.add.reduce(a[..., :, :, None] * b[..., None, :, :], axis=-2, out=out)
 
 
 def rotation_minimising_frames(points, tangents, r0):
@@ -338,8 +339,8 @@ def rotation_minimising_frames(points, tangents, r0):
     P = _products(H[1], H[0])  # (m, N-1, 3, 3)
     # the running products M_i ... M_0 by doubling: log2(N) batched products, not N - 1 steps
     span = 1
-    while span < N - 1:
-        P[:, span:] = _products(P[:, span:], P[:, :-span])
+    while span < N - 1:  # (the sums written over P's own later rows: no copy of them)
+        _products(P[:, span:], P[:, :-span], out=P[:, span:])
         span *= 2
     out = np.empty_like(points)
     out[:, 0] = r0
