@@ -14,7 +14,7 @@ import numpy as np
 from ..core import exact
 from ..engine.simulation import Simulation
 from .feet import _along
-from .hook_lift import _hook_window, _lifted, _root_unread, _spill
+from .hook_lift import _hooks, _lifted, _root_unread, _spill
 from .planner import (
     LIFTING,
     WRITING,
@@ -519,7 +519,7 @@ def _practise_stroke(sim, a, b, passes, fill, own, ctx, whole=None, exact=True) 
     taught = want if lesson is None else lesson.widen(want, steady)
     press = np.minimum(response.press_for(taught), ceiling)
     inked_before = _coverage(sim, own.rows, own.cols)
-    hooks = None if whole is None or exact else _hook_window(sim, pl, body)  # their spill
+    hooks = None if whole is None or exact else _hooks(sim, pl, body)  # their spill
     probes = _probes(sim, pl.target[body], pl.tangent[body], reach)
     rd = _reading(a, b, body, want, step_mm, pl)
     band = (np.zeros(probes[0].shape, dtype=bool), np.zeros(probes[0].shape, dtype=bool))
@@ -564,7 +564,7 @@ def _practise_stroke(sim, a, b, passes, fill, own, ctx, whole=None, exact=True) 
         if hooks is not None:  # stroke data's hooks (a picture's: measured, 24 imitations
             # 0.8530 -> 0.8498, 雨's 冂 0.79)
             spill = _spill(sim, pl, body, whole, hooks)
-            lift = _lifted(response, lift, spill, press, _root_unread(pl, body, valid))
+            lift = _lifted(response, lift, spill, press, _root_unread(hooks, valid))
         press, side = _correct(response, (press, side), want, (got, centre, valid), ceiling, zones)
         press, side = _one_flick(pl, body, (press, side), first)
         was = sim.rec.samples[a:b].copy()

@@ -12,7 +12,7 @@ import pytest
 from sim.core.recording import Recording
 from sim.writing import hook_lift
 from sim.writing.hanzi import find_char
-from sim.writing.hook_lift import LIFT_MAX, _lifted, _root_unread
+from sim.writing.hook_lift import LIFT_MAX, _hook_runs, _Hooks, _lifted, _root_unread
 from sim.writing.outline import rasterise, to_image
 from sim.writing.planner import TURNING, WRITING, Plan
 from sim.writing.response import Response
@@ -37,7 +37,7 @@ def test_the_root_unread_is_the_hooks_up_to_its_first_own_reading():
     valid[5:8] = False  # the leg read in another stroke's ink: not a hook's root
     valid[20:23] = False  # the hook's root, read in the leg's ink
     valid[26] = False  # further on the hook: read again, not its root
-    unread = _root_unread(pl, body, valid)
+    unread = _root_unread(_Hooks(_hook_runs(pl, body), None, None, None, None), valid)
     assert np.flatnonzero(unread).tolist() == [20, 21, 22]
 
 
