@@ -78,14 +78,16 @@ def strokes(ch: dict) -> list[dict]:
         med = np.asarray(med, float)
         pts, _ = resample(med, 4.0)
         r = np.maximum(distance_to_outline(pts, polys), 0.0)
+        length = np.linalg.norm(np.diff(med, axis=0), axis=1).sum()
+        dot = len(moves[k][0]) == 1 and length < DOT * 2 * r.max()  # (the planner's: lifts.is_dot)
         out.append(
             {
                 "med": to_image(med, N),
-                "length": np.linalg.norm(np.diff(med, axis=0), axis=1).sum() * N / EM,
+                "length": length * N / EM,
                 "w": 2 * r.max() * N / EM,
                 "w0": 2 * r[: max(len(r) // 3, 1)].max() * N / EM,
                 "mask": fill([to_image(p, N) for p in polys], N),
-                "hidden": _landing(moves[k][0][0][0], RUN_UP) < 0.0,
+                "hidden": _landing(moves[k][0][0][0], RUN_UP, dot) < 0.0,
             }
         )
     return out

@@ -117,12 +117,16 @@ def _darkest(ink) -> np.ndarray:
 
 # Model addition (not in the paper): the droplets a brush throws. A loaded brush that leaves
 # the paper fast (出锋, a flicked hook or 撇) flings a few droplets of ink on along its exit,
-# drawn out along the way it went; one that lands loaded shakes a few off round the place it
-# landed. Real writing shows a few such loose specks a character, near its strokes; a
-# rendering with none looks printed. Per stroke, as the brush leaves the paper: the exits'
-# count is Poisson with mean SPATTER_EXIT times (exit speed / SPATTER_SPEED)^2 (the liquid's
-# kinetic energy against its surface tension) times the liquid the hair offered there against
-# SPATTER_WET; the landings' with mean SPATTER_LAND times the liquid offered as it landed.
+# drawn out along the way it went; one that comes down overloaded, just dipped, lets a drop
+# fall round the place it lands (the liquid the hair cannot hold by capillarity). Real writing
+# shows a few such loose specks a character, near its strokes; a rendering with none looks
+# printed. Per stroke, as the brush leaves the paper: the exits' count is Poisson with mean
+# SPATTER_EXIT times (exit speed / SPATTER_SPEED)^2 (the liquid's kinetic energy against its
+# surface tension) times the liquid the hair offered there against SPATTER_WET; the landings'
+# with mean SPATTER_LAND times the share of SPATTER_DRIP_SPAN by which the liquid offered as
+# it landed passes SPATTER_DRIP (issue 26: a drop beside the head of any stroke, wherever the
+# brush was in its load, read as a detached speck; a calligrapher's brush drips, if at all,
+# on the first strokes after a dip).
 # A brush that leaves in a gathered point (a hook's or a 撇's let-go: its last contact under
 # SPATTER_POINT_MM in radius) throws none: the hair closed round the point holds its liquid
 # (capillarity), only a spread, loaded belly leaving fast sheds it (times the share of
@@ -140,6 +144,8 @@ SPATTER_EXIT = 0.6
 SPATTER_LAND = 0.2
 SPATTER_SPEED = 60.0  # mm/s
 SPATTER_WET = 0.6
+SPATTER_DRIP = 0.95  # the liquid offered as it lands (a dip's first strokes: 0.9-1.1) above
+SPATTER_DRIP_SPAN = 0.1  # which the brush may drip, fully this much above it
 SPATTER_MM = (0.15, 0.8)  # a droplet's radius, mm: the smallest, the largest
 SPATTER_REACH_MM = 3.0
 SPATTER_DENSITY = 0.8  # a droplet's density (of the ink's), SPATTER_FULL_MM or larger
@@ -181,7 +187,7 @@ def spatter(paper, t, colour) -> None:
     drops = []
     fling = SPATTER_EXIT * min(hwet / SPATTER_WET, 1.0) * (speed / SPATTER_SPEED) ** 2
     fling *= min(max(hr / (paper.ppm * SPATTER_POINT_MM) - 1.0, 0.0), 1.0)  # not from a point
-    land = SPATTER_LAND * min(lwet / SPATTER_WET, 1.0)
+    land = SPATTER_LAND * min(max((lwet - SPATTER_DRIP) / SPATTER_DRIP_SPAN, 0.0), 1.0)
     n_exit, n_land = _poisson(fling, u[0]), _poisson(land, u[1])
     ahead = np.array([vy, vx]) / max(float(np.hypot(vy, vx)), 1e-9)
     for k in range(min(n_exit + n_land, SPATTER_MAX)):
@@ -193,7 +199,7 @@ def spatter(paper, t, colour) -> None:
             way /= np.hypot(*way)
             centre = (hy + way[0] * dist * paper.ppm, hx + way[1] * dist * paper.ppm)
             drops.append((centre, way, size, 1.5 + 2.0 * d))
-        else:  # shaken off round the landing, round
+        else:  # dripped round the landing, round
             dist = lr / paper.ppm + SPATTER_REACH_MM * (0.1 + 0.5 * b)
             ang = 2.0 * np.pi * c
             way = np.array(exact.sin_cos(ang))

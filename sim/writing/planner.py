@@ -316,18 +316,21 @@ def _reach_the_cap(samples, pl, body) -> None:
     samples[body, :2] -= back[:, None] * pl.tangent[body[0]]
 
 
-def _landing(path, run_up: float) -> float:
+def _landing(path, run_up: float, dot: bool = False) -> float:
     """The run-up a movement's entry comes down with (``_enter_and_leave``; ``path``: its
-    body samples' targets, paper mm, y up). A stroke that sets off down (竖, 撇, 点, 捺:
-    its way from start to end heads down by more than ``HIDDEN_DOWN``) is entered with the tip
+    body samples' targets, paper mm, y up). A stroke that sets off down (竖, 撇, 捺: its way
+    from start to end heads down by more than ``HIDDEN_DOWN``) is entered with the tip
     hidden (藏锋, 逆锋起笔): the brush comes down moving back up the stroke, against its way,
     so the landing tip trails into the stroke, the belly presses on the start and the body
     covers the tip. One that sets off along (横, 提) lands moving on, its tip showing at the
     head as the outline's point does (露锋). (Added in issue 26: landing moving on, every
     downward head had the tip's hairline standing out behind it, a beak above-left of the
     outline's round head; entered so, a 横's head flipped the hair over, a horn on its top.)
+    A ``dot`` (点, ``is_dot``) lands moving on whichever way it heads: the tip touches at the
+    outline's pointed head and the belly presses down along the dot (露锋入笔; hidden, its
+    head came out round and the dot short of the font's by 8 %, 51 dots of 18 characters).
     0 (a picture's exact start) stays 0."""
-    if run_up <= 0.0:
+    if run_up <= 0.0 or dot:
         return run_up
     chord = path[-1] - path[0]
     down = -chord[1] / max(float(np.sqrt(chord[0] * chord[0] + chord[1] * chord[1])), 1e-9)
@@ -366,7 +369,8 @@ def _enter_and_leave(
     entry = np.arange(a + 1, body[0])
     t0 = pl.tangent[body[0]]
     f = np.arange(1, len(entry) + 1) / max(len(entry), 1)
-    run_up = _landing(pl.target[body], run_up)
+    dot = corner[0] is None and corner[1] is None and is_dot(pl.target[body], pl.width[body])
+    run_up = _landing(pl.target[body], run_up, dot)
     if run_up < 0.0 and corner[0] is None:
         _reach_the_cap(samples, pl, body)
     back = (len(entry) + 1 - np.arange(1, len(entry) + 1)) * 0.5 * step_mm * run_up
@@ -389,7 +393,6 @@ def _enter_and_leave(
     top = hover if corner[1] is None else corner[1]
     z0 = samples[body[-1], 2]
     rise = z0 + (top - z0) * np.sqrt(f)
-    dot = corner[0] is None and corner[1] is None and is_dot(pl.target[body], pl.width[body])
     point = _point_reach(pl.target[body], pl.width[body]) if corner[1] is None else 0.0
     point = 0.0 if dot else point  # a dot ends in its heel (``_heel_held``), not a point
     if point > 0.0:  # 出锋: the belly lets go evenly as the brush sweeps on, out to the point

@@ -198,6 +198,7 @@ def test_no_droplet_is_laid_against_the_stroke_it_came_from(monkeypatch):
     from scipy import ndimage as ndi
 
     monkeypatch.setattr(lift_module, "SPATTER_LAND", 50.0)
+    monkeypatch.setattr(lift_module, "SPATTER_DRIP", 0.0)  # every landing drips
     monkeypatch.setattr(lift_module, "SPATTER_EXIT", 50.0)
     still, thrown = Paper(300, 100, 8.0, capacity=1.0, fibre=0.5), None
     _fast(still, lift=False)
@@ -210,3 +211,23 @@ def test_no_droplet_is_laid_against_the_stroke_it_came_from(monkeypatch):
     assert n > len(own)  # droplets were laid ...
     grown = ndi.binary_dilation(stroke)
     assert not (dark & grown & ~stroke).any()  # ... none of them on or against the stroke
+
+
+def _landing_drops(monkeypatch, wet: float) -> int:
+    """Dark pieces off a slow stroke (no exit droplets) landed with liquid ``wet``."""
+    from scipy import ndimage as ndi
+
+    monkeypatch.setattr(lift_module, "SPATTER_LAND", 50.0)  # so many that the cap throws
+    paper = _sheet()
+    for k in range(6):
+        paper.deposit([band(20 + 6 * k, 32 + 6 * k, 40, 60, wet, 0.9)], Q, DT, k + 1)
+    paper.deposit([], Q, DT, 7)
+    _, n = ndi.label(paper.ink[..., 0] > 0.3)
+    return n - 1  # the stroke itself is one piece
+
+
+def test_only_an_overloaded_landing_drips(monkeypatch):
+    """SPATTER_DRIP: a brush that lands with less liquid than a dip's first strokes offer drops
+    nothing round its head, however often it may; one that lands overloaded does."""
+    assert _landing_drops(monkeypatch, lift_module.SPATTER_DRIP - 0.1) == 0
+    assert _landing_drops(monkeypatch, lift_module.SPATTER_DRIP + 0.2) > 0
