@@ -38,7 +38,7 @@ from sim.writing.outline import (  # noqa: E402
     stroke_polygons,
     to_image,
 )
-from sim.writing.planner import RUN_UP, _landing  # noqa: E402
+from sim.writing.planner import RUN_UP, _landing, _narrow_head  # noqa: E402
 from sim.writing.writer import coverage_mask, write_character  # noqa: E402
 
 OUT = os.environ.get("ENTRIES_EVAL_OUT", "/tmp/entries_eval")
@@ -87,7 +87,7 @@ def strokes(ch: dict) -> list[dict]:
                 "w": 2 * r.max() * N / EM,
                 "w0": 2 * r[: max(len(r) // 3, 1)].max() * N / EM,
                 "mask": fill([to_image(p, N) for p in polys], N),
-                "hidden": _landing(moves[k][0][0][0], RUN_UP, dot) < 0.0,
+                "hidden": _landing(moves[k][0][0][0], RUN_UP, dot or _narrow_head(r)) < 0.0,
             }
         )
     return out
