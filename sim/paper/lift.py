@@ -24,7 +24,20 @@ from .grain import paper_grain
 # pixel holds. Pigment is conserved, not density: where it evens out, the stroke's density is
 # 1 - e^-(mean p), a little darker than the mean density it had (wet ink is darker than the
 # same pigment in bands).
+# A full film also levels across the whole stroke (issue 26): a loaded stroke's liquid stays
+# on the sized sheet long enough to spread from the middle of the stroke, where the belly laid
+# most (its section's longest chord passes there), out to its edges, so the stroke is evenly
+# black to its edge and not a shaded tube (darkest down its middle, a fifth lighter at its
+# edges: sRGB grey 15 against 45 across 十's 竖 at 512 px); a thin film is taken by the sheet
+# at once and keeps its streaks. Each pixel's pigment then also moves toward the mean of the
+# full films within LEVEL_WIDE_MM (less on a sheet that takes the film sooner, ``wide_px``),
+# by its film's share to the power LEVEL_WIDE_POWER. (Like the first levelling's, the move is
+# normalised by each pixel's own film round it: a pixel at the edge, with less film round it,
+# moves as far toward the middle's pigment as one in the middle, so a shaded stroke gains a
+# little pigment at its edges, a few per cent.)
 LEVEL_MM = 0.5
+LEVEL_WIDE_MM = 2.5
+LEVEL_WIDE_POWER = 4.0
 LEVEL_WET = 0.2
 LEVEL_SPAN = 0.3
 LEVEL_INKED = 0.3  # a pixel holds a full film where its ink is this share of the stroke's colour
@@ -32,9 +45,28 @@ LEVEL_DENSEST = 0.999  # densities are read at most this dark (the pigment stays
 LEVEL_LEAST = 0.01  # less film than this is none (a film's share far above the sums' rounding)
 
 
-def level_px(ppm: float) -> int:
-    """Half-width (px) of each box filter of the wet film's levelling (LEVEL_MM)."""
-    return max(int(round(LEVEL_MM * ppm)), 1)
+def level_px(ppm: float, mm: float = LEVEL_MM) -> int:
+    """Half-width (px) of each box filter of the wet film's levelling (LEVEL_MM, or across
+    the stroke LEVEL_WIDE_MM)."""
+    return max(int(round(mm * ppm)), 1)
+
+
+def wide_px(paper) -> int:
+    """Half-width (px) of each box filter of the levelling across the stroke: LEVEL_WIDE_MM on
+    a sized sheet (capacity 1) or a smooth one, less on one that takes the film sooner (raw
+    xuan, capacity 0.55: the film is drawn into the sheet before it spreads on it)."""
+    return level_px(paper.ppm, LEVEL_WIDE_MM * min(paper.capacity, 1.0))
+
+
+def level_reach(paper) -> int:
+    """Rows (px) the levelling of a pixel reads above and below it (two box filters a side of
+    each scale, the wide one over the first's result)."""
+    return 2 * (level_px(paper.ppm) + wide_px(paper))
+
+
+def _box2(a, r: int) -> np.ndarray:
+    """The mean of ``a`` over two box filters of 2 r + 1 pixels a side."""
+    return box_mean(box_mean(box_mean(box_mean(a, r, 0), r, 1), r, 0), r, 1)
 
 
 def box_mean(a, r: int, axis: int) -> np.ndarray:
@@ -57,10 +89,10 @@ def box_mean(a, r: int, axis: int) -> np.ndarray:
 def level_rows(paper, start: int, colour, rows, outer):
     """The levelled ink (see LEVEL_MM) of the rows ``rows`` (by0, by1) of the window
     ``outer``: (row, column) of the pixels that change, in the sheet, and their new ink; None
-    where nothing levels. The film's reach (2 level_px) above and below them is read."""
+    where nothing levels. The film's reach (``level_reach``) above and below them is read."""
     (by0, by1), (y0, y1, x0, x1) = rows, outer
-    r = level_px(paper.ppm)
-    sy0, sy1 = max(by0 - 2 * r, y0), min(by1 + 2 * r, y1)
+    r, wide_r, reach = level_px(paper.ppm), wide_px(paper), level_reach(paper)
+    sy0, sy1 = max(by0 - reach, y0), min(by1 + reach, y1)
     last = paper.last[sy0:sy1, x0:x1]
     left = np.where(last >= start, paper.wet[sy0:sy1, x0:x1], np.float32(0.0))
     film = np.clip((left - np.float32(LEVEL_WET)) * np.float32(1.0 / LEVEL_SPAN), 0.0, 1.0)
@@ -79,18 +111,23 @@ def level_rows(paper, start: int, colour, rows, outer):
     depth = np.zeros_like(ink)
     held = film > 0.0
     depth[held] = -exact.log1p(-ink[held])
-    share = box_mean(box_mean(box_mean(box_mean(film, r, 0), r, 1), r, 0), r, 1)
+    share = _box2(film, r)
+    full = film**LEVEL_WIDE_POWER  # the full films, which level across the stroke
+    wide_share = _box2(full, wide_r)
     here = (moves[0] + (by0 - sy0), moves[1])
     level = np.empty((moves[0].size, 3), dtype=np.float32)
     # a colour that holds the same numbers as an earlier one has its sums (issue 28)
     same = same_colours(ink)
     for c in sorted(set(same)):
-        mixed = film * depth[..., c]
-        mixed = box_mean(box_mean(box_mean(box_mean(mixed, r, 0), r, 1), r, 0), r, 1)
-        p = depth[..., c][here]
-        mean = np.divide(mixed[here], share[here], out=p.copy(), where=share[here] > 0.0)
+        p = depth[..., c]
+        mean = np.divide(_box2(film * p, r), share, out=p.copy(), where=share > 0.0)
         mean = np.clip(mean, 0.0, depth_max)  # (the box sums' float32 rounding)
-        level[:, c] = p + film[here] * (mean - p)
+        lv = p + film * (mean - p)
+        # across the stroke: toward the mean of the full films within LEVEL_WIDE_MM
+        mean = np.divide(
+            _box2(full * lv, wide_r), wide_share, out=lv.copy(), where=wide_share > 0.0
+        )
+        level[:, c] = np.clip(lv + full * (mean - lv), 0.0, depth_max)[here]
     level = level[:, same]
     new = -exact.expm1(-level)
     return (moves[0] + by0, moves[1] + x0), new

@@ -40,7 +40,7 @@ from ..core.frames import per_pixel
 from ..image.png import to_uint8
 from .grain import paper_grain  # noqa: F401 (the sheet's grain: read from here too)
 from .laying import _RGB, FULL_WET, Laying, lay_out
-from .lift import LEVEL_WET, box_mean, level_px, level_rows, spatter
+from .lift import LEVEL_WET, box_mean, level_reach, level_rows, spatter
 from .texture import paper_tone, sheet_draw, sheet_tone
 from .wick import _wick, wick_steps
 
@@ -267,7 +267,7 @@ class Paper:
         bands = [(by0, min(by0 + HALO_ROWS, y1)) for by0 in range(y0, y1, HALO_ROWS)]
         # the wet film levels first: each band is read from the ink as the stroke left it (a
         # band's levelled ink is put down once no band still to be read reaches it)
-        reach = 2 * level_px(self.ppm)
+        reach = level_reach(self)
         waiting = []
         for rows in bands:
             while waiting and waiting[0][0] <= rows[0] - reach:
