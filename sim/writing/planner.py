@@ -326,7 +326,7 @@ def _narrow_head(width) -> bool:
     return len(width) > 3 and float(np.mean(width[:3])) < NARROW_HEAD * float(np.max(width))
 
 
-def _landing(path, run_up: float, dot: bool = False) -> float:
+def _landing(path, run_up: float, pointed: bool = False) -> float:
     """The run-up a movement's entry comes down with (``_enter_and_leave``; ``path``: its
     body samples' targets, paper mm, y up). A stroke that sets off down (竖, 撇, 捺: its way
     from start to end heads down by more than ``HIDDEN_DOWN``) is entered with the tip
@@ -336,13 +336,13 @@ def _landing(path, run_up: float, dot: bool = False) -> float:
     head as the outline's point does (露锋). (Added in issue 26: landing moving on, every
     downward head had the tip's hairline standing out behind it, a beak above-left of the
     outline's round head; entered so, a 横's head flipped the hair over, a horn on its top.)
-    A ``dot`` (点, ``is_dot``) lands moving on whichever way it heads: the tip touches at the
-    outline's pointed head and the belly presses down along the dot (露锋入笔; hidden, its
-    head came out round and the dot short of the font's by 8 %, 51 dots of 18 characters).
-    So does a stroke whose head is a point (``_narrow_head``, passed as ``dot``): a 捺 sets off
-    thin and swells (hidden, its head was a round knob beside the 撇 it sets off from, 人, 八).
+    A ``pointed`` head lands moving on whichever way it heads, the tip touching at the
+    outline's point: a dot's (点, ``is_dot``: the belly presses down along the dot, 露锋入笔;
+    hidden, its head came out round and the dot short of the font's by 8 %, 51 dots of 18
+    characters) and a head that is a point in the outline (``_narrow_head``: a 捺 sets off thin
+    and swells; hidden, its head was a round knob beside the 撇 it sets off from, 人, 八).
     0 (a picture's exact start) stays 0."""
-    if run_up <= 0.0 or dot:
+    if run_up <= 0.0 or pointed:
         return run_up
     chord = path[-1] - path[0]
     down = -chord[1] / max(float(np.sqrt(chord[0] * chord[0] + chord[1] * chord[1])), 1e-9)
