@@ -29,12 +29,13 @@ from .grain import paper_grain
 # most (its section's longest chord passes there), out to its edges, so the stroke is evenly
 # black to its edge and not a shaded tube (darkest down its middle, a fifth lighter at its
 # edges: sRGB grey 15 against 45 across 十's 竖 at 512 px); a thin film is taken by the sheet
-# at once and keeps its streaks. Each pixel's pigment then also moves toward the mean of the
-# full films within LEVEL_WIDE_MM (less on a sheet that takes the film sooner, ``wide_px``),
-# by its film's share to the power LEVEL_WIDE_POWER. (Like the first levelling's, the move is
-# normalised by each pixel's own film round it: a pixel at the edge, with less film round it,
-# moves as far toward the middle's pigment as one in the middle, so a shaded stroke gains a
-# little pigment at its edges, a few per cent.)
+# at once and keeps its streaks. After the first levelling, the film's local mean round each
+# pixel (LEVEL_MM) moves toward the mean of the full films within LEVEL_WIDE_MM (less on a
+# sheet that takes the film sooner, ``wide_px``), by the share of the film round it that is
+# full (a film's share to the power LEVEL_WIDE_POWER); what a pixel holds above or below its
+# local mean, a line of hair, stays. (Like the first levelling's, the move is normalised by
+# the film round each pixel: a pixel at the edge moves as far toward the middle's pigment as
+# one in the middle, so a shaded stroke gains a little pigment at its edges, a few per cent.)
 LEVEL_MM = 0.5
 LEVEL_WIDE_MM = 2.5
 LEVEL_WIDE_POWER = 4.0
@@ -114,6 +115,7 @@ def level_rows(paper, start: int, colour, rows, outer):
     share = _box2(film, r)
     full = film**LEVEL_WIDE_POWER  # the full films, which level across the stroke
     wide_share = _box2(full, wide_r)
+    full_share = np.divide(_box2(full, r), share, out=np.zeros_like(share), where=share > 0.0)
     here = (moves[0] + (by0 - sy0), moves[1])
     level = np.empty((moves[0].size, 3), dtype=np.float32)
     # a colour that holds the same numbers as an earlier one has its sums (issue 28)
@@ -123,11 +125,14 @@ def level_rows(paper, start: int, colour, rows, outer):
         mean = np.divide(_box2(film * p, r), share, out=p.copy(), where=share > 0.0)
         mean = np.clip(mean, 0.0, depth_max)  # (the box sums' float32 rounding)
         lv = p + film * (mean - p)
-        # across the stroke: toward the mean of the full films within LEVEL_WIDE_MM
-        mean = np.divide(
-            _box2(full * lv, wide_r), wide_share, out=lv.copy(), where=wide_share > 0.0
+        # across the stroke: the film's local mean moves toward the mean of the full films
+        # within LEVEL_WIDE_MM, by the full films' share of the film round the pixel; what
+        # the pixel holds above or below its local mean (a line of hair) stays
+        local = np.divide(_box2(film * lv, r), share, out=lv.copy(), where=share > 0.0)
+        wide = np.divide(
+            _box2(full * lv, wide_r), wide_share, out=local.copy(), where=wide_share > 0.0
         )
-        level[:, c] = np.clip(lv + full * (mean - lv), 0.0, depth_max)[here]
+        level[:, c] = np.clip(lv + full_share * (wide - local), 0.0, depth_max)[here]
     level = level[:, same]
     new = -exact.expm1(-level)
     return (moves[0] + by0, moves[1] + x0), new
