@@ -1,5 +1,7 @@
 # SPDX-License-Identifier: GPL-3.0-or-later
-"""Builders of the engine states the tests look at, through the engine's public API only."""
+"""Builders of the engine states the tests look at, through the engine's public API only (but
+``filled_stroke``: the planner's own ``_fill`` of one stroke, which the tests of heads and dots
+look at sample by sample)."""
 
 from __future__ import annotations
 
@@ -12,7 +14,15 @@ from sim.engine.simulation import Simulation
 from sim.writing.hanzi import character_recording
 from tests.paths import ROOT  # noqa: E402
 
-__all__ = ["band", "character", "long_stroke", "simulation", "stepped", "stiff_template"]
+__all__ = [
+    "band",
+    "character",
+    "filled_stroke",
+    "long_stroke",
+    "simulation",
+    "stepped",
+    "stiff_template",
+]
 
 
 def simulation(samples, size_px: int, ppm: float, primitives: int = 1) -> Simulation:
@@ -62,3 +72,23 @@ def stiff_template(**kw) -> Recording:
     """A recording of the stiff wolf brush on smooth paper, no samples (the writer's and the
     gestures' tests: the brush's own shape, no bleeding)."""
     return Recording(np.zeros((1, 6)), brush={"preset": "wolf_stiff"}, paper_preset="smooth", **kw)
+
+
+def filled_stroke(pl, response, stroke: int, run_up=None, side=np.zeros):
+    """The samples of plan ``pl`` with ``stroke`` filled in by the planner (``_fill``, the
+    stiff brush's hair, presses from ``response``, the entries' ``run_up``, the planner's
+    ``RUN_UP`` if None, the sideways placement ``side(n)`` of its n body samples) and that
+    stroke's body samples."""
+    from sim.core.params import HOVER_MM
+    from sim.writing.planner import RUN_UP, WRITING, _fill
+
+    hair = stiff_template().resolve()[1].hair_length_mm
+    a, b = pl.strokes[stroke]
+    body = np.flatnonzero(pl.phase[a:b] == WRITING) + a
+    samples = np.zeros((len(pl.target), 6))
+    samples[:, :2], samples[:, 2] = pl.target, hair + HOVER_MM
+    press = response.press_for(pl.width[body])
+    brush = (hair + HOVER_MM, hair, 0.5)
+    run_up = RUN_UP if run_up is None else run_up
+    _fill(samples, pl, response, (a, b), press, side(len(body)), brush, run_up=run_up)
+    return samples, body

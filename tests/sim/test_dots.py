@@ -9,7 +9,7 @@ from sim.core.params import HOVER_MM
 from sim.writing.hanzi import find_char
 from sim.writing.lifts import is_dot
 from sim.writing.planner import LIFTING, RUN_UP, WRITING, _fill, _movements, plan
-from tests.sim.builders import stiff_template
+from tests.sim.builders import filled_stroke, stiff_template
 
 
 def _dots(pl):
@@ -76,18 +76,12 @@ def test_a_dot_lands_on_its_tip_moving_along_it(response, char):
     # pointed head (before: a dot heading down came down moving back up it, tip hidden, and its
     # head came out round, short of the font's); a picture's dot (run-up 0) lands on its start
     pl = plan(find_char(char), 100.0, 0.5)
-    hair = stiff_template().resolve()[1].hair_length_mm
     dots = _dots(pl)
     assert dots
     for run_up in (RUN_UP, 0.0):
         for k in dots:
-            a, b = pl.strokes[k]
-            body = np.flatnonzero(pl.phase[a:b] == WRITING) + a
-            samples = np.zeros((len(pl.target), 6))
-            samples[:, :2], samples[:, 2] = pl.target, hair + HOVER_MM
-            press = response.press_for(pl.width[body])
-            brush = (hair + HOVER_MM, hair, 0.5)
-            _fill(samples, pl, response, (a, b), press, np.zeros(len(body)), brush, run_up=run_up)
+            a = pl.strokes[k][0]
+            samples, body = filled_stroke(pl, response, k, run_up)
             way = pl.target[body[-1]] - pl.target[body[0]]
             ahead = (samples[a : body[0], :2] - samples[body[0], :2]) @ (way / np.linalg.norm(way))
             if run_up:

@@ -4,17 +4,16 @@ No Blender."""
 
 import numpy as np
 
-from sim.core.params import HOVER_MM
 from sim.writing.hanzi import find_char
-from sim.writing.planner import RUN_UP, WRITING, _fill, _movements, plan
+from sim.writing.planner import WRITING, _movements, plan
 from sim.writing.zones import entry_zone
-from tests.sim.builders import stiff_template
+from tests.sim.builders import filled_stroke
 
 
 def _written(pl, response, stroke, side):
     """The brush's base (x, y) per body sample of ``stroke`` of plan ``pl`` filled at the
     planned press with the sideways placement ``side(n)`` (n body samples), and the body."""
-    samples, body = _filled(pl, response, stroke, side=side)
+    samples, body = filled_stroke(pl, response, stroke, side=side)
     return samples[body, :2], body
 
 
@@ -44,25 +43,10 @@ def test_a_head_is_placed_sideways_as_the_stroke_past_it(response):
         assert np.allclose(shift[past:], 0.6, atol=1e-3)
 
 
-def _filled(pl, response, stroke, run_up=RUN_UP, side=np.zeros):
-    """The samples of plan ``pl`` with ``stroke`` filled in by the planner (``_fill``, the
-    stiff brush's hair, presses from ``response``, the entries' ``run_up``, the sideways
-    placement ``side(n)`` of its n body samples) and that stroke's body samples."""
-    hair = stiff_template().resolve()[1].hair_length_mm
-    a, b = pl.strokes[stroke]
-    body = np.flatnonzero(pl.phase[a:b] == WRITING) + a
-    samples = np.zeros((len(pl.target), 6))
-    samples[:, :2], samples[:, 2] = pl.target, hair + HOVER_MM
-    press = response.press_for(pl.width[body])
-    brush = (hair + HOVER_MM, hair, 0.5)
-    _fill(samples, pl, response, (a, b), press, side(len(body)), brush, run_up=run_up)
-    return samples, body
-
-
 def _entry(pl, response, stroke, run_up):
     """The base's (x, y) over the entry of ``stroke`` of plan ``pl`` (the samples before its
     first body sample that come down onto it) and the stroke's start and way (unit)."""
-    samples, body = _filled(pl, response, stroke, run_up)
+    samples, body = filled_stroke(pl, response, stroke, run_up)
     run = _movements(body)[0]
     way = pl.target[run[-1]] - pl.target[run[0]]
     a = pl.strokes[stroke][0]
@@ -123,7 +107,7 @@ def test_a_hidden_tip_head_turns_in_its_cap(response):
         ("十", 1, 0.0, False),
     ):
         pl = plan(find_char(char), 100.0, 0.5)
-        samples, body = _filled(pl, response, stroke, run_up)
+        samples, body = filled_stroke(pl, response, stroke, run_up)
         way = pl.tangent[body[0]]
         back = (pl.target[body[0]] - samples[body[0], :2]) @ way
         if reach:
