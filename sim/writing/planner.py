@@ -328,14 +328,15 @@ def _narrow_head(width) -> bool:
 
 def _landing(path, run_up: float, pointed: bool = False) -> float:
     """The run-up a movement's entry comes down with (``_enter_and_leave``; ``path``: its
-    body samples' targets, paper mm, y up). A stroke that sets off down (竖, 撇, 捺: its way
-    from start to end heads down by more than ``HIDDEN_DOWN``) is entered with the tip
-    hidden (藏锋, 逆锋起笔): the brush comes down moving back up the stroke, against its way,
-    so the landing tip trails into the stroke, the belly presses on the start and the body
-    covers the tip. One that sets off along (横, 提) lands moving on, its tip showing at the
-    head as the outline's point does (露锋). (Added in issue 26: landing moving on, every
-    downward head had the tip's hairline standing out behind it, a beak above-left of the
-    outline's round head; entered so, a 横's head flipped the hair over, a horn on its top.)
+    body samples' targets, paper mm, y up). A stroke that sets off down (竖, 撇, a 捺 with a
+    round head: its way from start to end heads down by more than ``HIDDEN_DOWN``) is entered
+    with the tip hidden (藏锋, 逆锋起笔): the brush comes down moving back up the stroke,
+    against its way, so the landing tip trails into the stroke, the belly presses on the start
+    and the body covers the tip. One that sets off along (横, 提) lands moving on, its tip
+    showing at the head as the outline's point does (露锋). (Added in issue 26: landing moving
+    on, every downward head had the tip's hairline standing out behind it, a beak above-left
+    of the outline's round head; entered so, a 横's head flipped the hair over, a horn on its
+    top.)
     A ``pointed`` head lands moving on whichever way it heads, the tip touching at the
     outline's point: a dot's (点, ``is_dot``: the belly presses down along the dot, 露锋入笔;
     hidden, its head came out round and the dot short of the font's by 8 %, 51 dots of 18
