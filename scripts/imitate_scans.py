@@ -31,16 +31,23 @@ sys.path.insert(0, str(ROOT))
 from scripts.picture_real import box_iou  # noqa: E402
 
 SPECK = 0.01  # of the picture's ink: a smaller piece is not writing
+GRID_LONG, GRID_THIN = 0.2, 2.5  # a printed grid's line: this share of the side long, px wide
 PICTURES = (".png", ".jpg", ".jpeg", ".tif", ".tiff")
 
 
 def scan_ink(path: Path, dark: int) -> np.ndarray:
-    """The picture's ink: darker than ``dark`` in every channel, pieces under SPECK dropped."""
+    """The picture's ink: darker than ``dark`` in every channel, pieces under SPECK dropped,
+    and lines of a printed grid (a piece at least GRID_LONG of the picture's side long and on
+    average under GRID_THIN px wide: a scan cut from a 米字格 page shows them beside the
+    character)."""
     ink = np.asarray(Image.open(path).convert("RGB")).max(axis=-1) < dark
     lab, _ = ndi.label(ink)
     area = np.bincount(lab.ravel())
     area[0] = 0
-    return (area >= SPECK * area.sum())[lab]
+    boxes = ndi.find_objects(lab)
+    length = np.array([1] + [max(b[0].stop - b[0].start, b[1].stop - b[1].start) for b in boxes])
+    grid = (length >= GRID_LONG * max(ink.shape)) & (area < GRID_THIN * length)
+    return ((area >= SPECK * area.sum()) & ~grid)[lab]
 
 
 def imitated(path: Path, out: Path) -> np.ndarray:

@@ -233,7 +233,7 @@ def _clean(mask: np.ndarray) -> np.ndarray:
         keep[0] = False
         keep[_frames(lab, k)] = False
         mask = keep[lab]
-    mask = _streaks_closed(mask)
+    mask = _without_ruled_lines(_streaks_closed(mask))
     holes, k = M.label(~mask)
     if k:
         area = np.bincount(holes.ravel(), minlength=k + 1)
@@ -258,6 +258,14 @@ def _frames(lab: np.ndarray, k: int) -> np.ndarray:
     ring = np.ones(lab.shape, dtype=bool)
     ring[band:-band, band:-band] = False
     inside = np.bincount(lab[~ring].ravel(), minlength=k + 1) == 0
+    out = inside & (_lengths(lab, k) >= FRAME[1] * n)
+    out[0] = False
+    return np.flatnonzero(out)
+
+
+def _lengths(lab: np.ndarray, k: int) -> np.ndarray:
+    """The longer side of each piece's box (pixels; index 0, the paper, 0 or less)."""
+    n = max(lab.shape)
     ys, xs = np.nonzero(lab)
     ids = lab[ys, xs]
     lo_y, hi_y = np.full(k + 1, n), np.zeros(k + 1, dtype=np.int64)
@@ -266,10 +274,34 @@ def _frames(lab: np.ndarray, k: int) -> np.ndarray:
     np.maximum.at(hi_y, ids, ys)
     np.minimum.at(lo_x, ids, xs)
     np.maximum.at(hi_x, ids, xs)
-    long = np.maximum(hi_y - lo_y, hi_x - lo_x) + 1 >= FRAME[1] * n
-    out = inside & long
-    out[0] = False
-    return np.flatnonzero(out)
+    return np.maximum(hi_y - lo_y, hi_x - lo_x) + 1
+
+
+RULED = (0.25, 0.15)  # a piece of ink as long as the first share of the side or more, and
+# on average thinner than the second share of the strokes' typical width, is a ruled line
+
+
+def _without_ruled_lines(mask: np.ndarray) -> np.ndarray:
+    """The ink without the pieces that are ruled lines anywhere in the picture: at least
+    RULED[0] of the side long (their box's longer side) and on average (area over length)
+    thinner than RULED[1] of the strokes' typical width (twice ``_half_width`` of the largest
+    piece, which is writing: thin lines and ribbons would take the typical width down). A copybook's
+    grid (米字格, a 田字格's middle lines, a square's side a little inside the crop) printed grey
+    or black, not red, reads as ink; a brush's stroke as long is about as wide as the others,
+    a grid's line a pixel or two (a scan of 冰 cut from its page: a grid line 175 px long and
+    1 px wide beside it, read as two strokes, set the imitation's box). Looked for once a dry
+    stroke's ribbons are closed into one (``_streaks_closed``). (Beyond the paper's Sec. 9, as
+    ``_frames``.)"""
+    lab, k = M.label(mask)
+    if not k:
+        return mask
+    area = np.bincount(lab.ravel(), minlength=k + 1)
+    area[0] = 0
+    width = 2.0 * _half_width(lab == int(area.argmax()))  # the largest piece's: writing
+    length = np.maximum(_lengths(lab, k), 1)
+    ruled = (length >= RULED[0] * lab.shape[0]) & (area / length < RULED[1] * width)
+    ruled[0] = False
+    return mask & ~ruled[lab] if ruled.any() else mask
 
 
 def _streaks_closed(mask: np.ndarray) -> np.ndarray:

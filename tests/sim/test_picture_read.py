@@ -146,6 +146,30 @@ def test_a_copybook_squares_frame_is_not_writing():
     assert mask[130:144, 40:220].all()  # and the horizontal
 
 
+def test_a_grids_line_inside_the_picture_is_not_writing_a_dry_strokes_ribbons_are():
+    # a copybook's grid printed grey (米字格, 田字格), a line a pixel or two wide running a
+    # quarter of the side or more, lies anywhere in a crop, not only along its edges (冰 cut
+    # from its page: a grid line beside it was read as two strokes and set the box); a dry
+    # 横 broken into thin ribbons from its head on is writing
+    from sim.picture.ink import find_ink
+
+    n = 300
+    grey = np.full((n, n), 0.92)
+    grey[60:250, 100:122] = 0.1  # a vertical
+    grey[200:222, 40:200] = 0.1  # a horizontal
+    grey[30:230, 270:272] = 0.35  # a grid line, 2 px wide, 8 % of the side in from the right
+    grey[20:280, 20:22] = 0.35  # and one on the left
+    grey[100:123, 140:160] = 0.1  # a dry 横 apart from them: a solid head, then ribbons
+    for row in range(100, 123, 5):  # 3 px wide, 2 px apart, each as thin as a grid line
+        grey[row : row + 3, 160:260] = 0.1
+    mask = find_ink(grey, 256).mask
+    assert not mask[:, 226:].any()  # no grid line (x 270 of 300 is 230 of 256)
+    assert not mask[:, :19].any()
+    assert mask[60:200, 90:100].any() and mask[180:185, 40:160].any()  # the strokes
+    assert mask[86:104, 130:220].mean() > 0.5  # the dry 横 with its ribbons
+    assert M.label(mask)[1] == 2
+
+
 def test_a_hook_flicked_off_a_slanting_foot_is_one_stroke_with_its_leg():
     # the foot of 鸟 (鹤 in Kaiti, photographed) and of 雨's 横折钩: the leg comes down
     # slanting left and the hook flicks back nearly level, its way out over 70 degrees from
