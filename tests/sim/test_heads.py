@@ -132,3 +132,28 @@ def test_a_na_sets_off_thin_and_lands_on_its_tip():
             body = np.flatnonzero(pl.phase[a:b] == WRITING) + a
             narrow.append(_narrow_head(pl.width[_movements(body)[0]]))
         assert narrow == [k == len(pl.strokes) - 1 for k in range(len(pl.strokes))], char
+
+
+def test_a_head_opening_from_a_point_is_not_lifted_to_a_neck_after_its_tip():
+    # practice corrects each sample on its own: at a pointed head (長's long 横 imitated from a
+    # copybook) it pressed the tip down (its band read narrow) and lifted just after it (the
+    # tip's blob spread into the band there): a drop at the tip, a bare neck, then the stroke.
+    # Where the planned width keeps widening the press keeps NECK of the deepest before it
+    from sim.writing.practice import NECK, _rising_heads
+
+    want = np.r_[np.linspace(0.8, 6.7, 20), np.full(10, 6.7), np.linspace(6.7, 5.0, 10)]
+    press = np.r_[
+        [3.25, 3.3, 3.39, 3.16, 2.78, 2.26, 1.63, 0.92, 0.66, 0.66],
+        np.linspace(1.0, 7.4, 10),
+        np.full(10, 7.3),
+        np.linspace(7.3, 5.5, 10),
+    ]
+    got = _rising_heads(press, want, [np.arange(40)])
+    head = got[:20]
+    assert np.all(head >= NECK * np.maximum.accumulate(press[:20]) - 1e-12)
+    assert head[8] == NECK * 3.39 > press[8]  # the neck pressed on, ...
+    assert np.array_equal(head[:6], press[:6])  # ... the tip as practice left it
+    assert np.array_equal(got[20:], press[20:])  # and the rest of the stroke
+    flat = np.full(12, 5.0)  # a blunt head: its width does not open, its press is its own
+    wavy = np.r_[4.0, 1.0, 4.5, 1.5, np.full(8, 4.0)]
+    assert np.array_equal(_rising_heads(wavy, flat, [np.arange(12)]), wavy)
