@@ -25,7 +25,7 @@ from .planner import (
     _smooth,
 )
 from .response import Response, _coverage, _slope
-from .zones import entry_zone, point_zone, shoulder_zone
+from .zones import entry_zone, point_zone, rising_heads, shoulder_zone
 
 
 class Pass(NamedTuple):
@@ -246,29 +246,6 @@ def _one_flick(pl: Plan, body, placed, first) -> tuple[np.ndarray, np.ndarray]:
             t = np.clip(1.0 - (s[-1] - s) / wide, 0.0, 1.0)
             out[foot] *= 1.0 - t * t * (3.0 - 2.0 * t)
     return press, out
-
-
-NECK = 0.5  # share of the press before it that a head opening from a point keeps after its tip
-
-
-def _rising_heads(press, want, runs) -> np.ndarray:
-    """The press per body sample with no neck after a head that opens from a point: over the
-    stretch from a movement's start along which its planned width ``want`` keeps widening (a
-    露锋 head, a 捺's), the press nowhere under ``NECK`` of the deepest before it. Practice
-    corrects each sample on its own; at a pointed head it pressed the tip down (its band read
-    narrow) and lifted just after it (the tip's blob spread into the band there) to a fifth of
-    the tip's press: a drop of ink at the tip, a bare neck, then the stroke (長's long 横
-    imitated from a copybook: its tip a separate piece, which moved the imitation's box). A
-    calligrapher presses on from the tip. (Model addition, issue 26.)"""
-    out = np.asarray(press, dtype=float).copy()
-    for run in runs:
-        w = want[run]
-        falls = np.flatnonzero(np.diff(w) <= 0.0)
-        stop = int(falls[0]) + 1 if falls.size else len(run)
-        if stop >= 3:
-            head = out[run[:stop]]
-            out[run[:stop]] = np.maximum(head, NECK * np.maximum.accumulate(head))
-    return out
 
 
 END_GAIN = 0.7  # share of an end's reach error corrected for the next pass
@@ -590,7 +567,7 @@ def _practise_stroke(sim, a, b, passes, fill, own, ctx, whole=None, exact=True) 
             lift = _lifted(response, lift, spill, press, _root_unread(hooks, valid))
         press, side = _correct(response, (press, side), want, (got, centre, valid), ceiling, zones)
         press, side = _one_flick(pl, body, (press, side), first)
-        press = _rising_heads(press, want, _movements(np.arange(len(body)), body))
+        press = rising_heads(press, want, _movements(np.arange(len(body)), body))
         was = sim.rec.samples[a:b].copy()
         fill(a, b, press, side, moves, lift)
         changed = np.flatnonzero(np.any(sim.rec.samples[a:b] != was, axis=1))

@@ -2,7 +2,8 @@
 """Where a practice pass (Sec. 7.2) does not read the band it left as the stroke's own width:
 a movement's entry, where the belly is still pressing down; the let-go into a point; the first
 widths of a 折's leg below its shoulder. For each body sample of a stroke, whether it lies in
-such a zone (``practice`` corrects the press only outside them)."""
+such a zone (``practice`` corrects the press only outside them); and the press practice may
+not leave at a head that opens from a point (``rising_heads``)."""
 
 from __future__ import annotations
 
@@ -59,3 +60,26 @@ def shoulder_zone(pl: Plan, body) -> np.ndarray:
             s = _along(pl.target[runs[r]])
             zone[r] = s < SHOULDER_HOLD * float(np.median(pl.width[runs[r]]))
     return np.concatenate(zone)
+
+
+NECK = 0.5  # share of the press before it that a head opening from a point keeps after its tip
+
+
+def rising_heads(press, want, runs) -> np.ndarray:
+    """The press per body sample with no neck after a head that opens from a point: over the
+    stretch from a movement's start along which its planned width ``want`` keeps widening (a
+    露锋 head, a 捺's), the press nowhere under ``NECK`` of the deepest before it. Practice
+    corrects each sample on its own; at a pointed head it pressed the tip down (its band read
+    narrow) and lifted just after it (the tip's blob spread into the band there) to a fifth of
+    the tip's press: a drop of ink at the tip, a bare neck, then the stroke (長's long 横
+    imitated from a copybook: its tip a separate piece, which moved the imitation's box). A
+    calligrapher presses on from the tip. (Model addition, issue 26.)"""
+    out = np.asarray(press, dtype=float).copy()
+    for run in runs:
+        w = want[run]
+        falls = np.flatnonzero(np.diff(w) <= 0.0)
+        stop = int(falls[0]) + 1 if falls.size else len(run)
+        if stop >= 3:
+            head = out[run[:stop]]
+            out[run[:stop]] = np.maximum(head, NECK * np.maximum.accumulate(head))
+    return out

@@ -139,7 +139,7 @@ def test_a_head_opening_from_a_point_is_not_lifted_to_a_neck_after_its_tip():
     # copybook) it pressed the tip down (its band read narrow) and lifted just after it (the
     # tip's blob spread into the band there): a drop at the tip, a bare neck, then the stroke.
     # Where the planned width keeps widening the press keeps NECK of the deepest before it
-    from sim.writing.practice import NECK, _rising_heads
+    from sim.writing.zones import NECK, rising_heads
 
     want = np.r_[np.linspace(0.8, 6.7, 20), np.full(10, 6.7), np.linspace(6.7, 5.0, 10)]
     press = np.r_[
@@ -148,7 +148,7 @@ def test_a_head_opening_from_a_point_is_not_lifted_to_a_neck_after_its_tip():
         np.full(10, 7.3),
         np.linspace(7.3, 5.5, 10),
     ]
-    got = _rising_heads(press, want, [np.arange(40)])
+    got = rising_heads(press, want, [np.arange(40)])
     head = got[:20]
     assert np.all(head >= NECK * np.maximum.accumulate(press[:20]) - 1e-12)
     assert head[8] == NECK * 3.39 > press[8]  # the neck pressed on, ...
@@ -156,4 +156,4 @@ def test_a_head_opening_from_a_point_is_not_lifted_to_a_neck_after_its_tip():
     assert np.array_equal(got[20:], press[20:])  # and the rest of the stroke
     flat = np.full(12, 5.0)  # a blunt head: its width does not open, its press is its own
     wavy = np.r_[4.0, 1.0, 4.5, 1.5, np.full(8, 4.0)]
-    assert np.array_equal(_rising_heads(wavy, flat, [np.arange(12)]), wavy)
+    assert np.array_equal(rising_heads(wavy, flat, [np.arange(12)]), wavy)
