@@ -16,7 +16,6 @@ import numpy as np
 
 from ..core import exact
 from ..core.frames import per_pixel
-from .edge import EDGE_BITE, bitten
 from .grain import paper_grain
 
 # Model change to Eq. 26 (not in the paper). The paper moves a pixel's colour toward the brush's
@@ -84,11 +83,6 @@ def lay_out(paper, steps, grain_depth: float, full_wet: float) -> list:
     skip = np.concatenate(
         [mk.skip if mk.skip is not None else np.zeros(mk.rows.size, bool) for mk in live]
     )
-    # the sheet holds off some of the hair's edge (sim.paper.edge): those pixels are left out
-    # of the marks, and the band's others keep the share of their colour inside the new edge
-    rows, cols, full, wet_tau, col, skip, n, kept = _bite_edges(
-        paper, live, n, (rows, cols, full, wet_tau, col, skip)
-    )
     # the liquid the hair offers, as the sheet's grain lets it take it (model addition,
     # paper_grain): some pixels take a little more of it, some a little less
     grain = paper_grain(full, paper.grain_seed) - 0.5
@@ -100,7 +94,7 @@ def lay_out(paper, steps, grain_depth: float, full_wet: float) -> list:
         rich = np.concatenate(
             [mk.rich if mk.rich is not None else np.ones(mk.rows.size, np.float32) for mk in live]
         )
-        offer = offer * (rich if kept is None else rich[kept])
+        offer = offer * rich
     held = -exact.expm1(-offer / full_wet)
     held = np.where(skip, 0.0, held).astype(np.float32)
     lay = per_pixel(col, held)
@@ -109,13 +103,12 @@ def lay_out(paper, steps, grain_depth: float, full_wet: float) -> list:
         if not marks:
             out.append(None)
             continue
-        sizes = n[m : m + len(marks)]  # (each mark keeps its middle pixel: sim.paper.edge)
-        size = int(sizes.sum())
+        size = int(n[m : m + len(marks)].sum())
         part = slice(at, at + size)
         out.append(
             _laying(
                 paper,
-                (marks, sizes),
+                marks,
                 (rows[part], cols[part]),
                 full[part],
                 wet_tau[part],
@@ -127,23 +120,21 @@ def lay_out(paper, steps, grain_depth: float, full_wet: float) -> list:
 
 
 def _laying(paper, marks, pixels, full, wet_tau, colours) -> Laying:
-    """One step's ``Laying`` (``lay_out``) on ``paper``: (its marks (with pixels), how many of
-    each one's pixels the paper takes), their pixels' (rows, columns) and ``full`` index in the
-    paper, the liquid offered, and (colours, the colours the pixels can hold), all in the
-    marks' order."""
-    marks, sizes = marks
+    """One step's ``Laying`` (``lay_out``) on ``paper``: its ``marks`` (with pixels), their pixels'
+    (rows, columns) and ``full`` index in the paper, the liquid offered, and (colours, the
+    colours the pixels can hold), all in the marks' order."""
     y0, y1, x0, x1 = window = paper._window(marks)
     ww = x1 - x0
     rows, cols = pixels
     loc = (rows - y0) * ww + (cols - x0)  # index in the window
     # a pixel that several marks cover takes them one after the other (its k-th visit in
     # round k), exactly as in sequence
-    cut = np.cumsum(sizes)[:-1]
+    cut = np.cumsum([mk.rows.size for mk in marks])[:-1]
     rank, visits = _visit_ranks(np.split(loc, cut), (y1 - y0) * ww)
     col, lay = colours
     follow = None
     if paper.halo_px:  # the stroke's darkest colour and the marks' middle (_follow)
-        row_sum, col_sum = _pixel_sums(rows, cols)
+        row_sum, col_sum = _pixel_sums(marks)
         n = wet_tau.size
         here = (
             float(np.float64(row_sum) / n),  # as the pixels' rows' mean() gives it
@@ -191,30 +182,13 @@ def _by_rounds(loc, full, wet_tau, lay, rank, visits) -> tuple:
     return once, full[first][order], tau, laid[: bounds[1]], bounds.tolist(), over
 
 
-def _pixel_sums(rows, cols) -> tuple[int, int]:
-    """The sums of the paper rows and of the paper columns of a step's mark pixels, as exact
-    integers (their mean is the float64 mean of the pixels' rows, bit for bit: every partial
-    sum of integers below 2**53 is exact; issue 28)."""
-    return int(rows.sum(dtype=np.int64)), int(cols.sum(dtype=np.int64))
-
-
-def _bite_edges(paper, live, n, arrays) -> tuple:
-    """``arrays`` (rows, cols, full, wet_tau, col, skip: the marks' pixels in a row) with the
-    pixels the sheet holds off the hair's edge left out and the band's colours scaled
-    (``sim.paper.edge``), the marks' pixel counts ``n`` as they are then, and which pixels
-    were kept (None: all, and the arrays as they were)."""
-    rows, cols, full, wet_tau, col, skip = arrays
-    depth = np.concatenate([mk.depth for mk in live])
-    bite = bitten(n, depth, rows, cols, paper.ppm, paper.grain_seed, EDGE_BITE * paper.fibre)
-    if bite is None:
-        return (*arrays, n, None)
-    keep, band, share = bite
-    col = col.copy()
-    col[band] = per_pixel(col[band], share)
-    if keep is None:
-        return (rows, cols, full, wet_tau, col, skip, n, None)
-    n = np.diff(np.searchsorted(keep, np.cumsum(n) - n), append=keep.size)
-    return (*(np.take(a, keep, axis=0) for a in (rows, cols, full, wet_tau, col, skip)), n, keep)
+def _pixel_sums(marks) -> tuple[int, int]:
+    """The sums of the paper rows and of the paper columns of every pixel of the marks, as
+    exact integers (their mean is the float64 mean of the pixels' rows, bit for bit: every
+    partial sum of integers below 2**53 is exact), a mark at a time (issue 28)."""
+    rows = sum(int(mk.rows.sum(dtype=np.int64)) + mk.iy0 * mk.rows.size for mk in marks)
+    cols = sum(int(mk.cols.sum(dtype=np.int64)) + mk.ix0 * mk.cols.size for mk in marks)
+    return rows, cols
 
 
 def _visit_ranks(locs, size: int) -> tuple[np.ndarray, np.ndarray]:

@@ -6,7 +6,6 @@ deposit to a Paper: ``types.MethodType(reference_deposit, paper)``."""
 
 import numpy as np
 
-from sim.paper.edge import EDGE_BITE, sizing
 from sim.paper.paper import (
     FULL_WET,
     GRAIN_DEPTH,
@@ -26,7 +25,7 @@ def reference_deposit(self, marks, q, dt: float, step: int, saturate=None):
     Eq. 27's Cr = 0, drawn by the brush's hair bundles)."""
     saturate = saturate or reference_saturate
     self.step = step
-    marks = [reference_bite(self, mk) for mk in marks if mk.rows.size]
+    marks = [mk for mk in marks if mk.rows.size]
     if not marks:
         return
     margin = self.sat_passes + self.wick_passes + 1
@@ -89,38 +88,6 @@ def reference_deposit(self, marks, q, dt: float, step: int, saturate=None):
         _wick(w, ink, draw, self.wick_passes, self.wick_rate)
     wet[...] = w
     last[...] = step
-
-
-def reference_bite(paper, mk):
-    """The mark as the sheet takes it (``sim.paper.edge``, one mark, every pixel's sizing made
-    on its own): the pixels of its outer band the sheet holds off left out, the others'
-    colour scaled by the share of them inside the bitten edge."""
-    from dataclasses import replace
-
-    bite = EDGE_BITE * paper.fibre
-    f = mk.depth
-    least = f.min()
-    reach = max(1.0 - least, 1e-6)
-    band = f > least + (1.0 - bite) * reach
-    if bite <= 0.0 or not band.any():
-        return mk
-    e = (f[band] - least) / reach
-    s = sizing(mk.rows[band] + mk.iy0, mk.cols[band] + mk.ix0, paper.ppm, paper.grain_seed)
-    share = np.ones(f.size)
-    share[band] = np.clip((1.0 - bite * s - e) * np.sqrt(f.size / np.pi) + 0.5, 0.0, 1.0)
-    col = mk.col.astype(np.float32) * share.astype(np.float32)[:, None]
-    k = share > 0.0
-    return replace(
-        mk,
-        rows=mk.rows[k],
-        cols=mk.cols[k],
-        wet=mk.wet[k],
-        col=col[k],
-        lateral=mk.lateral[k],
-        depth=mk.depth[k],
-        skip=None if mk.skip is None else mk.skip[k],
-        rich=None if mk.rich is None else mk.rich[k],
-    )
 
 
 def reference_saturate(w, ink, cap: float):

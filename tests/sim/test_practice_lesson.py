@@ -4,11 +4,9 @@ presses the next stroke's first pass, so it begins nearer its width. No Blender.
 
 import numpy as np
 
-from sim.paper import laying
 from sim.writing import practice, writer
-from sim.writing import response as response_module
 from sim.writing.hanzi import find_char
-from sim.writing.response import Response, calibrate
+from sim.writing.response import Response
 from tests.sim.builders import stiff_template
 
 
@@ -58,17 +56,10 @@ def _first_pass_errors(monkeypatch, response, taught: bool) -> list[float]:
     return [firsts[a] for a in sorted(firsts)]
 
 
-def test_a_later_stroke_begins_nearer_its_width(monkeypatch):
+def test_a_later_stroke_begins_nearer_its_width(monkeypatch, response):
     # the stiff brush's first pass is too wide; the strokes after the first are pressed as
     # practice settled the first, and begin nearer their width
-    # on a sheet that holds off none of the hair's edge (sim.paper.edge): at 96 px a ragged
-    # stroke a little wider than its outline fills it best, practice keeps its first pass and
-    # there is nothing to learn from (the lesson is what this tests, not the edge)
-    monkeypatch.setattr(laying, "EDGE_BITE", 0.0)
-    monkeypatch.setattr(response_module, "_CACHE", {})  # (kept by settings, not by the edge)
-    response = calibrate(stiff_template())  # the brush's response on that sheet
     plain = _first_pass_errors(monkeypatch, response, taught=False)
-    monkeypatch.setattr(laying, "EDGE_BITE", 0.0)
     taught = _first_pass_errors(monkeypatch, response, taught=True)
     assert len(plain) == len(taught) == 3
     assert taught[0] == plain[0]  # the first stroke: nothing taught yet
