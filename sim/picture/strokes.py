@@ -47,6 +47,8 @@ TIP_MIN = (0.5, 1.0, 1.6)  # ... its skeleton reaches the second times the junct
 TIP_UP = 0.3  # ... the way out of the junction rises by this share of its length or more
 DOT = (1.5, 0.7)  # a dot touching a stroke stands out this far past its edge and is this thick
 # (times the stroke's half-width there; a bump a brush's entry or turn leaves: 0.4-1.0 out)
+SPAN = 2.5  # a node merged from a thick crossing's junctions is at most this many of its
+# ink's half-widths across (``_merge_close_nodes``)
 ZONE = 1.3  # a junction's zone: this times the ink's half-width there, plus a pixel
 
 
@@ -63,8 +65,14 @@ class Stroke:
 
 
 def _merge_close_nodes(chains: list, nodes: list) -> tuple[list, list]:
-    """A thick crossing thins into two junctions joined by a short chain: one node."""
+    """A thick crossing thins into two junctions joined by a short chain: one node. The
+    shortest such chains merge first, and a merge that would make a node wider across than
+    SPAN times its ink's half-width is not made: heavy writing's crossings along one stroke
+    (里's vertical through 日's and 土's 横s, each about a half-width of counter apart) are
+    crossings of their own, not one node (merged in a chain, 里's vertical and its five
+    crossings became one node 160 px tall, and the strokes through it were paired at random)."""
     parent = list(range(len(nodes)))
+    members = {i: [i] for i in range(len(nodes))}
 
     def root(i):
         while parent[i] != i:
@@ -72,11 +80,26 @@ def _merge_close_nodes(chains: list, nodes: list) -> tuple[list, list]:
             i = parent[i]
         return i
 
+    def span(group) -> bool:
+        centres = np.array([nodes[i].centre for i in group])
+        far = np.linalg.norm(centres[:, None] - centres[None], axis=-1).max()
+        return far <= SPAN * max(nodes[i].radius for i in group)
+
+    def short(c) -> bool:
+        a, b = c.ends
+        return a >= 0 and b >= 0 and _length(c.pts) < ZONE * (nodes[a].radius + nodes[b].radius)
+
+    for c in sorted((c for c in chains if short(c)), key=lambda c: _length(c.pts)):
+        ra, rb = root(c.ends[0]), root(c.ends[1])
+        if ra != rb and span(members[ra] + members[rb]):
+            parent[rb] = ra
+            members[ra] += members.pop(rb)
+    group = [root(i) for i in range(len(nodes))]
+    parent = list(range(len(nodes)))  # again in the chains' order: which chains the merges drop
     keep = []
     for c in chains:
-        a, b = c.ends
-        if a >= 0 and b >= 0 and _length(c.pts) < ZONE * (nodes[a].radius + nodes[b].radius):
-            ra, rb = root(a), root(b)
+        if short(c) and group[c.ends[0]] == group[c.ends[1]]:
+            ra, rb = root(c.ends[0]), root(c.ends[1])
             if ra != rb:
                 parent[rb] = ra
                 continue

@@ -68,3 +68,26 @@ def test_the_imitation_overlay_shows_missed_and_added_ink_in_the_ious_boxes():
     assert not ((left[..., 0] == 1.0) & (left[..., 2] < 0.5)).any()  # nothing missed
     assert not ((left[..., 2] == 1.0) & (left[..., 0] < 0.5)).any()  # nor added
     assert red.any() and blue.any()
+
+
+def test_a_scans_truth_follows_its_page_not_a_fixed_grey(tmp_path):
+    # a character photographed on grey paper with a shadow along its foot (a copybook page
+    # photographed, not scanned): read against a fixed grey the shadow is ink and sets the
+    # truth's box; read against the page's own level it is paper, and the strokes stay ink.
+    # A grid's line crossing the character is no ink either way
+    from PIL import Image
+
+    from scripts.imitate_scans import level_ink, scan_ink
+
+    h, w = 240, 200
+    v = np.full((h, w), 160.0)
+    v[200:, :] = np.linspace(160.0, 110.0, 40)[:, None]  # the shadow: darker than 140
+    v[40:60, 30:170] = 25.0  # a 横
+    v[40:180, 90:110] = 25.0  # a 竖
+    v[120:122, :] = 60.0  # a grid's line across the page and the 竖
+    path = tmp_path / "page.png"
+    Image.fromarray(np.repeat(v.astype(np.uint8)[..., None], 3, axis=2)).save(path)
+    fixed, level = scan_ink(path, 140), level_ink(path, 140)
+    assert fixed[225:, :].mean() > 0.5  # the shadow read as ink
+    assert not level[190:, :].any() and level[45:55, 40:160].all() and level[70:170, 95:105].all()
+    assert not level[118:124, :80].any() and not fixed[118:124, :80].any()  # the grid's line

@@ -576,6 +576,23 @@ def test_a_dot_stopping_short_of_a_stroke_stays_apart():
     assert M.label(im.ink.mask)[1] == 2
 
 
+@pytest.mark.parametrize("gap", [6, 10])
+def test_a_stroke_through_heavy_crossings_is_read_through_them(gap):
+    # a vertical through four 横s as thick as it, a half-width or so of counter apart (里's and
+    # 量's verticals in heavy kaishu): each crossing thins into junctions a short chain apart,
+    # and merged in a chain they became one node as tall as the 横s, the vertical's top lost
+    # in it and the strokes through it paired at random (a copybook scan of 里 at box IoU 0.49)
+    r = 12
+    ys = [40 + i * (2 * r + gap) for i in range(4)]
+    ink = _bars(*[((60, y), (196, y), r) for y in ys], ((128, ys[0]), (128, ys[-1] + 30), r))
+    _, _, char = read_strokes(ink)
+    meds = [to_image(np.array(m, dtype=float), 256) for m in char["medians"]]
+    vertical = [m for m in meds if np.ptp(m[:, 1]) > 2 * r]
+    assert len(meds) == 5 and len(vertical) == 1
+    top, foot = vertical[0][0, 1], vertical[0][-1, 1]
+    assert top < ys[1] and foot > ys[-1] + r, (top, foot)  # from the top crossings down
+
+
 def test_a_speck_does_not_move_the_box_the_imitation_is_measured_in():
     # a droplet thrown off a fast exit (or dust on a scan) a stroke's width outside the
     # character is not part of its shape: the box-normalised IoU and the pieces ignore it

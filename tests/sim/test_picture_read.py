@@ -170,6 +170,33 @@ def test_a_grids_line_inside_the_picture_is_not_writing_a_dry_strokes_ribbons_ar
     assert M.label(mask)[1] == 2
 
 
+def test_a_grids_lines_crossing_the_writing_and_a_frame_it_touches_are_not_ink():
+    # a copybook's 田字格 prints its middle lines through the character and its square round
+    # it: joined to the strokes they are no pieces of their own, and read as ink they were
+    # strokes (a copybook 學 whose foot rests on its square's frame: the frame written, its box
+    # the imitation's, box IoU 0.37); where a stroke crosses a line the stroke's ink stays
+    from sim.picture.ink import find_ink
+
+    n = 300
+    grey = np.full((n, n), 0.92)
+    grey[140:162, 50:250] = 0.1  # a horizontal
+    grey[60:262, 140:162] = 0.1  # a vertical, its foot on the frame's bottom line
+    grey[149:151, :] = 0.35  # the grid's middle lines, 2 px, edge to edge
+    grey[:, 99:101] = 0.35
+    grey[262:264, 20:280] = 0.2  # the square's frame
+    grey[20:264, 20:22] = 0.2
+    grey[20:264, 278:280] = 0.2
+    grey[20:22, 20:280] = 0.2
+    mask = find_ink(grey, 256).mask
+    ys, xs = np.nonzero(mask)
+    box = (ys.max() - ys.min()) / (xs.max() - xs.min())
+    assert abs(box - 202 / 200) < 0.05, box  # the character's box: 202 tall, 200 wide
+    assert M.label(mask)[1] == 1
+    cross = mask[ys.min() : ys.max() + 1, xs.min() : xs.max() + 1]
+    inked = cross.mean()
+    assert inked < 1.15 * (200 * 22 + 202 * 22 - 22 * 22) / (202 * 200), inked
+
+
 def test_a_hook_flicked_off_a_slanting_foot_is_one_stroke_with_its_leg():
     # the foot of 鸟 (鹤 in Kaiti, photographed) and of 雨's 横折钩: the leg comes down
     # slanting left and the hook flicks back nearly level, its way out over 70 degrees from
