@@ -45,7 +45,7 @@ def scan_ink(path: Path, dark: int) -> np.ndarray:
     and lines of a printed grid (a piece at least GRID_LONG of the picture's side long and on
     average under GRID_THIN px wide: a scan cut from a 米字格 page shows them beside the
     character)."""
-    return _without_specks(np.asarray(Image.open(path).convert("RGB")).max(axis=-1) < dark)
+    return _writing(np.asarray(Image.open(path).convert("RGB")).max(axis=-1) < dark)
 
 
 LEVEL_BLOCKS = 8  # the paper's level is read in blocks of 1/LEVEL_BLOCKS of the picture's side
@@ -66,7 +66,7 @@ def level_ink(path: Path, dark: int) -> np.ndarray:
     level = ndi.maximum_filter(np.quantile(blocks, LEVEL_QUANTILE, axis=-1), size=3)
     level = ndi.zoom(ndi.uniform_filter(level, 3, mode="nearest"), b, order=1)[:h, :w]
     ink = v < np.maximum(level, 1.0) * (dark / 255.0)
-    return _without_specks(ink)
+    return _writing(ink)
 
 
 def _thin_lines(ink: np.ndarray) -> np.ndarray:
@@ -78,9 +78,9 @@ def _thin_lines(ink: np.ndarray) -> np.ndarray:
     return thin & (thin.sum(axis=1) >= GRID_LONG * ink.shape[1])[:, None]
 
 
-def _without_specks(ink: np.ndarray) -> np.ndarray:
-    """The ink without a grid's lines (level and upright, ``_thin_lines``, twice: where two
-    cross each is tall across the other), then without specks and pieces that are lines."""
+def _writing(ink: np.ndarray) -> np.ndarray:
+    """The writing of the ink: without a grid's lines (level and upright, ``_thin_lines``,
+    twice: where two cross each is tall across the other), specks and pieces that are lines."""
     for _ in range(2):
         ink = ink & ~_thin_lines(ink)
         ink = ink & ~_thin_lines(ink.T).T

@@ -313,23 +313,21 @@ GRID_LINE = (0.3, 0.15, 2.0, 0.5)  # a copybook grid's line crossing the writing
 WIDTH_QUANTILE = 0.8  # ... the strokes' typical width read at this quantile of the ink's depth
 
 
-def _run_lengths(mask: np.ndarray, edge: bool = False, clear: float = 0.0) -> np.ndarray:
-    """Each pixel's run of ink along its row (0 on paper); with ``edge``, whether its run
-    reaches the picture's left or right edge instead; with ``clear``, its length where the
-    paper on both sides of the run is at least that long (or the picture's edge), else 0."""
+def _run_lengths(mask: np.ndarray, clear: float = 0.0) -> np.ndarray:
+    """Each pixel's run of ink along its row (0 on paper); with ``clear``, 0 as well where the
+    paper on either side of its run is shorter than that (the picture's edge is clear)."""
     rows, starts, ends = M._runs(mask)
-    out = np.zeros(mask.shape, dtype=bool if edge else np.int64)
-    if edge:
-        value = (starts == 0) | (ends == mask.shape[1])
-    else:
-        value = ends - starts
-        if clear:
-            same = np.r_[False, rows[1:] == rows[:-1]]  # a run before it on its row
-            before = np.where(same, starts - np.r_[0, ends[:-1]], np.inf)
-            after = np.where(np.r_[same[1:], False], np.r_[starts[1:], 0] - ends, np.inf)
-            value = np.where((before >= clear) & (after >= clear), value, 0)
-    cols = np.concatenate([np.arange(a, b) for a, b in zip(starts, ends, strict=True)] or [[]])
-    out[np.repeat(rows, ends - starts), cols.astype(np.int64)] = np.repeat(value, ends - starts)
+    length = ends - starts
+    value = length
+    if clear:
+        same = np.r_[False, rows[1:] == rows[:-1]]  # a run before it on its row
+        before = np.where(same, starts - np.r_[0, ends[:-1]], np.inf)
+        after = np.where(np.r_[same[1:], False], np.r_[starts[1:], 0] - ends, np.inf)
+        value = np.where((before >= clear) & (after >= clear), length, 0)
+    first = np.cumsum(length) - length  # each run's first pixel in the runs' pixels
+    cols = np.arange(int(length.sum())) - np.repeat(first - starts, length)
+    out = np.zeros(mask.shape, dtype=np.int64)
+    out[np.repeat(rows, length), cols] = np.repeat(value, length)
     return out
 
 
@@ -343,9 +341,8 @@ def _grid_lines(mask: np.ndarray, width: float) -> np.ndarray:
     across = _run_lengths(mask.T, clear=GRID_LINE[3] * width).T
     thin = mask & (across > 0) & (across <= max(GRID_LINE[0] * width, 1.0))
     long_runs = thin & (_run_lengths(thin) >= GRID_LINE[2] * width)
-    lined = (long_runs.sum(axis=1) >= GRID_LINE[1] * mask.shape[1]) | np.any(
-        _run_lengths(long_runs, edge=True), axis=1
-    )
+    lined = long_runs.sum(axis=1) >= GRID_LINE[1] * mask.shape[1]
+    lined |= long_runs[:, 0] | long_runs[:, -1]  # a long run out to the picture's edge
     return thin & lined[:, None]
 
 
