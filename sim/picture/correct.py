@@ -93,27 +93,36 @@ def _moved(line: np.ndarray, delta: float, keep: float) -> np.ndarray:
 
 
 def corrected(
-    char: dict, strokes: list, written: np.ndarray, picture: np.ndarray, scale: float = 1.0
+    char: dict,
+    strokes: list,
+    written: np.ndarray,
+    picture: np.ndarray,
+    scale: float = 1.0,
+    boxes: bool = False,
 ) -> dict:
-    """The character data with each stroke's median ends moved by ``end_moves``: the written
-    ink ``written`` against the picture's ink ``picture``, both on the em box's n x n grid, top
-    row first; ``strokes`` (as read, in the same order, in pixels ``scale`` times the em box's)
-    give the half-widths near the ends. The writer carries a median on past its ends part of
-    the way to its outline (``writing.outline.TIP_REACH``): a median end moved by x moves the
-    brush's by (1 - reach) x, so it is moved by x / (1 - reach)."""
+    """The character data with each stroke's median ends moved by ``end_moves`` (and, with
+    ``boxes``, an end that sets a side of the ink's box where ``end_moves`` reads nothing to
+    move, by ``box_moves``): the written ink ``written`` against the picture's ink
+    ``picture``, both on the em box's n x n grid, top row first; ``strokes`` (as read, in the
+    same order, in pixels ``scale`` times the em box's) give the half-widths near the ends.
+    The writer carries a median on past its ends part of the way to its outline
+    (``writing.outline.TIP_REACH``): a median end moved by x moves the brush's by (1 - reach)
+    x, so it is moved by x / (1 - reach)."""
     n = picture.shape[0]
-    medians = []
+    lines, radii = [], []
     for med, s in zip(char["medians"], strokes, strict=True):
-        line = to_image(np.array(med, dtype=float), n)
+        k = max(len(s.radius) // 5, 1)
+        lines.append(to_image(np.array(med, dtype=float), n))
+        radii.append([max(float(np.median(r)) * scale, 1.0) for r in (s.radius[:k], s.radius[-k:])])
+    boxed = box_moves(lines, radii, written, picture) if boxes else {}
+    medians = []
+    for i, (med, line) in enumerate(zip(char["medians"], lines, strict=True)):
         if len(line) < 2:
             medians.append(med)
             continue
-        k = max(len(s.radius) // 5, 1)
-        radii = (np.median(s.radius[:k]) * scale, np.median(s.radius[-k:]) * scale)
-        for end, (r, reach) in enumerate(zip(radii, TIP_REACH, strict=True)):
-            r = max(float(r), 1.0)
+        for end, (r, reach) in enumerate(zip(radii[i], TIP_REACH, strict=True)):
             ln = line if end == 1 else line[::-1]
-            delta = end_moves(ln, r, written, picture)
+            delta = end_moves(ln, r, written, picture) or boxed.get((i, end), 0.0)
             if delta:
                 ln = _moved(ln, delta / (1.0 - reach), MIN_LEFT * r)
             line = ln if end == 1 else ln[::-1]
@@ -121,16 +130,103 @@ def corrected(
     return {**char, "medians": medians}
 
 
-def ink_box(mask: np.ndarray) -> np.ndarray:
-    """The ink's bounding box: of its pieces, specks left out (a piece of under SHAPE_SPECK of
-    the ink: a droplet thrown off a fast exit, dust on a scan), so that one speck a stroke's
-    width outside the character does not move the box."""
+# the four sides of an ink's box: its outward normals (x, y; image px, top row first)
+SIDES = np.array([[0.0, -1.0], [0.0, 1.0], [-1.0, 0.0], [1.0, 0.0]])
+BOX_MOVE = 2.5  # at most this many half-widths an end is moved for a side of the box
+BOX_NEAR = 1.5  # half-widths (past its own) from where a side is set an end may lie to set it
+BOX_OUT = 0.5  # the least cosine of an end's way out with a side's normal (an end, not a flank)
+BOX_THIN = 3.0  # px at 512: ink thinner than twice this does not set a side (a grid's line)
+
+
+def box_moves(lines: list, radii: list, written: np.ndarray, picture: np.ndarray) -> dict:
+    """How far the end that sets each side of the written ink's box should move on (> 0) or
+    back (< 0) so that the side lies where the picture's does: {(stroke, end): px along the
+    end's way out}. The box is what an imitation's shape is measured in (``shape_agreement``):
+    a dot's head landing a few pixels short of the picture's moves every stroke against it,
+    and ``end_moves`` misses it where the median runs along the ink's edge rather than its
+    middle (a heavy dot's skeleton). The end moved is the one nearest where the side is set:
+    by the picture's ink where the writing falls short of it, by the written ink where it
+    runs past it; it must point out of the side (BOX_OUT) and lie within BOX_NEAR half-widths
+    (and the shortfall) of that place, else the side is left to the press (the flank of a
+    stroke sets it). A side is left alone when it differs by MIN_MOVE or less; an end moves at
+    most BOX_MOVE half-widths. The sides are those of the inks without their thin parts
+    (``_opened``, BOX_THIN): a grid's line the reading kept where it touches the character,
+    or a hair's thread, is no side to reach."""
+    thin = BOX_THIN * picture.shape[0] / 512
+    inks = (_opened(picture, thin), _opened(written, thin))
+    want, got = _sides(inks[0]), _sides(inks[1])
+    if want is None or got is None:
+        return {}
+    out = {}
+    for side, normal in enumerate(SIDES):
+        gap = float(want[side] - got[side])  # > 0: the written ink falls short of the side
+        if abs(gap) <= MIN_MOVE:
+            continue
+        at = _extreme(*((inks[0], want) if gap > 0 else (inks[1], got)), side)
+        best = None
+        for i, line in enumerate(lines):
+            if len(line) < 2:
+                continue
+            for end in (0, 1):
+                ln = line if end == 1 else line[::-1]
+                way = ln[-1] - ln[-2]
+                cos = float(way @ normal) / max(float(np.linalg.norm(way)), 1e-9)
+                r = radii[i][end]
+                far = float(np.linalg.norm(ln[-1] - at))
+                if cos >= BOX_OUT and far <= (1.0 + BOX_NEAR) * r + max(gap, 0.0):
+                    if best is None or far < best[0]:
+                        best = (far, i, end, cos, r)
+        if best is not None:
+            _, i, end, cos, r = best
+            out[(i, end)] = float(np.clip(gap / cos, -BOX_MOVE * r, BOX_MOVE * r))
+    return out
+
+
+def _extreme(mask: np.ndarray, sides: np.ndarray, side: int) -> np.ndarray:
+    """Where the ink sets one of SIDES of its box (``sides``, ``_sides``): the middle (x, y)
+    of its pixels on that side's row or column."""
+    ys, xs = np.nonzero(mask)
+    on = (ys, ys, xs, xs)[side] == abs(int(sides[side]))
+    return np.array([xs[on].mean(), ys[on].mean()])
+
+
+def _opened(mask: np.ndarray, r: float) -> np.ndarray:
+    """The ink without what is thinner than 2 ``r`` px (an opening by a disc of radius r): a
+    copybook grid's line touching the character, a hair's thread off a tip."""
+    core = M.edt(mask) > r
+    if not core.any():
+        return np.asarray(mask, bool)
+    return np.asarray(mask, bool) & (M.edt(~core) <= r)
+
+
+def _sides(mask: np.ndarray):
+    """The ink's box (specks left out, ``ink_box``) as the outward reach of each of SIDES: (-top,
+    bottom, -left, right) in px; None when there is no ink."""
+    rows, cols = _box_slices(mask)
+    if rows is None:
+        return None
+    return np.array([-rows.start, rows.stop - 1, -cols.start, cols.stop - 1], dtype=float)
+
+
+def _box_slices(mask: np.ndarray):
+    """The rows and columns of the ink's box, specks left out (see ``ink_box``)."""
+    mask = np.asarray(mask, bool)
+    if not mask.any():
+        return None, None
     lab, k = M.label(mask)
     area = np.bincount(lab.ravel(), minlength=k + 1)
     area[0] = 0
     keep = area >= SHAPE_SPECK * area.sum()
     ys, xs = np.nonzero(keep[lab] if keep.any() else mask)
-    return mask[ys.min() : ys.max() + 1, xs.min() : xs.max() + 1]
+    return slice(ys.min(), ys.max() + 1), slice(xs.min(), xs.max() + 1)
+
+
+def ink_box(mask: np.ndarray) -> np.ndarray:
+    """The ink's bounding box: of its pieces, specks left out (a piece of under SHAPE_SPECK of
+    the ink: a droplet thrown off a fast exit, dust on a scan), so that one speck a stroke's
+    width outside the character does not move the box."""
+    rows, cols = _box_slices(mask)
+    return np.asarray(mask)[rows, cols]
 
 
 def box_shape(mask: np.ndarray, side: int = SHAPE_SIDE) -> np.ndarray:

@@ -490,6 +490,51 @@ def test_a_written_end_that_overshoots_or_falls_short_is_moved_to_the_pictures()
     assert got[-1][0] == pytest.approx(95.0 - 8.0 / (1 - TIP_REACH[1]), abs=1.5)
 
 
+def test_an_end_that_sets_a_side_of_the_box_is_moved_to_the_pictures_side():
+    """A heavy dot's head reaches 12 px above where its median, read along the ink's left
+    edge, finds ink: ``end_moves`` reads nothing to move there, but the written ink falls short
+    of the top of the picture's box, which every other stroke is measured against."""
+    from sim.picture.correct import BOX_MOVE, box_moves, corrected, end_moves
+    from sim.picture.outline import _to_data
+    from sim.writing.outline import TIP_REACH
+
+    n, r = 128, 10.0
+    written = np.zeros((n, n), bool)
+    written[40:100, 50:70] = True  # a standing stroke
+    picture = written.copy()
+    picture[28:40, 60:70] = True  # the picture's head reaches on up, to the right of the median
+    picture[60:70, 40:50] = True  # and a bump on its left flank: no end points that way
+    line = np.array([[53.0, 42.0], [53.0, 97.0]])  # the median, written from the top
+    top = line[::-1]  # the start, as the end of a line
+    assert end_moves(top, r, written, picture) == 0.0  # read along the median: nothing
+    moves = box_moves([line], [[r, r]], written, picture)
+    assert moves == {(0, 0): pytest.approx(12.0)}  # the top only: the flank's bump is no end
+    assert box_moves([line], [[r, r]], picture, picture) == {}  # nothing to move
+    far = picture.copy()
+    far[0:28, 60:70] = True  # 40 px above: at most BOX_MOVE half-widths
+    assert box_moves([line], [[r, r]], written, far)[(0, 0)] == pytest.approx(BOX_MOVE * r)
+    over = written.copy()
+    over[100:108, 50:70] = True  # the foot written 8 px past the picture's: drawn back
+    assert box_moves([line], [[r, r]], over, written) == {(0, 1): pytest.approx(-8.0)}
+    med = [[round(float(x), 1), round(float(y), 1)] for x, y in _to_data(line, n)]
+    s = Stroke(line, np.full(2, r))
+    for boxes, top in ((False, 42.0), (True, 42.0 - 12.0 / (1 - TIP_REACH[0]))):
+        fixed = corrected({"medians": [med]}, [s], written, picture, boxes=boxes)
+        got = to_image(np.array(fixed["medians"][0]), n)
+        assert got[0][1] == pytest.approx(top, abs=1.0)
+        assert got[-1] == pytest.approx(line[-1], abs=0.2)
+    # a thin line touching the ink (a grid's, kept by the reading) sets no side to reach
+    from sim.picture.correct import _opened
+
+    sheet = np.zeros((512, 512), bool)
+    sheet[200:300, 200:260] = True
+    lined = sheet.copy()
+    lined[60:200, 228:232] = True  # 4 px wide, 140 px up from the top (left: a fillet at its foot)
+    assert not _opened(lined, 3.0)[:196].any() and _opened(lined, 3.0)[204:296, 204:256].all()
+    tall = np.array([[230.0, 204.0], [230.0, 296.0]])
+    assert box_moves([tall], [[30.0, 30.0]], sheet, lined) == {}
+
+
 def _bars(*bars, n: int = 256) -> Ink:
     from sim.writing.outline import discs
 

@@ -99,6 +99,44 @@ def test_the_writing_kept_is_the_one_whose_shape_agrees_with_the_pictures():
     assert shape_agreement(np.zeros_like(cross), cross) == 0.0
 
 
+def test_each_correction_reads_the_best_writing_so_far_and_the_best_stays(monkeypatch):
+    # the writer stood in for: each round's writing is a cross with a tail of a given length
+    # (its shape agreement falls with it); the second correction reads the best writing so far
+    # (the first, as the first correction's came out worse) and moves the box's ends too
+    from sim.picture import imitate
+    from sim.picture.imitate import Imitation
+    from sim.writing import writer
+
+    ink = _ink(((40, 120), (200, 120), 10, 10), ((120, 40), (120, 200), 10, 10))
+    tails = {"read": 40, "first": 50, "second": 0}  # px of tail past the cross's foot
+
+    def written(name):
+        m = ink.mask.copy()
+        m[200 : 200 + tails[name], 119:122] = True
+        return m
+
+    def write_character(char, *args, **kw):
+        return char["name"], None, char["name"]  # the recording and the simulation: its name
+
+    calls = []
+
+    def corrected(base, strokes, seen, target, scale, boxes=False):
+        calls.append((base["name"], boxes, int(seen.sum())))
+        return {"name": ("first", "second")[len(calls) - 1]}
+
+    monkeypatch.setattr(writer, "write_character", write_character)
+    monkeypatch.setattr(writer, "coverage_mask", written)
+    monkeypatch.setattr(imitate, "corrected", corrected)
+    im = Imitation(ink, [], [], {"name": "read"}, 0.0)
+    rec, _, _ = imitate.write_imitation(im, None, len(ink.mask), corrections=2)
+    assert rec == "second"  # the best of the three
+    assert calls == [("read", False, written("read").sum()), ("read", True, written("read").sum())]
+    tails["read"] = 0  # a first writing that agrees: not written again
+    calls.clear()
+    assert imitate.write_imitation(im, None, len(ink.mask), corrections=2)[0] == "read"
+    assert calls == []
+
+
 def test_a_shoulder_pressed_out_past_its_legs_is_written_into():
     # a kaishu 折 (口's, 国's top right): the brush lifts at the end of the horizontal and
     # presses down and out, and the shoulder bulges up and right past both legs' outer edges,
