@@ -146,14 +146,17 @@ def box_moves(lines: list, radii: list, written: np.ndarray, picture: np.ndarray
     and ``end_moves`` misses it where the median runs along the ink's edge rather than its
     middle (a heavy dot's skeleton). The end moved is the one nearest where the side is set:
     by the picture's ink where the writing falls short of it, by the written ink where it
-    runs past it; it must point out of the side (BOX_OUT) and lie within BOX_NEAR half-widths
-    (and the shortfall) of that place, else the side is left to the press (the flank of a
-    stroke sets it). A side is left alone when it differs by MIN_MOVE or less; an end moves at
+    runs past it; it must point out of the side (BOX_OUT) and lie within its own half-width
+    and BOX_NEAR more (and the shortfall) of that place, else the side is left to the press
+    (the flank of a stroke sets it); an end at a corner of the box moves by the larger of its
+    two sides' moves. A side is left alone when it differs by MIN_MOVE or less; an end moves at
     most BOX_MOVE half-widths. The sides are those of the inks without their thin parts
-    (``_opened``, BOX_THIN): a grid's line the reading kept where it touches the character,
-    or a hair's thread, is no side to reach."""
+    (``_opened``, BOX_THIN; both whole where either has nothing thicker): a grid's line the
+    reading kept where it touches the character, or a hair's thread, is no side to reach."""
     thin = BOX_THIN * picture.shape[0] / 512
     inks = (_opened(picture, thin), _opened(written, thin))
+    if not (inks[0].any() and inks[1].any()):  # nothing thicker in one: both as they are
+        inks = (np.asarray(picture, bool), np.asarray(written, bool))
     want, got = _sides(inks[0]), _sides(inks[1])
     if want is None or got is None:
         return {}
@@ -176,9 +179,10 @@ def box_moves(lines: list, radii: list, written: np.ndarray, picture: np.ndarray
                 if cos >= BOX_OUT and far <= (1.0 + BOX_NEAR) * r + max(gap, 0.0):
                     if best is None or far < best[0]:
                         best = (far, i, end, cos, r)
-        if best is not None:
+        if best is not None:  # an end at a corner of the box: the larger of its two moves
             _, i, end, cos, r = best
-            out[(i, end)] = float(np.clip(gap / cos, -BOX_MOVE * r, BOX_MOVE * r))
+            move = float(np.clip(gap / cos, -BOX_MOVE * r, BOX_MOVE * r))
+            out[(i, end)] = max(out.get((i, end), 0.0), move, key=abs)
     return out
 
 
@@ -192,11 +196,10 @@ def _extreme(mask: np.ndarray, sides: np.ndarray, side: int) -> np.ndarray:
 
 def _opened(mask: np.ndarray, r: float) -> np.ndarray:
     """The ink without what is thinner than 2 ``r`` px (an opening by a disc of radius r): a
-    copybook grid's line touching the character, a hair's thread off a tip."""
+    copybook grid's line touching the character, a hair's thread off a tip (no ink where
+    nothing is that thick)."""
     core = M.edt(mask) > r
-    if not core.any():
-        return np.asarray(mask, bool)
-    return np.asarray(mask, bool) & (M.edt(~core) <= r)
+    return np.asarray(mask, bool) & (M.edt(~core) <= r) if core.any() else np.zeros_like(core)
 
 
 def _sides(mask: np.ndarray):
@@ -226,6 +229,8 @@ def ink_box(mask: np.ndarray) -> np.ndarray:
     the ink: a droplet thrown off a fast exit, dust on a scan), so that one speck a stroke's
     width outside the character does not move the box."""
     rows, cols = _box_slices(mask)
+    if rows is None:
+        raise ValueError("an ink box of no ink")
     return np.asarray(mask)[rows, cols]
 
 

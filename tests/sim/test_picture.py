@@ -533,6 +533,16 @@ def test_an_end_that_sets_a_side_of_the_box_is_moved_to_the_pictures_side():
     assert not _opened(lined, 3.0)[:196].any() and _opened(lined, 3.0)[204:296, 204:256].all()
     tall = np.array([[230.0, 204.0], [230.0, 296.0]])
     assert box_moves([tall], [[30.0, 30.0]], sheet, lined) == {}
+    # an end at the box's corner (a 撇's tip) sets two sides: it moves by the larger move
+    from sim.writing.outline import discs
+
+    pie = np.array([[80.0, 40.0], [40.0, 80.0]])
+    t = np.linspace(0.0, 1.0, 100)[:, None]
+    stroke = discs(pie[0] + t * (pie[1] - pie[0]), np.full(100, 6.0), n)
+    wider = stroke.copy()
+    wider[70:86, 30:34] = True  # 4 px further left
+    wider[80:100, 40:48] = True  # 14 px further down
+    assert box_moves([pie], [[r, r]], stroke, wider) == {(0, 1): pytest.approx(14 * 2**0.5)}
 
 
 def _bars(*bars, n: int = 256) -> Ink:
