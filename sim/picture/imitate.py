@@ -131,9 +131,8 @@ def write_imitation(
     the picture's and the character written again with its stroke ends moved
     (``correct.corrected``; from the second time on, also the ends that set the box's sides),
     up to ``corrections`` times; the writing whose ink's shape agrees best with the picture's
-    stays
-    (``correct.shape_agreement``: both inks in their boxes, as imitations are measured; the
-    Imitation's character data stays the strokes as read). Returns the recording, the
+    stays (``correct.shape_agreement``: both inks in their boxes, as imitations are measured;
+    the Imitation's character data stays the strokes as read). Returns the recording, the
     response and the finished simulation."""
     from ..writing.writer import DIP_EVERY_STROKE, coverage_mask, write_character
 
