@@ -102,7 +102,8 @@ def corrected(
 ) -> dict:
     """The character data with each stroke's median ends moved by ``end_moves`` (and, with
     ``boxes``, an end that sets a side of the ink's box where ``end_moves`` reads nothing to
-    move, by ``box_moves``): the written ink ``written`` against the picture's ink
+    move, by ``box_moves``, and a median's point that sets a side no end points out of, by
+    ``box_shifts``): the written ink ``written`` against the picture's ink
     ``picture``, both on the em box's n x n grid, top row first; ``strokes`` (as read, in the
     same order, in pixels ``scale`` times the em box's) give the half-widths near the ends.
     The writer carries a median on past its ends part of the way to its outline
@@ -115,6 +116,9 @@ def corrected(
         lines.append(to_image(np.array(med, dtype=float), n))
         radii.append([max(float(np.median(r)) * scale, 1.0) for r in (s.radius[:k], s.radius[-k:])])
     boxed = box_moves(lines, radii, written, picture) if boxes else {}
+    for (i, k), shift in (box_shifts(lines, radii, written, picture) if boxes else {}).items():
+        lines[i] = lines[i].copy()
+        lines[i][k] += shift
     medians = []
     for i, (med, line) in enumerate(zip(char["medians"], lines, strict=True)):
         if len(line) < 2:
@@ -136,6 +140,7 @@ BOX_MOVE = 2.5  # at most this many half-widths an end is moved for a side of th
 BOX_NEAR = 1.5  # half-widths (past its own) from where a side is set an end may lie to set it
 BOX_OUT = 0.5  # the least cosine of an end's way out with a side's normal (an end, not a flank)
 BOX_THIN = 3.0  # px at 512: ink thinner than twice this does not set a side (a grid's line)
+BOX_NEAR_POINT = 0.5  # half-widths a median's point may lie farther than its nearest segment
 
 
 def box_moves(lines: list, radii: list, written: np.ndarray, picture: np.ndarray) -> dict:
@@ -147,10 +152,61 @@ def box_moves(lines: list, radii: list, written: np.ndarray, picture: np.ndarray
     middle (a heavy dot's skeleton). The end moved is the one nearest where the side is set:
     by the picture's ink where the writing falls short of it, by the written ink where it
     runs past it; it must point out of the side (BOX_OUT) and lie within its own half-width
-    and BOX_NEAR more (and the shortfall) of that place, else the side is left to the press
-    (the flank of a stroke sets it); an end at a corner of the box moves by the larger of its
-    two sides' moves. A side is left alone when it differs by MIN_MOVE or less; an end moves at
-    most BOX_MOVE half-widths. The sides are those of the inks without their thin parts
+    and BOX_NEAR more (and the shortfall) of that place, else the side is left to
+    ``box_shifts``; an end at a corner of the box moves by the larger of its two sides' moves.
+    A side is left alone when it differs by MIN_MOVE or less (``_box_gaps``); an end moves at
+    most BOX_MOVE half-widths."""
+    out = {}
+    for normal, gap, at in _box_gaps(written, picture):
+        best = _side_end(lines, radii, normal, gap, at)
+        if best is not None:  # an end at a corner of the box: the larger of its two moves
+            _, i, end, cos, r = best
+            move = float(np.clip(gap / cos, -BOX_MOVE * r, BOX_MOVE * r))
+            out[(i, end)] = max(out.get((i, end), 0.0), move, key=abs)
+    return out
+
+
+def box_shifts(lines: list, radii: list, written: np.ndarray, picture: np.ndarray) -> dict:
+    """For each side of the box that no end is moved for (``box_moves``: none points out of
+    it), the median's point that sets it shifted across to where the picture sets it: {(stroke,
+    point): (dx, dy) px}. The point is a corner of a median (a hook's heel, a 折's shoulder) or
+    an end whose ink reaches out sideways (a heavy head pressed past its median's start); it is
+    the median's point nearest where the side is set (by the picture's ink where the writing
+    falls short, by the written ink where it runs past), no farther than the nearest point of
+    any median's segments by BOX_NEAR_POINT half-widths (a stroke's flank sets the side there:
+    its width, the press's, not a point's place) and within its half-width and BOX_NEAR more
+    (and the shortfall); it shifts along the side's normal by the difference, at most BOX_MOVE
+    half-widths."""
+    out = {}
+    for normal, gap, at in _box_gaps(written, picture):
+        if _side_end(lines, radii, normal, gap, at) is not None:
+            continue
+        best = None
+        for i, line in enumerate(lines):
+            if len(line) < 2:
+                continue
+            far = np.linalg.norm(line - at, axis=1)
+            k = int(np.argmin(far))
+            r = radii[i][0] if k == 0 else radii[i][1] if k == len(line) - 1 else max(radii[i])
+            if best is None or far[k] < best[0]:
+                best = (float(far[k]), i, k, r)
+        if best is None:
+            continue
+        far, i, k, r = best
+        if far > (1.0 + BOX_NEAR) * r + max(gap, 0.0):
+            continue
+        if far > _nearest_on(lines, at) + BOX_NEAR_POINT * r:  # a flank sets the side
+            continue
+        move = float(np.clip(gap, -BOX_MOVE * r, BOX_MOVE * r)) * normal
+        out[(i, k)] = out.get((i, k), np.zeros(2)) + move
+    return out
+
+
+def _box_gaps(written: np.ndarray, picture: np.ndarray):
+    """For each of SIDES where the written ink's box differs from the picture's by more than
+    MIN_MOVE: (its normal, how far the written ink falls short of it (< 0: runs past), where
+    it is set: by the picture's ink where the writing falls short, by the written ink where it
+    runs past, ``_extreme``). The sides are those of the inks without their thin parts
     (``_opened``, BOX_THIN; both whole where either has nothing thicker): a grid's line the
     reading kept where it touches the character, or a hair's thread, is no side to reach."""
     thin = BOX_THIN * picture.shape[0] / 512
@@ -159,31 +215,47 @@ def box_moves(lines: list, radii: list, written: np.ndarray, picture: np.ndarray
         inks = (np.asarray(picture, bool), np.asarray(written, bool))
     want, got = _sides(inks[0]), _sides(inks[1])
     if want is None or got is None:
-        return {}
-    out = {}
+        return []
+    out = []
     for side, normal in enumerate(SIDES):
         gap = float(want[side] - got[side])  # > 0: the written ink falls short of the side
-        if abs(gap) <= MIN_MOVE:
-            continue
-        at = _extreme(*((inks[0], want) if gap > 0 else (inks[1], got)), side)
-        best = None
-        for i, line in enumerate(lines):
-            if len(line) < 2:
-                continue
-            for end in (0, 1):
-                ln = line if end == 1 else line[::-1]
-                way = ln[-1] - ln[-2]
-                cos = float(way @ normal) / max(float(np.linalg.norm(way)), 1e-9)
-                r = radii[i][end]
-                far = float(np.linalg.norm(ln[-1] - at))
-                if cos >= BOX_OUT and far <= (1.0 + BOX_NEAR) * r + max(gap, 0.0):
-                    if best is None or far < best[0]:
-                        best = (far, i, end, cos, r)
-        if best is not None:  # an end at a corner of the box: the larger of its two moves
-            _, i, end, cos, r = best
-            move = float(np.clip(gap / cos, -BOX_MOVE * r, BOX_MOVE * r))
-            out[(i, end)] = max(out.get((i, end), 0.0), move, key=abs)
+        if abs(gap) > MIN_MOVE:
+            at = _extreme(*((inks[0], want) if gap > 0 else (inks[1], got)), side)
+            out.append((normal, gap, at))
     return out
+
+
+def _side_end(lines: list, radii: list, normal, gap: float, at):
+    """The end (far, stroke, end, cosine, half-width) nearest ``at`` that points out of the
+    side of ``normal`` (BOX_OUT) within its half-width and BOX_NEAR more (and the shortfall
+    ``gap``), or None."""
+    best = None
+    for i, line in enumerate(lines):
+        if len(line) < 2:
+            continue
+        for end in (0, 1):
+            ln = line if end == 1 else line[::-1]
+            way = ln[-1] - ln[-2]
+            cos = float(way @ normal) / max(float(np.linalg.norm(way)), 1e-9)
+            r = radii[i][end]
+            far = float(np.linalg.norm(ln[-1] - at))
+            if cos >= BOX_OUT and far <= (1.0 + BOX_NEAR) * r + max(gap, 0.0):
+                if best is None or far < best[0]:
+                    best = (far, i, end, cos, r)
+    return best
+
+
+def _nearest_on(lines: list, at) -> float:
+    """The distance from ``at`` to the nearest point of the medians' segments."""
+    near = np.inf
+    for line in lines:
+        if len(line) < 2:
+            near = min(near, float(np.linalg.norm(line[0] - at))) if len(line) else near
+            continue
+        a, d = line[:-1], np.diff(line, axis=0)
+        t = np.clip(((at - a) * d).sum(axis=1) / np.maximum((d * d).sum(axis=1), 1e-12), 0, 1)
+        near = min(near, float(np.linalg.norm(a + t[:, None] * d - at, axis=1).min()))
+    return near
 
 
 def _extreme(mask: np.ndarray, sides: np.ndarray, side: int) -> np.ndarray:

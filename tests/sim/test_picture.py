@@ -545,6 +545,55 @@ def test_an_end_that_sets_a_side_of_the_box_is_moved_to_the_pictures_side():
     assert box_moves([pie], [[r, r]], stroke, wider) == {(0, 1): pytest.approx(14 * 2**0.5)}
 
 
+def _swept(line, r: float, n: int = 128) -> np.ndarray:
+    from sim.writing.outline import discs
+
+    t = np.linspace(0.0, 1.0, 60)[:, None]
+    pts = np.concatenate([a + t * (b - a) for a, b in zip(line[:-1], line[1:], strict=True)])
+    return discs(pts, np.full(len(pts), r), n)
+
+
+def test_a_corner_or_a_head_that_sets_a_side_of_the_box_is_shifted_to_the_pictures_side():
+    """Where no end points out of a side the picture's ink reaches past the writing's (a
+    斜钩's heel, the lowest ink; a heavy head pressed out sideways past its median's start),
+    the median's point that sets the side is shifted across to it; a stroke's flank, whose
+    width is the press's, is not."""
+    from sim.picture.correct import BOX_MOVE, box_moves, box_shifts, corrected
+    from sim.picture.outline import _to_data
+
+    n, r = 128, 6.0
+    hook = np.array([[30.0, 30.0], [80.0, 90.0], [100.0, 70.0]])  # down-right, then up
+    written = _swept(hook, r)
+    heel = hook.copy()
+    heel[1] += (0.0, 10.0)  # the picture's heel 10 px lower: its lowest ink
+    picture = written | _swept(heel, r)
+    assert box_moves([hook], [[r, r]], written, picture) == {}  # no end points down
+    shifts = box_shifts([hook], [[r, r]], written, picture)
+    assert list(shifts) == [(0, 1)] and shifts[(0, 1)] == pytest.approx([0.0, 10.0], abs=1.0)
+    assert box_shifts([hook], [[r, r]], picture, picture) == {}  # nothing to shift
+    deeper = written | _swept(heel + (0.0, 30.0), r)  # 40 px lower: at most BOX_MOVE half-widths
+    deep = box_shifts([hook], [[r, r]], written, deeper)
+    assert deep[(0, 1)][1] == pytest.approx(BOX_MOVE * r)
+    med = [[round(float(x), 1), round(float(y), 1)] for x, y in _to_data(hook, n)]
+    s = Stroke(hook, np.full(3, r))
+    for boxes, y in ((False, 90.0), (True, 100.0)):
+        got = corrected({"medians": [med]}, [s], written, picture, boxes=boxes)["medians"][0]
+        assert to_image(np.array(got), n)[1][1] == pytest.approx(y, abs=1.0)  # the heel's point
+    # a heavy head: the stroke sets off upward (its way out points up, not right), and the
+    # picture's pressed head reaches 12 px right of the writing's
+    stand = np.array([[60.0, 30.0], [60.0, 100.0]])
+    written = _swept(stand, r)
+    picture = written.copy()
+    picture[24:40, 60:78] = True  # the head's mass out to x = 77 (the writing's edge: 65)
+    assert box_moves([stand], [[r, r]], written, picture) == {}
+    shifts = box_shifts([stand], [[r, r]], written, picture)
+    assert list(shifts) == [(0, 0)] and shifts[(0, 0)] == pytest.approx([12.0, 0.0], abs=1.0)
+    # a bump on the stroke's flank halfway down sets the side: the width's, no point shifts
+    flank = written.copy()
+    flank[60:72, 60:78] = True
+    assert box_shifts([stand], [[r, r]], written, flank) == {}
+
+
 def _bars(*bars, n: int = 256) -> Ink:
     from sim.writing.outline import discs
 
