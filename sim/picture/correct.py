@@ -102,8 +102,9 @@ def corrected(
 ) -> dict:
     """The character data with each stroke's median ends moved by ``end_moves`` (and, with
     ``boxes``, an end that sets a side of the ink's box where ``end_moves`` reads nothing to
-    move, by ``box_moves``, and a median's point that sets a side no end points out of, by
-    ``box_shifts``): the written ink ``written`` against the picture's ink
+    move, by ``box_moves``, and a median's point that sets a side no end is moved for, by
+    ``box_shifts``; the ends' moves are read before any point is shifted, where the written
+    ink is): the written ink ``written`` against the picture's ink
     ``picture``, both on the em box's n x n grid, top row first; ``strokes`` (as read, in the
     same order, in pixels ``scale`` times the em box's) give the half-widths near the ends.
     The writer carries a median on past its ends part of the way to its outline
@@ -116,17 +117,23 @@ def corrected(
         lines.append(to_image(np.array(med, dtype=float), n))
         radii.append([max(float(np.median(r)) * scale, 1.0) for r in (s.radius[:k], s.radius[-k:])])
     boxed = box_moves(lines, radii, written, picture) if boxes else {}
-    for (i, k), shift in (box_shifts(lines, radii, written, picture) if boxes else {}).items():
-        lines[i] = lines[i].copy()
-        lines[i][k] += shift
+    shifts = box_shifts(lines, radii, written, picture) if boxes else {}
     medians = []
     for i, (med, line) in enumerate(zip(char["medians"], lines, strict=True)):
         if len(line) < 2:
             medians.append(med)
             continue
-        for end, (r, reach) in enumerate(zip(radii[i], TIP_REACH, strict=True)):
+        deltas = [  # read where the written ink is: before any point is shifted
+            end_moves(line if end == 1 else line[::-1], r, written, picture)
+            or boxed.get((i, end), 0.0)
+            for end, r in enumerate(radii[i])
+        ]
+        line = line.copy()
+        for (j, k), shift in shifts.items():
+            if j == i:
+                line[k] += shift
+        for end, (r, reach, delta) in enumerate(zip(radii[i], TIP_REACH, deltas, strict=True)):
             ln = line if end == 1 else line[::-1]
-            delta = end_moves(ln, r, written, picture) or boxed.get((i, end), 0.0)
             if delta:
                 ln = _moved(ln, delta / (1.0 - reach), MIN_LEFT * r)
             line = ln if end == 1 else ln[::-1]
@@ -140,7 +147,8 @@ BOX_MOVE = 2.5  # at most this many half-widths an end is moved for a side of th
 BOX_NEAR = 1.5  # half-widths (past its own) from where a side is set an end may lie to set it
 BOX_OUT = 0.5  # the least cosine of an end's way out with a side's normal (an end, not a flank)
 BOX_THIN = 3.0  # px at 512: ink thinner than twice this does not set a side (a grid's line)
-BOX_NEAR_POINT = 0.5  # half-widths a median's point may lie farther than its nearest segment
+BOX_NEAR_POINT = 0.5  # half-widths a median's point may lie farther than the nearest point of
+# any median's segments from where a side is set (farther: a stroke's flank sets it)
 
 
 def box_moves(lines: list, radii: list, written: np.ndarray, picture: np.ndarray) -> dict:
@@ -167,16 +175,19 @@ def box_moves(lines: list, radii: list, written: np.ndarray, picture: np.ndarray
 
 
 def box_shifts(lines: list, radii: list, written: np.ndarray, picture: np.ndarray) -> dict:
-    """For each side of the box that no end is moved for (``box_moves``: none points out of
-    it), the median's point that sets it shifted across to where the picture sets it: {(stroke,
-    point): (dx, dy) px}. The point is a corner of a median (a hook's heel, a 折's shoulder) or
-    an end whose ink reaches out sideways (a heavy head pressed past its median's start); it is
-    the median's point nearest where the side is set (by the picture's ink where the writing
-    falls short, by the written ink where it runs past), no farther than the nearest point of
-    any median's segments by BOX_NEAR_POINT half-widths (a stroke's flank sets the side there:
-    its width, the press's, not a point's place) and within its half-width and BOX_NEAR more
-    (and the shortfall); it shifts along the side's normal by the difference, at most BOX_MOVE
-    half-widths."""
+    """For each side of the box that no end is moved for (``box_moves``: none near where it is
+    set points out of it), the median's point that sets it shifted across to where the
+    picture sets it: {(stroke, point): (dx, dy) px}. The point is a corner of a median (a
+    hook's heel, a 折's shoulder) or an end whose ink reaches out sideways (a heavy head
+    pressed past its median's start); it is the median's point nearest where the side is set
+    (by the picture's ink where the writing falls short, by the written ink where it runs
+    past), no farther than the nearest point of any median's segments by BOX_NEAR_POINT
+    half-widths (a stroke's flank sets the side there: its width, the press's, not a point's
+    place) and within its half-width (an end's own; an inner point's, the larger of its
+    stroke's ends') and BOX_NEAR more (and the shortfall); it shifts along the side's normal
+    by the difference, at most BOX_MOVE half-widths. A point that sets two sides (a corner of
+    the box) shifts by both, one along each normal. A median of one point is no point to
+    shift (a dot's reading is never one point)."""
     out = {}
     for normal, gap, at in _box_gaps(written, picture):
         if _side_end(lines, radii, normal, gap, at) is not None:
@@ -187,9 +198,8 @@ def box_shifts(lines: list, radii: list, written: np.ndarray, picture: np.ndarra
                 continue
             far = np.linalg.norm(line - at, axis=1)
             k = int(np.argmin(far))
-            r = radii[i][0] if k == 0 else radii[i][1] if k == len(line) - 1 else max(radii[i])
             if best is None or far[k] < best[0]:
-                best = (float(far[k]), i, k, r)
+                best = (float(far[k]), i, k, _point_radius(radii[i], k, len(line)))
         if best is None:
             continue
         far, i, k, r = best
@@ -202,7 +212,13 @@ def box_shifts(lines: list, radii: list, written: np.ndarray, picture: np.ndarra
     return out
 
 
-def _box_gaps(written: np.ndarray, picture: np.ndarray):
+def _point_radius(radii: list, k: int, n: int) -> float:
+    """The half-width at point k of a median of n points whose ends' are ``radii``: an end's
+    own, an inner point's the larger of the two."""
+    return radii[0] if k == 0 else radii[1] if k == n - 1 else max(radii)
+
+
+def _box_gaps(written: np.ndarray, picture: np.ndarray) -> list:
     """For each of SIDES where the written ink's box differs from the picture's by more than
     MIN_MOVE: (its normal, how far the written ink falls short of it (< 0: runs past), where
     it is set: by the picture's ink where the writing falls short, by the written ink where it
@@ -225,7 +241,7 @@ def _box_gaps(written: np.ndarray, picture: np.ndarray):
     return out
 
 
-def _side_end(lines: list, radii: list, normal, gap: float, at):
+def _side_end(lines: list, radii: list, normal: np.ndarray, gap: float, at: np.ndarray):
     """The end (far, stroke, end, cosine, half-width) nearest ``at`` that points out of the
     side of ``normal`` (BOX_OUT) within its half-width and BOX_NEAR more (and the shortfall
     ``gap``), or None."""
@@ -245,7 +261,7 @@ def _side_end(lines: list, radii: list, normal, gap: float, at):
     return best
 
 
-def _nearest_on(lines: list, at) -> float:
+def _nearest_on(lines: list, at: np.ndarray) -> float:
     """The distance from ``at`` to the nearest point of the medians' segments."""
     near = np.inf
     for line in lines:

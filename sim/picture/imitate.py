@@ -51,8 +51,8 @@ CORRECTIONS = 2  # the character written again at most this many times with its 
 # crops of seven copybook pages 0.784 -> 0.795 (one case 0.015 lower), 19 crops of seven
 # others 0.7998 -> 0.801 (時 in its grid 0.56 -> 0.48); three times the time where both act;
 # and where no end points out of a side, the median's corner or end that sets it shifted
-# across (``correct.box_shifts``: a hook's heel, a heavy head): 35 crops 0.795 -> 0.802, 19
-# 0.801 -> 0.804. A correction that would write what was written already is not written
+# across (``correct.box_shifts``: a hook's heel, a heavy head): 35 crops 0.795 -> 0.803, 19
+# 0.801 -> 0.803. A correction that would write what was written already is not written.
 CORRECT_BELOW = 0.85  # a writing whose shape agrees this well (the moonshot) is kept as it is
 PASSES = 5  # practice passes per stroke: the picture's ink is the target (3: IoU 0.01 lower)
 MAX_DETAIL = 2048  # px a side: a picture is read at most this fine (Blender's Detail, the CLI)
@@ -151,32 +151,33 @@ def write_imitation(
     char, best = im.char, None
     tried = []  # the characters written so far: the same again would write the same ink
     for k in range(rounds):
-        tried.append(char)
-        rec, response, sim = write_character(
-            char,
-            n_px,
-            template,
-            size_mm=size_mm,
-            response=response,
-            passes=passes,
-            progress=writing(k),
-            px_per_mm=px_per_mm,
-            dip_every_mm=DIP_EVERY_STROKE,  # the picture's own tone is matched, not the brush's
-            exact_ends=True,  # the picture shows where each stroke's ink begins and ends
-        )
-        written = coverage_mask(sim)
-        target = ink_on(im.ink.mask, len(written))  # the picture's ink on the written sheet
-        score = shape_agreement(written, target)
-        if best is None or score > best[0]:
-            best = (score, rec, sim, char, written)
-        if k + 1 == rounds or score >= CORRECT_BELOW:
-            break  # the last round, or close enough: not written again
+        if char not in tried:  # (else: written already, bit for bit the same; best stays)
+            tried.append(char)
+            rec, response, sim = write_character(
+                char,
+                n_px,
+                template,
+                size_mm=size_mm,
+                response=response,
+                passes=passes,
+                progress=writing(k),
+                px_per_mm=px_per_mm,
+                dip_every_mm=DIP_EVERY_STROKE,  # the picture's own tone, not the brush's
+                exact_ends=True,  # the picture shows where each stroke's ink begins and ends
+            )
+            written = coverage_mask(sim)
+            target = ink_on(im.ink.mask, len(written))  # the picture's ink on the sheet
+            score = shape_agreement(written, target)
+            if best is None or score > best[0]:
+                best = (score, rec, sim, char, written)
+            if score >= CORRECT_BELOW:
+                break  # close enough: not written again
+        if k + 1 == rounds:
+            break
         # the best writing so far read again; from the second correction on, with its box
         _, _, _, base, seen = best
-        scale = len(written) / len(im.ink.mask)
+        scale = len(seen) / len(im.ink.mask)
         char = corrected(base, im.strokes, seen, target, scale, boxes=k > 0)
-        if char in tried:
-            break  # written already, bit for bit the same
     _, rec, sim = best[:3]
     return rec, response, sim
 

@@ -571,14 +571,16 @@ def test_a_corner_or_a_head_that_sets_a_side_of_the_box_is_shifted_to_the_pictur
     shifts = box_shifts([hook], [[r, r]], written, picture)
     assert list(shifts) == [(0, 1)] and shifts[(0, 1)] == pytest.approx([0.0, 10.0], abs=1.0)
     assert box_shifts([hook], [[r, r]], picture, picture) == {}  # nothing to shift
-    deeper = written | _swept(heel + (0.0, 30.0), r)  # 40 px lower: at most BOX_MOVE half-widths
+    deeper = written | _swept(heel + (0.0, 30.0), r)  # off the grid: 32 px lower, capped
     deep = box_shifts([hook], [[r, r]], written, deeper)
     assert deep[(0, 1)][1] == pytest.approx(BOX_MOVE * r)
     med = [[round(float(x), 1), round(float(y), 1)] for x, y in _to_data(hook, n)]
     s = Stroke(hook, np.full(3, r))
     for boxes, y in ((False, 90.0), (True, 100.0)):
         got = corrected({"medians": [med]}, [s], written, picture, boxes=boxes)["medians"][0]
-        assert to_image(np.array(got), n)[1][1] == pytest.approx(y, abs=1.0)  # the heel's point
+        got = to_image(np.array(got), n)
+        assert got[1][1] == pytest.approx(y, abs=1.0)  # the heel's point
+        assert got[[0, -1]] == pytest.approx(hook[[0, -1]], abs=0.2)  # the ends stay
     # a heavy head: the stroke sets off upward (its way out points up, not right), and the
     # picture's pressed head reaches 12 px right of the writing's
     stand = np.array([[60.0, 30.0], [60.0, 100.0]])
@@ -588,9 +590,15 @@ def test_a_corner_or_a_head_that_sets_a_side_of_the_box_is_shifted_to_the_pictur
     assert box_moves([stand], [[r, r]], written, picture) == {}
     shifts = box_shifts([stand], [[r, r]], written, picture)
     assert list(shifts) == [(0, 0)] and shifts[(0, 0)] == pytest.approx([12.0, 0.0], abs=1.0)
-    # a bump on the stroke's flank halfway down sets the side: the width's, no point shifts
+    med = [[round(float(x), 1), round(float(y), 1)] for x, y in _to_data(stand, n)]
+    s = Stroke(stand, np.full(2, r))
+    got = corrected({"medians": [med]}, [s], written, picture, boxes=True)["medians"][0]
+    # shifted across, not carried on up as well (the ends' moves are read where the ink is)
+    assert to_image(np.array(got), n)[0] == pytest.approx([72.0, 30.0], abs=1.0)
+    # a bump on the stroke's flank, near its head but beside the median's segment, sets the
+    # side: the stroke's width there is the press's; no point shifts
     flank = written.copy()
-    flank[60:72, 60:78] = True
+    flank[40:50, 60:78] = True
     assert box_shifts([stand], [[r, r]], written, flank) == {}
 
 

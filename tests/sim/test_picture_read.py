@@ -131,8 +131,22 @@ def test_each_correction_reads_the_best_writing_so_far_and_the_best_stays(monkey
     rec, _, _ = imitate.write_imitation(im, None, len(ink.mask), corrections=2)
     assert rec == "second"  # the best of the three
     assert calls == [("read", False, written("read").sum()), ("read", True, written("read").sum())]
+    # a correction whose character was written already is not written again (the same ink),
+    # and the next correction still reads the best writing with its box
+    wrote = []
+
+    def write_once(char, *args, **kw):
+        wrote.append(char["name"])
+        return write_character(char)
+
+    monkeypatch.setattr(writer, "write_character", write_once)
+    names = iter(("read", "second"))  # the first correction moves nothing
+    monkeypatch.setattr(imitate, "corrected", lambda base, *a, boxes=False: {"name": next(names)})
+    assert imitate.write_imitation(im, None, len(ink.mask), corrections=2)[0] == "second"
+    assert wrote == ["read", "second"]
     tails["read"] = 0  # a first writing that agrees: not written again
     calls.clear()
+    monkeypatch.setattr(imitate, "corrected", corrected)
     assert imitate.write_imitation(im, None, len(ink.mask), corrections=2)[0] == "read"
     assert calls == []
 
