@@ -289,7 +289,9 @@ def _atan_array(a):
     """atan a for an array a >= 0 (inf allowed): the same steps as _atan_float, all at once."""
     k = np.searchsorted(np.array(_ATAN_CUTS), a, side="right")
     big = a >= 2.0**66
-    with np.errstate(divide="ignore", invalid="ignore"):
+    # every branch is computed for every a, and only its own a's kept: -1 / a of a subnormal
+    # a overflows (where a's branch is k == 0), 2 a - 1 of a huge one too (where it is ``big``)
+    with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
         t = np.select(
             [k == 0, k == 1, k == 2, k == 3],
             [a, (2.0 * a - 1.0) / (2.0 + a), (a - 1.0) / (a + 1.0), (a - 1.5) / (1.0 + 1.5 * a)],
@@ -318,7 +320,7 @@ def arctan2(y, x):
         q = _atan2_quadrant(z)
         return q[(1 if y < 0 or (y == 0 and math.copysign(1.0, y) < 0) else 0) + 2 * (x < 0)]
     y, x = np.broadcast_arrays(np.asarray(y, dtype=float), np.asarray(x, dtype=float))
-    with np.errstate(divide="ignore", invalid="ignore"):
+    with np.errstate(divide="ignore", invalid="ignore", over="ignore"):  # inf: atan's ``big``
         a = np.abs(y) / np.abs(x)
     both0 = (x == 0.0) & (y == 0.0)
     z = _atan_array(np.where(both0, 0.0, a))

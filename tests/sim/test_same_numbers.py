@@ -151,3 +151,17 @@ def test_one_primitives_profile_is_the_arrays():
         assert two[0][:1].tobytes() == one[0].tobytes()
         assert two[1][:1].tobytes() == one[1].tobytes()
     assert math.isclose(float(one[0][0, 0]), brush.r)
+
+
+def test_arctan2_of_tiny_and_huge_ratios_warns_of_nothing():
+    # every branch of atan is computed for every ratio and only its own kept: a subnormal
+    # ratio's -1 / a, a huge one's 2 a - 1 and |y| / |x| overflow where they are not kept
+    import warnings
+
+    y = np.array([1e-310, 1e300, 3.0, -2e-320, 0.0, 1e308])
+    x = np.array([1.0, 1e-10, 4.0, 5.0, -1.0, 0.5])
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        got = exact.arctan2(y, x)
+    assert got.tolist() == [exact.arctan2(float(a), float(b)) for a, b in zip(y, x, strict=True)]
+    assert np.allclose(got, np.arctan2(y, x), rtol=1e-15, atol=0.0)
