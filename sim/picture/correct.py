@@ -116,8 +116,9 @@ def corrected(
         k = max(len(s.radius) // 5, 1)
         lines.append(to_image(np.array(med, dtype=float), n))
         radii.append([max(float(np.median(r)) * scale, 1.0) for r in (s.radius[:k], s.radius[-k:])])
-    boxed = box_moves(lines, radii, written, picture) if boxes else {}
-    shifts = box_shifts(lines, radii, written, picture) if boxes else {}
+    gaps = _box_gaps(written, picture) if boxes else []  # the sides, read once for both
+    boxed = box_moves(lines, radii, written, picture, gaps)
+    shifts = box_shifts(lines, radii, written, picture, gaps)
     medians = []
     for i, (med, line) in enumerate(zip(char["medians"], lines, strict=True)):
         if len(line) < 2:
@@ -151,7 +152,9 @@ BOX_NEAR_POINT = 0.5  # half-widths a median's point may lie farther than the ne
 # any median's segments from where a side is set (farther: a stroke's flank sets it)
 
 
-def box_moves(lines: list, radii: list, written: np.ndarray, picture: np.ndarray) -> dict:
+def box_moves(
+    lines: list, radii: list, written: np.ndarray, picture: np.ndarray, gaps: list | None = None
+) -> dict:
     """How far the end that sets each side of the written ink's box should move on (> 0) or
     back (< 0) so that the side lies where the picture's does: {(stroke, end): px along the
     end's way out}. The box is what an imitation's shape is measured in (``shape_agreement``):
@@ -163,9 +166,9 @@ def box_moves(lines: list, radii: list, written: np.ndarray, picture: np.ndarray
     and BOX_NEAR more (and the shortfall) of that place, else the side is left to
     ``box_shifts``; an end at a corner of the box moves by the larger of its two sides' moves.
     A side is left alone when it differs by MIN_MOVE or less (``_box_gaps``); an end moves at
-    most BOX_MOVE half-widths."""
+    most BOX_MOVE half-widths. ``gaps``: the sides' ``_box_gaps``, where read already."""
     out = {}
-    for normal, gap, at in _box_gaps(written, picture):
+    for normal, gap, at in _box_gaps(written, picture) if gaps is None else gaps:
         best = _side_end(lines, radii, normal, gap, at)
         if best is not None:  # an end at a corner of the box: the larger of its two moves
             _, i, end, cos, r = best
@@ -174,7 +177,9 @@ def box_moves(lines: list, radii: list, written: np.ndarray, picture: np.ndarray
     return out
 
 
-def box_shifts(lines: list, radii: list, written: np.ndarray, picture: np.ndarray) -> dict:
+def box_shifts(
+    lines: list, radii: list, written: np.ndarray, picture: np.ndarray, gaps: list | None = None
+) -> dict:
     """For each side of the box that no end is moved for (``box_moves``: none near where it is
     set points out of it), the median's point that sets it shifted across to where the
     picture sets it: {(stroke, point): (dx, dy) px}. The point is a corner of a median (a
@@ -187,9 +192,9 @@ def box_shifts(lines: list, radii: list, written: np.ndarray, picture: np.ndarra
     stroke's ends') and BOX_NEAR more (and the shortfall); it shifts along the side's normal
     by the difference, at most BOX_MOVE half-widths. A point that sets two sides (a corner of
     the box) shifts by both, one along each normal. A median of one point is no point to
-    shift (a dot's reading is never one point)."""
+    shift (a dot's reading is never one point). ``gaps``: as ``box_moves``'."""
     out = {}
-    for normal, gap, at in _box_gaps(written, picture):
+    for normal, gap, at in _box_gaps(written, picture) if gaps is None else gaps:
         if _side_end(lines, radii, normal, gap, at) is not None:
             continue
         best = None

@@ -21,8 +21,8 @@ recording of the brush writing it.
 5. Where the writing's shape agrees less than CORRECT_BELOW with the picture's (``corrections``
    times at most, see CORRECTIONS) the best writing so far read again against the picture's
    (``correct``): stroke ends that overshoot or fall short moved (from the second correction
-   on, also the ends that set the box's sides), the character written again, the best writing
-   kept.
+   on, also the ends, corners and heads that set the box's sides), the character written
+   again (not where it was written already), the best writing kept.
 
 A piece of several characters is read a character at a time (``piece``). Everything here is
 numpy only (it runs in Blender)."""
@@ -132,8 +132,9 @@ def write_imitation(
     at px_per_mm, as Blender's Imitate Picture writes). While the written ink's shape agrees
     less than CORRECT_BELOW with the picture's, the best writing so far is read again against
     the picture's and the character written again with its stroke ends moved
-    (``correct.corrected``; from the second time on, also the ends that set the box's sides),
-    up to ``corrections`` times; the writing whose ink's shape agrees best with the picture's
+    (``correct.corrected``; from the second time on, also the ends, corners and heads that set
+    the box's sides), up to ``corrections`` times (a character written already is not written
+    again: the same ink); the writing whose ink's shape agrees best with the picture's
     stays (``correct.shape_agreement``: both inks in their boxes, as imitations are measured;
     the Imitation's character data stays the strokes as read). Returns the recording, the
     response and the finished simulation."""
