@@ -173,6 +173,13 @@ class HAIRY_BRUSH_PG_work(bpy.types.PropertyGroup):
         description="How much a character written twice varies in size, slant and pressure "
         "(1: a hand's usual, 0: none)",
     )
+    fit_brush: BoolProperty(
+        name="Brush for the Size",
+        default=True,
+        description="A work smaller or larger than the brush's own size is written with the "
+        "brush made smaller or larger in proportion, as a calligrapher takes a small brush for "
+        "small characters (off: the brush as it is)",
+    )
     punctuation: EnumProperty(
         name="Punctuation",
         items=[

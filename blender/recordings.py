@@ -13,7 +13,14 @@ import numpy as np
 
 from ..sim.core.jsonio import MAX_JSON_BYTES, parse_json
 from ..sim.core.params import QualityParams
-from ..sim.core.recording import Dip, Recording, RecordingError, from_dict, quantise
+from ..sim.core.recording import (
+    Dip,
+    Recording,
+    RecordingError,
+    brush_scale,
+    from_dict,
+    quantise,
+)
 from ..sim.writing.work.compose import WORK_KEY
 from . import checks
 
@@ -22,6 +29,7 @@ PAINTED_KEY = "painted_samples"  # in a recording's "blender" extra: samples pai
 SAMPLES_TAG = "hairy_brush_samples"  # on a recording text: its samples and dips when stored
 DIPS_TAG = "hairy_brush_dips"
 OWN_COLOR_TAG = "hairy_brush_own_colour_dips"  # and how many dips keep their own colour
+SCALE_TAG = "hairy_brush_scale"  # the brush's size for the writing (sim.writing.brush_size)
 HAIR_TAG = "hairy_brush_hair_mm"  # and the hair length of the brush it was recorded with
 SURFACE_KEY = "surface"  # a recording's section of surface frames (see sim.surface)
 WORK_TAG = "hairy_brush_work"  # on a recording text: its work's cells' characters (Write Text)
@@ -128,6 +136,10 @@ def store_recording(st, rec: Recording) -> bpy.types.Text:
         text[HAIR_TAG] = hair
     elif HAIR_TAG in text:
         del text[HAIR_TAG]
+    if "scale" in rec.brush:  # the sidebar says the brush was made smaller or larger
+        text[SCALE_TAG] = brush_scale(rec.brush)
+    elif SCALE_TAG in text:
+        del text[SCALE_TAG]
     return text
 
 
@@ -223,16 +235,27 @@ def _check_fits(group, name: str, value):
         )
 
 
-def new_recording(scene, samples, dips=None) -> Recording:
+def new_recording(scene, samples, dips=None, written=None) -> Recording:
     """A validated recording of ``samples`` at the scene's sample rate and settings, timed from
-    the scene's first frame; raises UserError (bad settings) or RecordingError (bad samples)."""
+    the scene's first frame (``written``: the recording the samples were written in, whose
+    brush's size stays, ``with_brush_scale``); raises UserError (bad settings) or
+    RecordingError (bad samples)."""
     st = checks.settings(scene)
     rec = Recording(np.asarray(samples, dtype=float), sample_rate_hz=float(st.sample_rate_hz))
     rec.dips = list(dips) if dips is not None else [current_dip(st, 0)]
     rec.extra["blender"] = {"frame_start": scene.frame_start}
     d = rec.to_dict()
     d.update(scene_overrides(st))
-    return from_dict(d)
+    return with_brush_scale(from_dict(d), written)
+
+
+def with_brush_scale(rec: Recording, written: Recording | None) -> Recording:
+    """``rec`` with the brush made as large as ``written``'s (its 'brush.scale': the writer's
+    brush for the size of the writing, sim.writing.brush_size), or as it is (no ``written``,
+    or one written with the brush at its preset's size)."""
+    if written is None or "scale" not in written.brush:
+        return rec
+    return replace(rec, brush={**rec.brush, "scale": written.brush["scale"]})
 
 
 def settings_recording(scene) -> Recording:

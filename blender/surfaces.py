@@ -195,6 +195,7 @@ class SurfaceWriting:
         frames = surf.lay_on(self.surface, self.start, samples, near, part(0, 0.3, "laying"))
         extra = {**self.template.extra, recordings.SURFACE_KEY: {"frames": frames.tolist()}}
         rec = dataclasses.replace(self.template, samples=samples, dips=list(flat.dips))
+        rec = recordings.with_brush_scale(rec, flat)  # the brush it was written with
         rec.extra = extra
         sim = Simulation(rec, surface=self.paper.with_frames(frames))
         return rec, sim.run(progress=part(0.3, 1.0, "simulating on the surface"))

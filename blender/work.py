@@ -91,7 +91,7 @@ def choices(st) -> Choices:
         w.per_line or None,
         float(w.char_mm) or None,
         w.grid,
-        compose.Options(int(w.passes), None, float(w.variation)),
+        compose.Options(int(w.passes), None, float(w.variation), bool(w.fit_brush)),
         w.punctuation,
         bool(w.skip_missing),
         data,
@@ -277,7 +277,8 @@ class WorkJob(jobs.WorkerJob):
     def __init__(self, scene, old, edit_fn):
         st = checks.settings(scene)
         self.scene, self.old = scene, old
-        self.template = recordings.settings_recording(scene)
+        # the scene's settings; a work written on keeps its brush's size (sim.writing.brush_size)
+        self.template = recordings.with_brush_scale(recordings.settings_recording(scene), old)
         self.cache_dir = runtime.cache_dir()
         self.kept = runtime.get().cell_inks  # read by the worker, replaced in finish
         self.fresh = {}
@@ -367,6 +368,8 @@ def write_job(scene, text: str, new_line: bool) -> WorkJob:
         raise user_error(exc) from None
     ppm = float(st.px_per_mm)
 
+    cache = runtime.cache_dir()  # (on Blender's thread)
+
     def new_work(template, response, mapper):
         settings = _settings(ch, paper_mm)
         if settings.char_mm is None:
@@ -382,6 +385,7 @@ def write_job(scene, text: str, new_line: bool) -> WorkJob:
             options=ch.options,
             mapper=mapper,
             response=response,
+            cache_dir=cache,
         )
         return Change(rec, 0, len(rec.samples), 0, 0, _wrote(lay.cells, lay, skipped, rec))
 

@@ -11,6 +11,7 @@ import math
 import numpy as np
 
 from ..sim.picture.imitate import read_picture, write_imitation
+from ..sim.writing.brush_size import brush_for_size
 from ..sim.writing.response import calibrate
 from ..sim.writing.writer import auto_size_mm, write_character
 from . import checks, images, jobs, keyframes, recordings, runtime, surfaces
@@ -40,8 +41,11 @@ class WriteJob(jobs.WorkerJob):
             )
         return super().step(budget_s)
 
-    def __init__(self, scene, char: dict, size_mm: float, passes: int):
+    fit_brush = False  # a size other than the brush's own written with the brush for it
+
+    def __init__(self, scene, char: dict, size_mm: float, passes: int, fit_brush: bool = True):
         self._begin(scene, char, size_mm)
+        self.fit_brush = fit_brush
         super().__init__(lambda progress: self._write(size_mm, passes, progress))
 
     def _begin(self, scene, char: dict | None, size_mm: float):
@@ -64,15 +68,21 @@ class WriteJob(jobs.WorkerJob):
     def _write(self, size_mm: float, passes: int, progress, im=None):
         progress(0.0, "calibrating the brush")
         response = calibrate(self.template, cache_dir=self.cache_dir)
+        template = self.template
         if not size_mm:  # the size follows from the brush's response
             size_mm = auto_size_mm(self.char, response)
+        elif self.fit_brush and (im is None or not self.piece):  # a brush for the size
+            natural = auto_size_mm(self.char, response)  # (a picture's: its strokes as read)
+            template, response = brush_for_size(
+                template, response, size_mm, natural, self.cache_dir
+            )
         size = self._check(size_mm)
         flat = progress if self.on_surface is None else _share(progress, 0.0, WRITE_SHARE)
         if im is None:
             rec, _, sim = write_character(
                 self.char,
                 0,
-                self.template,
+                template,
                 size_mm=size,
                 response=response,
                 passes=passes,
@@ -81,7 +91,7 @@ class WriteJob(jobs.WorkerJob):
             )
         else:  # a picture's strokes, written as ``sim imitate`` writes them
             rec, _, sim = write_imitation(
-                im, self.template, 0, size, passes, flat, self.ppm, response, self.piece
+                im, template, 0, size, passes, flat, self.ppm, response, self.piece
             )
         if self.on_surface is not None:
             del sim  # the flat paper, before the surface's is simulated
@@ -98,7 +108,7 @@ class WriteJob(jobs.WorkerJob):
         if self.on_surface is None:
             st.paper_width_mm = st.paper_height_mm = size  # the paper plane follows
             rec = recordings.new_recording(
-                scene, rec.samples, dips=recordings.following_ink(rec.dips)
+                scene, rec.samples, dips=recordings.following_ink(rec.dips), written=rec
             )
             last = keyframes.keyframe_samples(
                 scene, st, rec.samples, rec.sample_rate_hz, scene.frame_start
@@ -126,10 +136,19 @@ class ImitateJob(WriteJob):
     title = "Imitating picture"
 
     def __init__(
-        self, scene, picture, name: str, size_mm: float, passes: int, detail: int, piece=False
+        self,
+        scene,
+        picture,
+        name: str,
+        size_mm: float,
+        passes: int,
+        detail: int,
+        piece=False,
+        fit_brush=True,
     ):
         self._begin(scene, None, size_mm)
         self.name, self.strokes, self.piece = name, 0, piece
+        self.fit_brush = fit_brush
         self.picture = picture  # let go once read: a large picture is not kept while writing
         jobs.WorkerJob.__init__(
             self, lambda progress: self._imitate(detail, size_mm, passes, progress, piece)

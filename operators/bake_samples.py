@@ -8,7 +8,7 @@ import math
 import bpy
 import numpy as np
 
-from ..blender import checks, keyframes, presets, recordings, runtime, surfaces, transforms
+from ..blender import checks, keyframes, recordings, runtime, surfaces, transforms
 from ..sim import surface as surf
 from ..sim.core.recording import MAX_SAMPLES, from_dict
 from . import polls
@@ -213,7 +213,8 @@ class HAIRY_BRUSH_OT_bake_samples(bpy.types.Operator):
         if old is not None and old.dips and not painted:  # re-baking keeps the dips recorded
             dips = [dp for dp in old.dips if dp.before_sample <= len(samples)]
         try:
-            rec = recordings.new_recording(scene, samples, dips)
+            # and the brush's size (a character written at a size: brush_size)
+            rec = recordings.new_recording(scene, samples, dips, written=old)
         except checks.USER_ERRORS as exc:
             self.report({"ERROR"}, f"Cannot bake: {exc}")
             return {"CANCELLED"}
@@ -222,7 +223,7 @@ class HAIRY_BRUSH_OT_bake_samples(bpy.types.Operator):
         fps = scene.render.fps / scene.render.fps_base
         level, problem = contact_problems(
             samples,
-            presets.hair_length(st),
+            rec.resolve()[1].hair_length_mm,  # the brush's (its size kept: brush_size)
             lambda i: scene.frame_start + i * fps / rec.sample_rate_hz,
             f"the surface of '{st.paper_object.name}'" if frames is not None else "the paper",
         )

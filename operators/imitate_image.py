@@ -120,6 +120,12 @@ class HAIRY_BRUSH_OT_imitate_image(JobOperator, bpy.types.Operator, ImportHelper
         "and ink); the writing itself is at the paper's resolution",
     )
 
+    fit_brush: bpy.props.BoolProperty(
+        name="Brush for the Size",
+        default=True,
+        description="A size other than the brush's own for the picture's strokes is written "
+        "with the brush made smaller or larger in proportion (off: the brush as it is)",
+    )
     piece: bpy.props.BoolProperty(
         name="Several Characters",
         default=False,
@@ -149,7 +155,14 @@ class HAIRY_BRUSH_OT_imitate_image(JobOperator, bpy.types.Operator, ImportHelper
             else:
                 picture, name = file_picture(self.filepath), bpy.path.basename(self.filepath)
             job = ImitateJob(
-                scene, picture, name, self.size_mm, self.passes, self.detail, self.piece
+                scene,
+                picture,
+                name,
+                self.size_mm,
+                self.passes,
+                self.detail,
+                self.piece,
+                self.fit_brush,
             )
         except (*checks.USER_ERRORS, ValueError, OSError) as exc:
             self.report({"ERROR"}, str(exc))

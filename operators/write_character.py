@@ -54,6 +54,13 @@ class HAIRY_BRUSH_OT_write_character(JobOperator, bpy.types.Operator, ImportHelp
         description="How often each stroke is written, measured against the outline and "
         "corrected before the best pass is kept (1: the calibrated response alone)",
     )
+    fit_brush: bpy.props.BoolProperty(
+        name="Brush for the Size",
+        default=True,
+        description="A size other than the brush's own is written with the brush made smaller "
+        "or larger in proportion, as a calligrapher takes a small brush for small characters "
+        "(off: the brush as it is)",
+    )
 
     @classmethod
     def poll(cls, context):
@@ -71,7 +78,7 @@ class HAIRY_BRUSH_OT_write_character(JobOperator, bpy.types.Operator, ImportHelp
                 char = find_char(self.character, self.filepath or None)
             else:
                 char = find_char(self.filepath)
-            job = WriteJob(scene, char, self.size_mm, self.passes)
+            job = WriteJob(scene, char, self.size_mm, self.passes, self.fit_brush)
         except (*checks.USER_ERRORS, ValueError) as exc:
             self.report({"ERROR"}, str(exc))
             return {"CANCELLED"}

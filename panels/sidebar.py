@@ -195,6 +195,7 @@ class HAIRY_BRUSH_PT_write_text_options(_Panel, bpy.types.Panel):
         col = layout.column(align=True)
         col.prop(w, "passes")
         col.prop(w, "variation", slider=True)
+        layout.prop(w, "fit_brush")
         layout.prop(w, "punctuation")
         layout.prop(w, "skip_missing")
         layout.prop(w, "data_path")
@@ -246,7 +247,12 @@ class HAIRY_BRUSH_PT_recording(_Panel, bpy.types.Panel):
                 layout.label(text="Not counted: stored outside the extension", icon="INFO")
             else:
                 layout.label(text=f"{n} samples, {text.get(recordings.DIPS_TAG, 0)} dips")
+            scale = text.get(recordings.SCALE_TAG)
+            if scale is not None:
+                layout.label(text=f"Brush {scale:g} times its size, for the writing's")
             hair, now = text.get(recordings.HAIR_TAG), HAIR_LENGTH_MM.get(st.brush_preset)
+            if now is not None and scale is not None:  # the brush chosen, as large
+                now *= scale
             if hair is not None and now is not None and abs(now - hair) > 1e-6:
                 layout.label(
                     text=f"Recorded with {hair:g} mm hair: placed {now - hair:+g} mm", icon="INFO"

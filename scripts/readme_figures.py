@@ -298,6 +298,29 @@ def work(vs, out: Path, tmp: Path, name: str, args: list, size: int) -> None:
     save_png(read_rgb(png), out / f"{name}.png")
 
 
+SIZE_TEXT = "床前明月光\n疑是地上霜"  # fitted to an A5 sheet: about 34 mm a character
+SIZE_DPI = 200
+
+
+def brush_for_size(vs, out: Path, tmp: Path) -> None:
+    """A short poem fitted to an A5 sheet (about 34 mm a character, a third of the brush's own
+    size) with the brush as it is (--keep-brush) and with a brush for the size: the second
+    column of each, side by side."""
+    cols = []
+    for name, extra in (("the brush as it is", ["--keep-brush"]), ("a brush for the size", [])):
+        png = tmp / f"size_{len(cols)}.png"
+        vs[0].sim("compose", SIZE_TEXT, "--paper", "A5", "--dpi", SIZE_DPI, *extra, "-q", "-o", png)
+        rgb = read_rgb(png)
+        ink = np.flatnonzero((rgb.mean(axis=2) < 100).any(axis=0))
+        mid = (ink[0] + ink[-1]) // 2  # the two columns' ink either side
+        part = rgb[:, ink[0] - 20 : mid]
+        top = np.flatnonzero((part.mean(axis=2) < 100).any(axis=1))
+        part = part[max(top[0] - 20, 0) : top[-1] + 20]
+        cols += [np.concatenate([label(name, part.shape[1]), part], 0), gap(part.shape[0] + 30, 24)]
+    h = min(c.shape[0] for c in cols)
+    save_png(np.concatenate([c[:h] for c in cols[:-1]], 1), out / "brush_for_size.png")
+
+
 def demo(out: Path) -> None:
     """scripts/demo.py (Blender as a module): its 永 and the scroll it renders with Cycles."""
     t0 = time.perf_counter()
@@ -307,7 +330,7 @@ def demo(out: Path) -> None:
     save_png(read_rgb(ROOT / "out" / "demo_render.png"), out / "demo_render.png")
 
 
-NAMES = ("before_after", "imitate_real", "work_vertical", "work_horizontal")
+NAMES = ("before_after", "imitate_real", "work_vertical", "work_horizontal", "brush_for_size")
 
 
 def main(argv=None) -> int:
@@ -340,6 +363,8 @@ def main(argv=None) -> int:
                 row = [ROW, "--layout", "horizontal", "--signature", ROW_SIGN]
                 row += ["--seal", ROW_SEAL, "--seal-style", "zhuwen"]
                 work(vs, out, tmp, "work_horizontal", row, args.char_size)
+            if "brush_for_size" in only:
+                brush_for_size(vs, out, tmp)
     if args.demo:
         demo(out)
     print(f"{time.perf_counter() - t0:.0f} s")

@@ -14,7 +14,16 @@ import warnings
 from ..core.params import ParameterError
 from ..core.recording import DEFAULT_BRUSH, DEFAULT_PAPER
 from .render import add_matte_option
-from .shared import _progress, _real, _response, _template, _whole, _writable
+from .shared import (
+    _progress,
+    _real,
+    _response,
+    _template,
+    _whole,
+    _writable,
+    add_keep_brush,
+    cache_dir,
+)
 
 DEFAULT_CHAR_PX = 256
 DEFAULT_DPI = 150.0
@@ -141,7 +150,7 @@ def cmd_compose(args) -> int:
         res = {"px_per_mm": (args.dpi or DEFAULT_DPI) / 25.4}
     else:
         res = {"char_px": float(args.char_size or DEFAULT_CHAR_PX)}
-    options = work.Options(args.passes, args.dip_every, args.variation)
+    options = work.Options(args.passes, args.dip_every, args.variation, not args.keep_brush)
     t0 = time.perf_counter()
     workers = args.workers or os.cpu_count() or 1
     quiet = args.quiet
@@ -172,6 +181,7 @@ def cmd_compose(args) -> int:
             mapper=mapper,
             progress=stage(0.0, 0.85),
             response=response,
+            cache_dir=cache_dir(),
             **res,
         )
         paper, inks = work.render(rec, mapper=mapper, progress=stage(0.85, 1.0))
@@ -281,6 +291,7 @@ def _add_compose(sub, seed):
     c.add_argument("--save-recording", default=None, help="save the one recording of the sheet")
     c.add_argument("--data", default=None, help="your own graphics.txt or folder of <char>.json")
     c.add_argument("--brush", default=DEFAULT_BRUSH, help="brush preset")
+    add_keep_brush(c)
     c.add_argument("--paper-preset", default=None, help="paper preset (kind of paper)")
     c.add_argument("--ink", default="sumi_black", help="ink preset")
     c.add_argument("--quality", default=None, help="quality JSON (e.g. from sim fit)")

@@ -9,7 +9,7 @@ from __future__ import annotations
 import os
 import time
 
-from .shared import _chars, _response, _template
+from .shared import _chars, _response, _template, sized
 
 
 def cmd_iou(args) -> int:
@@ -31,8 +31,9 @@ def cmd_iou(args) -> int:
         t0 = time.perf_counter()
         font = rasterise(ch, args.size)
         base = baseline_masks(ch, args.size)
-        rec, resp, sim = write_character(
-            ch, args.size, template, size_mm=args.size_mm, response=resp, passes=args.passes
+        tpl, used = sized(args, template, resp, ch)  # the brush for --size-mm
+        rec, used, sim = write_character(
+            ch, args.size, tpl, size_mm=args.size_mm, response=used, passes=args.passes
         )
         dt = time.perf_counter() - t0
         ink = coverage_mask(sim)

@@ -5,7 +5,15 @@ from __future__ import annotations
 
 import time
 
-from .shared import _named, _progress, _response, _template, _writable
+from .shared import (
+    _named,
+    _progress,
+    _response,
+    _template,
+    _writable,
+    add_keep_brush,
+    cache_dir,
+)
 
 
 def _progress_after_reading(frac: float, *_details) -> None:
@@ -38,6 +46,8 @@ def cmd_imitate(args) -> int:
         passes=args.passes,
         progress=None if args.quiet else _progress_after_reading,
         piece=args.piece,
+        fit_brush=not args.keep_brush,
+        cache_dir=cache_dir(),
     )
     write_png(args.output, sim.image8())
     if args.recording:
@@ -87,4 +97,5 @@ def _add_imitate(sub, size, common):
     )
     im.add_argument("-q", "--quiet", action="store_true")
     common(im)
+    add_keep_brush(im)
     im.set_defaults(func=cmd_imitate, passes=PASSES)

@@ -24,7 +24,7 @@ from .fit import _add_fit
 from .imitate import _add_imitate
 from .memory import EXIT_CODE, NotEnoughMemory, out_of_memory, reserve_workspace
 from .render import add_matte_option, cmd_render
-from .shared import _named, _real, _whole, cache_dir
+from .shared import _named, _real, _whole, add_keep_brush, cache_dir
 from .write import cmd_write, cmd_write_set
 
 
@@ -89,6 +89,7 @@ def _parser() -> argparse.ArgumentParser:
     w.add_argument("-q", "--quiet", action="store_true")
     add_matte_option(w)
     common(w)
+    add_keep_brush(w)
     w.set_defaults(func=cmd_write)
     _add_imitate(sub, size, common)
     ws = sub.add_parser("write-set", help="write many characters to a folder (PNG + recording)")
@@ -104,6 +105,7 @@ def _parser() -> argparse.ArgumentParser:
     m.add_argument("chars", nargs="+")
     m.add_argument("--size", type=size, default=512)
     common(m)
+    add_keep_brush(m)
     m.set_defaults(func=cmd_iou)
     _add_fit(sub, size, common)
     _add_compose(sub, seed)

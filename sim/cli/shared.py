@@ -74,6 +74,30 @@ def _response(template):
     return calibrate(template, cache_dir=cache_dir())
 
 
+def add_keep_brush(p):
+    """The option that keeps the chosen brush at any size (``sized``)."""
+    p.add_argument(
+        "--keep-brush",
+        action="store_true",
+        help="write with the brush as it is at any size (default: writing set smaller or "
+        "larger than the brush's own size is written with the brush made smaller or larger "
+        "in proportion, as a calligrapher takes a small brush for small characters)",
+    )
+
+
+def sized(args, template, response, char):
+    """The template and response to write ``char`` with at ``--size-mm``: the brush made
+    smaller or larger for that size (``sim.writing.brush_size``), or as it is (no size, or
+    ``--keep-brush``)."""
+    from ..writing.brush_size import brush_for_size
+    from ..writing.writer import auto_size_mm
+
+    if args.size_mm is None or args.keep_brush:
+        return template, response
+    natural = auto_size_mm(char, response)
+    return brush_for_size(template, response, args.size_mm, natural, cache_dir())
+
+
 def _chars(specs, data):
     from ..writing.hanzi import find_char
 

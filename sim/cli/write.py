@@ -9,7 +9,7 @@ import time
 
 from ..core.params import ParameterError
 from .render import paper_pixels
-from .shared import _chars, _progress, _response, _template, _writable
+from .shared import _chars, _progress, _response, _template, _writable, sized
 
 
 def cmd_write(args) -> int:
@@ -24,12 +24,13 @@ def cmd_write(args) -> int:
         check_sheet(float(args.size_mm), args.size / float(args.size_mm))
     t0 = time.perf_counter()
     template = _template(args)
+    template, response = sized(args, template, _response(template), char)
     rec, resp, sim = write_character(
         char,
         args.size,
         template,
         size_mm=args.size_mm,
-        response=_response(template),
+        response=response,
         passes=args.passes,
         progress=None if args.quiet else _progress,
     )

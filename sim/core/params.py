@@ -89,6 +89,9 @@ PAPER_CAPACITY_RANGE = (1e-3, 1e6)  # a preset's wetness capacity
 INK_PIGMENT_RANGE = (0.05, 1.0)  # an ink's pigment per unit of liquid (1: full strength)
 PAPER_TEXTURE_MAX = 0.3  # the strongest paper texture (sim.paper.texture; 0.05: xuan's own)
 INK_FACTOR_RANGE = (-1.0, 1.0)  # an ink preset's per-mm factors of Eq. 5
+# a brush made smaller or larger in proportion (a recording's 'brush.scale'; the writer's
+# brush for the size of the writing, sim.writing.brush_size): 1/4 to 4 times the preset's
+BRUSH_SCALE_RANGE = (0.25, 4.0)
 
 
 class ParameterError(ValueError):
@@ -199,6 +202,17 @@ class BrushGeometry:
             raise ParameterError(
                 f"brush geometry 'key_points' must be an integer in [5, 32], got {short_repr(k)}"
             )
+
+    def scaled(self, k: float) -> BrushGeometry:
+        """The same brush made ``k`` times as large (a smaller brush for smaller writing): its
+        hair length, base radius and belly diameter times k; where the belly sits, a share of
+        the hair, and the key points are the same."""
+        return replace(
+            self,
+            hair_length_mm=self.hair_length_mm * k,
+            base_radius_mm=self.base_radius_mm * k,
+            belly_diameter_mm=self.belly_diameter_mm * k,
+        )
 
 
 @dataclass(frozen=True)

@@ -17,6 +17,7 @@ import numpy as np
 from .files import write_json_atomic
 from .jsonio import decode_text, parse_json, read_json
 from .params import (
+    BRUSH_SCALE_RANGE,
     MAX_PAPER_PIXELS,
     MAX_PAPER_SIDE_PX,
     PAPER_CAPACITY_RANGE,
@@ -150,7 +151,10 @@ class Recording:
             values = quality_from_presets(bp, pp)
             values.update(self.quality)
             q = QualityParams().with_values(values)
-            geom = _geometry_override(geometry_from_preset(bp), self.brush.get("geometry"))
+            geom = geometry_from_preset(bp)
+            if "scale" in self.brush:  # the brush made smaller or larger (brush_scale)
+                geom = geom.scaled(brush_scale(self.brush))
+            geom = _geometry_override(geom, self.brush.get("geometry"))
             paper = replace(paper_from_preset(pp), **self.paper_overrides)
             ink = ink_from_preset(ip)
             if "color" in self.ink:  # the recording's own ink colour (see Dip.follows_ink)
@@ -193,6 +197,16 @@ class Recording:
 
 
 # ------------------------------------------------------------------------- validation
+def brush_scale(brush: dict) -> float:
+    """A recording's 'brush.scale' (1 without one): how many times as large as its preset the
+    brush is, its hair, base and belly (``BrushGeometry.scaled``; the writer takes a smaller
+    brush for smaller writing, ``sim.writing.brush_size``); its 'geometry' values, if any, are
+    set after it."""
+    if "scale" not in brush:
+        return 1.0
+    return _num(brush["scale"], "'brush.scale'", *BRUSH_SCALE_RANGE)
+
+
 def _geometry_override(geom: BrushGeometry, override) -> BrushGeometry:
     """The preset's brush geometry with the recording's 'brush.geometry' values."""
     if override is None:
@@ -321,6 +335,7 @@ def _presets_and_quality(d: dict):
     for name, sec in (("brush", brush), ("ink", ink)):
         if "preset" in sec and not isinstance(sec["preset"], str):
             raise RecordingError(f"'{name}.preset' must be a preset name")
+    brush_scale(brush)
     if "color" in ink:
         ink = {**ink, "color": list(_color(ink["color"], "ink.color"))}
     quality = _obj(d, "quality", "quality", required=False) or {}

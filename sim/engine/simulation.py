@@ -18,7 +18,7 @@ from ..brush.mark import cut_marks, fill_marks
 from ..brush.primitive import HairyBrush
 from ..brush.state import ink_keys
 from ..core.params import HOVER_MM
-from ..core.recording import Recording
+from ..core.recording import Recording, brush_scale
 from ..paper.paper import DRY_RATE, Paper
 from ..surface.paper import CHART_SHAPE
 
@@ -66,6 +66,7 @@ class Simulation:
             texture=self.paper_spec.texture if surface is None else 0.0,  # a mesh is not xuan
         )
         self.paper.pigment = self.ink.pigment  # how much pigment the ink's liquid carries
+        self.paper.brush_scale = brush_scale(recording.brush)  # (a smaller brush's droplets)
         if surface is not None:  # nor do its texels lie evenly in mm: the ink wicks evenly,
             self.paper.wick_fibre = 0.0  # and no halo (a texel's neighbours are not the sheet's)
             self.paper.halo_px = 0

@@ -178,7 +178,9 @@ def _darkest(ink) -> np.ndarray:
 # film and is not laid: a bead stuck to a head or a point reads as a blob, not as a speck
 # (issue 26.2; SPATTER_MERGE: ink darker than that share of the stroke's colour, above the
 # water halo's faint tint, HALO_PIGMENT).
-# Each droplet is SPATTER_MM across (mostly the small end), up to SPATTER_REACH_MM away. Every
+# Each droplet is SPATTER_MM across (mostly the small end), up to SPATTER_REACH_MM away; a brush
+# made k times as large (sim.writing.brush_size) throws droplets k times as large, as far, at k
+# times the speed, from a point k times as fine (paper.brush_scale). Every
 # draw is the sheet's hash of where the stroke landed and of its seed (``paper_grain``), not
 # the brush's generator: the brush's draws are unchanged, and the same stroke throws the same
 # droplets in any frame order.
@@ -220,7 +222,8 @@ def spatter(paper, t, colour) -> None:
     by, bx = t.trail[0][:2]
     steps = max(len(t.trail) - 1, 1)
     vy, vx = (hy - by) / steps, (hx - bx) / steps  # px a step as the hair left the paper
-    speed = float(np.hypot(vy, vx)) / (paper.ppm * paper.dt)  # mm/s
+    k = paper.brush_scale  # the brush's size: its droplets' (see SPATTER_MM)
+    speed = float(np.hypot(vy, vx)) / (paper.ppm * paper.dt * k)  # mm/s (at the preset's size)
     key = int(min(max(ly, 0), paper.H - 1)) * paper.W + int(min(max(lx, 0), paper.W - 1))
     u = paper_grain(
         np.arange(SPATTER_DRAWS, dtype=np.uint64) + np.uint64(key * SPATTER_DRAWS + SPATTER_SALT),
@@ -228,28 +231,28 @@ def spatter(paper, t, colour) -> None:
     )
     drops = []
     fling = SPATTER_EXIT * min(hwet / SPATTER_WET, 1.0) * (speed / SPATTER_SPEED) ** 2
-    fling *= min(max(hr / (paper.ppm * SPATTER_POINT_MM) - 1.0, 0.0), 1.0)  # not from a point
+    fling *= min(max(hr / (paper.ppm * SPATTER_POINT_MM * k) - 1.0, 0.0), 1.0)  # not a point
     land = SPATTER_LAND * min(max((lwet - SPATTER_DRIP) / SPATTER_DRIP_SPAN, 0.0), 1.0)
     n_exit, n_land = _poisson(fling, u[0]), _poisson(land, u[1])
     ahead = np.array([vy, vx]) / max(float(np.hypot(vy, vx)), 1e-9)
-    for k in range(min(n_exit + n_land, SPATTER_MAX)):
-        a, b, c, d = u[2 + 4 * k : 6 + 4 * k]
-        size = SPATTER_MM[0] + (SPATTER_MM[1] - SPATTER_MM[0]) * a * a  # mostly small
-        if k < n_exit:  # flung on along the exit, drawn out along it
-            dist = hr / paper.ppm + SPATTER_REACH_MM * (0.2 + 0.8 * b)  # beyond its last mark
+    for j in range(min(n_exit + n_land, SPATTER_MAX)):
+        a, b, c, d = u[2 + 4 * j : 6 + 4 * j]
+        size = (SPATTER_MM[0] + (SPATTER_MM[1] - SPATTER_MM[0]) * a * a) * k  # mostly small
+        if j < n_exit:  # flung on along the exit, drawn out along it
+            dist = hr / paper.ppm + SPATTER_REACH_MM * k * (0.2 + 0.8 * b)  # past its last mark
             way = ahead + (c - 0.5) * 0.8 * np.array([-ahead[1], ahead[0]])
             way /= np.hypot(*way)
             centre = (hy + way[0] * dist * paper.ppm, hx + way[1] * dist * paper.ppm)
             drops.append((centre, way, size, 1.5 + 2.0 * d))
         else:  # dripped round the landing, round
-            dist = lr / paper.ppm + SPATTER_REACH_MM * (0.1 + 0.5 * b)
+            dist = lr / paper.ppm + SPATTER_REACH_MM * k * (0.1 + 0.5 * b)
             ang = 2.0 * np.pi * c
             way = np.array(exact.sin_cos(ang))
             centre = (ly + way[0] * dist * paper.ppm, lx + way[1] * dist * paper.ppm)
             drops.append((centre, way, size, 1.0 + 0.3 * d))
     merge = SPATTER_MERGE * float(np.max(colour))
     for centre, way, size, stretch in drops:
-        dens = SPATTER_DENSITY * min(size / SPATTER_FULL_MM, 1.0)
+        dens = SPATTER_DENSITY * min(size / (SPATTER_FULL_MM * k), 1.0)
         _drop(paper, centre, way, (size * paper.ppm, stretch), (dens * colour, merge))
 
 

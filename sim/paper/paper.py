@@ -90,6 +90,7 @@ class Paper:
         self.stroke: WetStroke | None = None  # the stroke being written (for its halo)
         self.pigment = 1.0  # the ink's pigment per unit of liquid (see FULL_WET; 1: full)
         self.dt = 0.0  # seconds a step (the last deposit's: the droplets' speed, lift.spatter)
+        self.brush_scale = 1.0  # the brush's size against its preset's (its droplets, spatter)
         self.version = 0  # bumped by every change; tile_ver holds each tile's last change
         self.tile_ver = np.zeros((-(-self.H // TILE), -(-self.W // TILE)), dtype=np.int64)
         self._holds = []

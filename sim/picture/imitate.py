@@ -95,14 +95,36 @@ def read_picture(source, n: int = 512, name: str | None = None, piece: bool = Fa
     return Imitation(ink, strokes, regions, char, time.perf_counter() - t0)
 
 
-def imitate(source, template, n_px: int = 512, progress=None, piece: bool = False, **how):
+def imitate(
+    source,
+    template,
+    n_px: int = 512,
+    progress=None,
+    piece: bool = False,
+    fit_brush: bool = True,
+    cache_dir=None,
+    **how,
+):
     """Read a picture and write it with the brush (``write_imitation``, whose keywords ``how``
     passes on: size_mm, passes, px_per_mm, response, corrections) on an n_px sheet; the picture
     is read on an em box of n_px, at most MAX_DETAIL, px a side (the Imitation's ink is at that
-    size). Returns the recording, the response, the finished simulation and the Imitation."""
+    size). A character at a size_mm other than the brush's own for the strokes as read is
+    written with the brush made smaller or larger for it (``writing.brush_size``; not with
+    ``fit_brush`` False, nor a piece; ``cache_dir``: where its calibration is kept). Returns
+    the recording, the response, the finished simulation and the Imitation."""
+    from ..writing.brush_size import brush_for_size
+    from ..writing.response import calibrate
+    from ..writing.writer import auto_size_mm
+
     if progress is not None:
         progress(0.0, "reading the picture")
     im = read_picture(source, min(n_px, MAX_DETAIL), piece=piece)  # the writing is n_px
+    if fit_brush and not piece and how.get("size_mm"):
+        response = how.get("response") or calibrate(template, cache_dir=cache_dir)
+        natural = auto_size_mm(im.char, response)
+        template, how["response"] = brush_for_size(
+            template, response, how["size_mm"], natural, cache_dir
+        )
     if progress is not None:
         progress(0.05, f"{len(im.strokes)} strokes found; writing")
 
@@ -179,6 +201,8 @@ def write_imitation(
         _, _, _, base, seen = best
         scale = len(seen) / len(im.ink.mask)
         char = corrected(base, im.strokes, seen, target, scale, boxes=k > 0)
+    if progress is not None:  # done, also when a writing was close enough before the last
+        progress(1.0)
     _, rec, sim = best[:3]
     return rec, response, sim
 

@@ -239,6 +239,8 @@ def _lead_along(path, lag, stop: bool = False, ease: bool = False):
 
 
 ENTRY_TOUCH = 0.15  # share of the press the tip lands with; the belly presses as it goes
+TIP_TOUCH_MM = 0.2  # how far below touching height the tip comes down as a movement begins
+# (a brush made k times as large, ``brush_size``: k times as far)
 ZHE_TOUCH = 1.0  # ... and the leg after a 折 sets off with: the 顿 has pressed it down already
 # (0.4 before issue 26's 顿: pressing again as the leg went down, it left a waist below the
 # shoulder)
@@ -373,9 +375,7 @@ def _enter_and_leave(
     samples,
     pl,
     body,
-    hover,
-    hair,
-    step_mm,
+    brush,
     corner=(None, None),
     run_up=RUN_UP,
     width_at=None,
@@ -394,7 +394,8 @@ def _enter_and_leave(
     blot; eased to the tip, the leg began thin and the shoulder's outer corner stayed bare. At
     a hook's foot (``_is_hook``) the belly stays pressed through the turn and
     the hook sets off pressed, lifting as it goes: eased to the tip there, the hook began thin
-    and swelled, a blunt tail apart from the foot."""
+    and swelled, a blunt tail apart from the foot. ``brush``: as ``_fill``'s."""
+    hover, hair, step_mm, scale = brush
     a = body[0] - 1
     while a >= 0 and pl.phase[a] == ENTERING:
         a -= 1
@@ -409,7 +410,7 @@ def _enter_and_leave(
     if corner[0] is not None:  # after a sharp turn the tip comes down on the corner, not before it
         back = back * 0.0
     samples[entry, :2] = samples[body[0], :2] - back[:, None] * t0
-    z_touch = max(samples[body[0], 2], hair - 0.2)  # the tip reaches the paper at the start
+    z_touch = max(samples[body[0], 2], hair - TIP_TOUCH_MM * scale)  # the tip touches
     if corner[0] is not None and corner[0] < hair:  # after a corner the belly is still pressed
         z_touch = samples[body[0], 2]
     top = hover if corner[0] is None else corner[0]
@@ -535,13 +536,14 @@ def _fill(
     down, write with the given press and sideways placement per body sample (the press eased at
     the entry and at sharp turns, the base leading the ink by the response's lag), lift off
     (``_enter_and_leave``), and turn on the tip between them (``_turn_on_the_tip``). ``brush``
-    is (hover, hair length, step) in mm; ``ends`` (movements, 2): how far each movement's start
-    and end are carried on along its way out (``_ends_moved``; practice's reach correction);
+    is (hover, hair length, step in mm, the brush's scale: ``brush_size``); ``ends``
+    (movements, 2): how far each movement's start and end are carried on along its way out
+    (``_ends_moved``; practice's reach correction);
     ``run_up``: the entries' (``_enter_and_leave``); ``lift`` (mm per body sample, or None):
     taken off the press as it is finally shaped (practice's ``_lifted``: a hook's root).
     Returns the body samples."""
     a, b = span
-    hover, hair, step_mm = brush
+    hair = brush[1]
     body = np.flatnonzero(pl.phase[a:b] == WRITING) + a
     normal = np.stack([-pl.tangent[:, 1], pl.tangent[:, 0]], axis=1)
     j0 = 0
@@ -585,7 +587,7 @@ def _fill(
             nxt = hair - (heel if hook[r + 1] else ZHE_KEEP * p[-1])
         last = len(runs) == 1 and _lets_go(pl.target[run], pl.width[run], 1)  # a 撇, a 提
         ease = POINT_EASE if last else 1.0
-        _enter_and_leave(samples, pl, run, hover, hair, step_mm, (at, nxt), run_up, width_at, ease)
+        _enter_and_leave(samples, pl, run, brush, (at, nxt), run_up, width_at, ease)
         if nxt is not None:
             heights.append(nxt)
             dun.append(into_zhe)

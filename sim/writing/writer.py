@@ -21,7 +21,14 @@ import numpy as np
 
 from ..brush.ink import brush_load, full_load
 from ..core.params import HOVER_MM, MAX_PAPER_SIDE_PX, ParameterError, number_within, short_repr
-from ..core.recording import PAPER_MM_RANGE, PX_PER_MM_RANGE, Dip, Recording, quantise
+from ..core.recording import (
+    PAPER_MM_RANGE,
+    PX_PER_MM_RANGE,
+    Dip,
+    Recording,
+    brush_scale,
+    quantise,
+)
 from ..engine.simulation import Simulation
 from .hanzi import check_char
 from .outline import EM, median_radii, rasterise
@@ -159,7 +166,7 @@ def write_character(
         for m in masks:
             whole[m.rows, m.cols] |= m.inside
 
-    brush = (hover, hair, step_mm)
+    brush = (hover, hair, step_mm, brush_scale(template.brush))
     run_up = 0.0 if exact_ends else RUN_UP
 
     def fill(a, b, press, side, ends=None, lift=None):

@@ -365,9 +365,11 @@ def test_write_text_on_a_cylinder_lays_the_work_in_its_uv_space(hb):
     P = frames[:, 2:5]
     assert np.abs(np.hypot(P[:, 0], P[:, 1]) - R_MM).max() < 0.5  # on the cylinder
     surface = ext().blender.surfaces.mesh_surface(st.paper_object)[0]
+    hair = rec.resolve()[1].hair_length_mm  # a brush made smaller for 16 mm (brush_size)
+    assert hair < HAIR
     for cell in layout_of(rec).cells:
         a, b = cell.samples
-        touch = rec.samples[a:b, 2] < HAIR
+        touch = rec.samples[a:b, 2] < hair
         centre = ((cell.x + cell.size / 2) / rec.width_mm, (cell.y + cell.size / 2) / rec.height_mm)
         want = ext().sim.surface.uv_hit(surface, centre).point
         mid = (P[a:b][touch].max(axis=0) + P[a:b][touch].min(axis=0)) / 2

@@ -64,6 +64,28 @@ def test_write_character_presses_from_the_outline_and_shows_the_writing(hb):
 
 
 @pytest.mark.slow
+def test_a_small_character_is_written_with_a_brush_for_its_size_and_replays(hb):
+    st = setup_scene(bpy, ppm=3.0)
+    recs = ext().blender.recordings
+    ok = bpy.ops.hairy_brush.write_character(character="一", size_mm=30.0, passes=1)
+    assert ok == {"FINISHED"}
+    rec = recs.recording_from_scene(bpy.context.scene)
+    k = rec.brush["scale"]  # a brush made smaller for 30 mm (its own size is about 100)
+    assert 0.25 <= k < 0.5 and st.recording[recs.SCALE_TAG] == pytest.approx(k)
+    assert rec.resolve()[1].hair_length_mm == pytest.approx(HAIR * k)
+    shown = pixels(st.paper_image)[..., :3]  # what the stored recording renders
+    assert np.abs(shown - Simulation(rec).run().paper.rgb()).max() <= 0.5 / 255 + 1e-6
+    assert bpy.ops.hairy_brush.bake_samples() == {"FINISHED"}  # the keys baked again: the
+    assert recs.recording_from_scene(bpy.context.scene).brush["scale"] == k  # same brush
+    ok = bpy.ops.hairy_brush.write_character(
+        character="一", size_mm=30.0, passes=1, fit_brush=False
+    )
+    assert ok == {"FINISHED"}
+    assert "scale" not in recs.recording_from_scene(bpy.context.scene).brush
+    assert recs.SCALE_TAG not in st.recording
+
+
+@pytest.mark.slow
 def test_fit_parameters_sets_the_quality_and_saves_a_user_preset(hb):
     import os
 

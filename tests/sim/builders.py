@@ -88,7 +88,7 @@ def filled_stroke(pl, response, stroke: int, run_up=None, side=np.zeros):
     samples = np.zeros((len(pl.target), 6))
     samples[:, :2], samples[:, 2] = pl.target, hair + HOVER_MM
     press = response.press_for(pl.width[body])
-    brush = (hair + HOVER_MM, hair, 0.5)
+    brush = (hair + HOVER_MM, hair, 0.5, 1.0)
     run_up = RUN_UP if run_up is None else run_up
     _fill(samples, pl, response, (a, b), press, side(len(body)), brush, run_up=run_up)
     return samples, body

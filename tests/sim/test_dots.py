@@ -38,7 +38,9 @@ def test_a_dot_presses_into_its_heel_and_turns_back_as_it_lifts(response, char):
         samples = np.zeros((len(pl.target), 6))
         samples[:, :2], samples[:, 2] = pl.target, hair + HOVER_MM
         press = response.press_for(pl.width[body])
-        _fill(samples, pl, response, (a, b), press, np.zeros(len(body)), (hair + 1.0, hair, 0.5))
+        _fill(
+            samples, pl, response, (a, b), press, np.zeros(len(body)), (hair + 1.0, hair, 0.5, 1.0)
+        )
         pressed = hair - samples[body, 2]
         top = int(np.argmax(pl.width[body]))
         assert pressed[-1] >= 0.95 * pressed[top]

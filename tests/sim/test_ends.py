@@ -32,7 +32,9 @@ def test_a_pie_keeps_its_tip_down_most_of_the_way_to_its_point(response, char):
         samples = np.zeros((len(pl.target), 6))
         samples[:, :2], samples[:, 2] = pl.target, hair + HOVER_MM
         press = response.press_for(pl.width[body])
-        _fill(samples, pl, response, (a, b), press, np.zeros(len(body)), (hair + 1.0, hair, 0.5))
+        _fill(
+            samples, pl, response, (a, b), press, np.zeros(len(body)), (hair + 1.0, hair, 0.5, 1.0)
+        )
         down = hair - samples[lift, 2] > 0.0
         way = pl.tangent[body[-1]]
         travel = (samples[lift, :2] - samples[body[-1], :2]) @ way

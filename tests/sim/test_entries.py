@@ -186,7 +186,9 @@ def test_a_zhe_lifts_slightly_and_presses_again(response):
     samples = np.zeros((len(pl.target), 6))
     samples[:, :2], samples[:, 2] = pl.target, hair + HOVER_MM
     press = response.press_for(pl.width[body])
-    _fill(samples, pl, response, (a, b), press, np.zeros(len(body)), (hair + HOVER_MM, hair, 0.5))
+    _fill(
+        samples, pl, response, (a, b), press, np.zeros(len(body)), (hair + HOVER_MM, hair, 0.5, 1.0)
+    )
     first = np.flatnonzero(np.diff(body) > 1)[0]
     between = np.arange(body[first] + 1, body[first + 1])
     assert np.any(pl.phase[between] == TURNING)
@@ -227,7 +229,9 @@ def test_a_hook_sets_off_pressed_from_its_foot(response):
     samples = np.zeros((len(pl.target), 6))
     samples[:, :2], samples[:, 2] = pl.target, hair + HOVER_MM
     press = response.press_for(pl.width[body])
-    _fill(samples, pl, response, (a, b), press, np.zeros(len(body)), (hair + HOVER_MM, hair, 0.5))
+    _fill(
+        samples, pl, response, (a, b), press, np.zeros(len(body)), (hair + HOVER_MM, hair, 0.5, 1.0)
+    )
     _, foot, hook = runs
     between = np.arange(foot[-1] + 1, hook[0])
     kept = _heel(hair - samples[foot, 2], press[len(runs[0]) + len(foot)])
@@ -329,7 +333,9 @@ def test_a_movement_that_narrows_to_its_end_sweeps_on_out_to_its_point(response)
     samples = np.zeros((len(pl.target), 6))
     samples[:, :2], samples[:, 2] = pl.target, hair + HOVER_MM
     press = response.press_for(pl.width[body])
-    _fill(samples, pl, response, (a, b), press, np.zeros(len(body)), (hair + HOVER_MM, hair, 0.5))
+    _fill(
+        samples, pl, response, (a, b), press, np.zeros(len(body)), (hair + HOVER_MM, hair, 0.5, 1.0)
+    )
     lift = np.arange(body[-1] + 1, b)
     on = lift[: int(POINT_LIFT * len(lift))]
     z = samples[on, 2]

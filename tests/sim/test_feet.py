@@ -27,7 +27,9 @@ def _hook_written(response, char: str, stroke: int):
     samples = np.zeros((len(pl.target), 6))
     samples[:, :2], samples[:, 2] = pl.target, hair + HOVER_MM
     press = response.press_for(pl.width[body])
-    _fill(samples, pl, response, (a, b), press, np.zeros(len(body)), (hair + HOVER_MM, hair, 0.5))
+    _fill(
+        samples, pl, response, (a, b), press, np.zeros(len(body)), (hair + HOVER_MM, hair, 0.5, 1.0)
+    )
     return samples, runs, pl, hair
 
 

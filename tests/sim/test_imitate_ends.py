@@ -50,7 +50,7 @@ def test_the_imitation_lands_on_the_start_and_the_writer_runs_on_to_it(response)
     body = np.flatnonzero(pl.phase[a:b] == WRITING) + a
     entry = np.flatnonzero(pl.phase[a:b] == ENTERING) + a
     hair = _template().resolve()[1].hair_length_mm
-    brush = (hair + HOVER_MM, hair, 0.5)
+    brush = (hair + HOVER_MM, hair, 0.5, 1.0)
     press = response.press_for(pl.width[body])
     landed = []
     for run_up in (1.0, 0.0):

@@ -36,6 +36,7 @@ from ...brush.ink import brush_load, full_load
 from ...core.params import MAX_PAPER_PIXELS, MAX_PAPER_SIDE_PX, ParameterError
 from ...core.recording import PAPER_MM_RANGE, PX_PER_MM_RANGE, Dip, Recording, quantise
 from ...engine.simulation import Simulation
+from ..brush_size import brush_for_size
 from ..hanzi import lookup
 from ..response import Response, calibrate
 from ..writer import LOW_INK as WRITER_LOW_INK
@@ -293,11 +294,14 @@ WORK_PASSES = 1
 
 class Options(NamedTuple):
     """How the work is written: practice passes per stroke, characters between dips (None:
-    when the ink runs low), how much the characters vary (1: a hand's usual, 0: none)."""
+    when the ink runs low), how much the characters vary (1: a hand's usual, 0: none), whether
+    a work not at the brush's own size is written with the brush made smaller or larger for
+    it (``brush_size``; False: the brush as it is)."""
 
     passes: int = WORK_PASSES
     dip_every: int | None = None
     variation: float = 1.0
+    fit_brush: bool = True
 
 
 def natural_size_mm(chars, response: Response) -> float:
@@ -352,12 +356,16 @@ def compose(
     mapper=local_map,
     progress=None,
     response: Response | None = None,
+    cache_dir=None,
 ):
     """A work from ``text``: (its recording, its layout, the characters skipped). The em box is
     ``settings.char_mm``, or fitted to ``settings.paper_mm``, or (neither) the brush's own
-    size for the text; the resolution is ``char_px`` pixels an em box or ``px_per_mm``.
-    ``progress(share)`` as cells are written; ``response``: the brush's calibrated response
-    (``calibrate(template)``, measured here when not given). Raises ParameterError before any
+    size for the text; the resolution is ``char_px`` pixels an em box or ``px_per_mm``. At an
+    em box other than the brush's own size the work is written with the brush made smaller or
+    larger for it (``brush_size``, unless ``options.fit_brush`` is False): one brush for the
+    whole work, its scale in the recording. ``progress(share)`` as cells are written;
+    ``response``: the brush's calibrated response (``calibrate(template)``, measured here when
+    not given; ``cache_dir``: where calibrations are kept). Raises ParameterError before any
     writing."""
     if (char_px is None) == (px_per_mm is None):
         raise ParameterError("give the character size in pixels or the resolution (one of them)")
@@ -365,12 +373,14 @@ def compose(
     lines, settings, missing = prepare(
         text, settings, data=data, punctuation=punctuation, skip_missing=skip_missing
     )
-    response = response or calibrate(template)
+    response = response or calibrate(template, cache_dir=cache_dir)
+    chars = sorted({g.text for line in lines for g in line if g.kind == CHAR})
+    natural = natural_size_mm([lookup(c, data) for c in chars], response)
     if settings.char_mm is None and settings.paper_mm is None:
-        chars = sorted({g.text for line in lines for g in line if g.kind == CHAR})
-        size = natural_size_mm([lookup(c, data) for c in chars], response)
-        settings = replace(settings, char_mm=size)
+        settings = replace(settings, char_mm=natural)
     lay = lay_out(lines, settings)
+    if options.fit_brush:
+        template, response = brush_for_size(template, response, lay.char_mm, natural, cache_dir)
     ppm = float(px_per_mm) if px_per_mm is not None else float(char_px) / lay.char_mm
     check_sheet(lay.width_mm, lay.height_mm, ppm)
     seal_glyphs = [
