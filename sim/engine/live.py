@@ -48,7 +48,7 @@ import numpy as np
 
 from ..core.frames import rotation_matrix
 from ..core.params import HOVER_MM
-from ..core.recording import Dip, quantise
+from ..core.recording import Dip, brush_scale, quantise
 from .simulation import BATCH_STEPS, Simulation
 
 WHEEL_STEP_MM = 0.5
@@ -87,7 +87,9 @@ class LiveBrush:
 
     def __init__(self, sim: Simulation, press_mm: float = 4.0, step_deg: float = 2.0, xy=None):
         self.sim = sim
-        self.press_mm = float(press_mm)
+        # Press is the preset brush's: a brush made smaller for the writing's size (its
+        # recording's 'brush.scale', sim.writing.brush_size) presses as much less deep
+        self.press_mm = float(press_mm) * brush_scale(sim.rec.brush)
         self.step_deg = float(step_deg)
         self.L = sim.geometry.hair_length_mm
         self.n0 = len(sim.rec.samples)

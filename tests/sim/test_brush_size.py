@@ -90,3 +90,16 @@ def test_a_small_character_is_written_nearer_its_outline_with_a_small_brush(tmp_
         argv += ["--size-mm", "25", "-q", "-o", str(tmp_path / "k.png"), "--recording", str(rec)]
         assert main(argv + extra) == 0
         assert ("scale" in load(rec).brush) is scaled
+
+
+def test_live_painting_presses_a_smaller_brush_as_much_less_deep():
+    from sim.engine.live import LiveBrush
+    from sim.engine.simulation import Simulation
+
+    pressed = {}
+    for scale in (None, 0.5):
+        rec = _template() if scale is None else _template(scale=scale)
+        rec.samples = np.array([[50.0, 50.0, 40.0, 0.0, 0.0, 0.0]])
+        live = LiveBrush(Simulation(rec).run(), press_mm=4.0)
+        pressed[scale] = live.press()
+    assert pressed == {None: 4.0, 0.5: 2.0}  # the sidebar's Press is the preset brush's
