@@ -72,6 +72,11 @@ def test_a_small_character_is_written_with_a_brush_for_its_size_and_replays(hb):
     rec = recs.recording_from_scene(bpy.context.scene)
     k = rec.brush["scale"]  # a brush made smaller for 30 mm (its own size is about 100)
     assert 0.25 <= k < 0.5 and st.recording[recs.SCALE_TAG] == pytest.approx(k)
+    from tests.blender.test_sidebar import drawn, names
+
+    labels = " ".join(names(drawn(bpy.types.HAIRY_BRUSH_PT_recording), "label"))
+    assert f"Brush {k:g} times its size" in labels and "Recorded with" not in labels, labels
+    assert "fit_brush" in names(drawn(bpy.types.HAIRY_BRUSH_PT_write_text_options), "prop")
     assert rec.resolve()[1].hair_length_mm == pytest.approx(HAIR * k)
     shown = pixels(st.paper_image)[..., :3]  # what the stored recording renders
     assert np.abs(shown - Simulation(rec).run().paper.rgb()).max() <= 0.5 / 255 + 1e-6
