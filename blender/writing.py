@@ -11,7 +11,7 @@ import math
 import numpy as np
 
 from ..sim.picture.imitate import read_picture, write_imitation
-from ..sim.writing.brush_size import brush_for_size
+from ..sim.writing.brush_size import brush_for_char
 from ..sim.writing.response import calibrate
 from ..sim.writing.writer import auto_size_mm, write_character
 from . import checks, images, jobs, keyframes, recordings, runtime, surfaces
@@ -72,9 +72,8 @@ class WriteJob(jobs.WorkerJob):
         if not size_mm:  # the size follows from the brush's response
             size_mm = auto_size_mm(self.char, response)
         elif self.fit_brush and (im is None or not self.piece):  # a brush for the size
-            natural = auto_size_mm(self.char, response)  # (a picture's: its strokes as read)
-            template, response = brush_for_size(
-                template, response, size_mm, natural, self.cache_dir
+            template, response = brush_for_char(
+                template, response, self.char, size_mm, self.cache_dir
             )
         size = self._check(size_mm)
         flat = progress if self.on_surface is None else _share(progress, 0.0, WRITE_SHARE)

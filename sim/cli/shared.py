@@ -89,13 +89,11 @@ def sized(args, template, response, char):
     """The template and response to write ``char`` with at ``--size-mm``: the brush made
     smaller or larger for that size (``sim.writing.brush_size``), or as it is (no size, or
     ``--keep-brush``)."""
-    from ..writing.brush_size import brush_for_size
-    from ..writing.writer import auto_size_mm
+    from ..writing.brush_size import brush_for_char
 
     if args.size_mm is None or args.keep_brush:
         return template, response
-    natural = auto_size_mm(char, response)
-    return brush_for_size(template, response, args.size_mm, natural, cache_dir())
+    return brush_for_char(template, response, char, args.size_mm, cache_dir())
 
 
 def _chars(specs, data):

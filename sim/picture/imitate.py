@@ -112,18 +112,16 @@ def imitate(
     written with the brush made smaller or larger for it (``writing.brush_size``; not with
     ``fit_brush`` False, nor a piece; ``cache_dir``: where its calibration is kept). Returns
     the recording, the response, the finished simulation and the Imitation."""
-    from ..writing.brush_size import brush_for_size
+    from ..writing.brush_size import brush_for_char
     from ..writing.response import calibrate
-    from ..writing.writer import auto_size_mm
 
     if progress is not None:
         progress(0.0, "reading the picture")
     im = read_picture(source, min(n_px, MAX_DETAIL), piece=piece)  # the writing is n_px
     if fit_brush and not piece and how.get("size_mm"):
         response = how.get("response") or calibrate(template, cache_dir=cache_dir)
-        natural = auto_size_mm(im.char, response)
-        template, how["response"] = brush_for_size(
-            template, response, how["size_mm"], natural, cache_dir
+        template, how["response"] = brush_for_char(
+            template, response, im.char, how["size_mm"], cache_dir
         )
     if progress is not None:
         progress(0.05, f"{len(im.strokes)} strokes found; writing")

@@ -31,6 +31,7 @@ from dataclasses import replace
 from ..core.params import BRUSH_SCALE_RANGE
 from ..core.recording import Recording
 from .response import Response, calibrate
+from .writer import auto_size_mm
 
 FIT_WITHIN = 0.1  # writing within 10 % of the brush's own size is written with it as it is
 SCALE_DIGITS = 3  # the scale kept in the recording, rounded (a readable number)
@@ -66,3 +67,12 @@ def brush_for_size(
     if sized is template:
         return template, response
     return sized, calibrate(sized, cache_dir=cache_dir)
+
+
+def brush_for_char(
+    template: Recording, response: Response, char: dict, size_mm: float, cache_dir=None
+) -> tuple[Recording, Response]:
+    """``brush_for_size`` of one character (its own size: ``writer.auto_size_mm``; a picture's
+    strokes as read, too)."""
+    natural = auto_size_mm(char, response)
+    return brush_for_size(template, response, size_mm, natural, cache_dir)
